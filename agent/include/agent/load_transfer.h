@@ -1,0 +1,103 @@
+#pragma once
+// The agent load-transfer method of WO2001052193 (US7024344B1): a load entering the body is
+// passed from agent to agent with transfer coefficients, and an agent exists only where the
+// load reaching it exceeds the threshold gamma. The rules, rule by rule with the seed's
+// passages and the choices made where the seed is open, are in docs/agent-model.md.
+//
+//   agent::LoadTransfer model(grid, {206e9, 0.3}, agent::Coefficients{}, agent::RuleSet::Patent);
+//   model.solve({{entry_cell, agent::direction(1, false), 2.0}});   // 2 N downwards (-y)
+//   const auto& f = model.face_forces();     // 2*dim compressive face forces per agent [N]
+//
+// Cost grows with the agents a load reaches, not with the body: solve() clears only what the
+// previous solve touched.
+#include <agent/grid.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace agent {
+
+/// The two readings of the seed's transfer rules (docs/agent-model.md).
+enum class RuleSet {
+  Patent,      ///< literal: entry x alpha1, each step down x alpha2, friction alpha3 re-entered with alpha1
+  Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
+};
+
+struct Coefficients {
+  double alpha1 = 0.5;         ///< entry coefficient (seed: P1 = alpha1 P0)
+  double alpha2 = 0.5;         ///< passing on in the load direction (P2 = alpha2 P1)
+  double alpha3 = 0.25;        ///< friction to each side neighbour (P3 = alpha3 P0)
+  double beta = 0.5;           ///< share of the Poisson expansion an agent keeps; 1 - beta is pushed out
+  double gamma = 1e-3;         ///< threshold [N]: a load at or below it is not passed on
+  double poisson_decay = 0.5;  ///< factor per agent on a sideways (Poisson) push as it is passed on
+};
+
+struct Material {
+  double young = 206e9;  ///< E [Pa]
+  double poisson = 0.3;  ///< nu
+};
+
+/// A load entering the body: `force` [N] acting on agent `cell`, moving in direction `dir`
+/// (see agent::direction); the agent receives it on its face opposite to `dir`.
+struct EntryLoad {
+  std::size_t cell;
+  int dir;
+  double force;
+};
+
+/// Where the load went. Forces in the load direction are kept apart from the sideways
+/// (Poisson) pushes, which are self-equilibrated.
+struct Diagnostics {
+  std::size_t agents_generated = 0;  ///< agents reached (generation >= 0)
+  std::size_t agent_updates = 0;     ///< agent visits by the sweeps (the cost measure)
+  double applied = 0;                ///< sum of the entry loads [N]
+  double rigid_reaction = 0;         ///< load returned by rigid boundary agents [N]
+  double passed_out = 0;             ///< load passed out through free faces [N]
+  double dropped = 0;                ///< transfers at or below gamma, not passed on [N]
+  double lateral_reaction = 0;       ///< Poisson pushes returned by rigid faces [N]
+  double lateral_passed_out = 0;     ///< Poisson pushes passed out through free faces [N]
+  double lateral_dropped = 0;        ///< Poisson pushes at or below gamma [N]
+};
+
+class LoadTransfer {
+ public:
+  /// Throws std::invalid_argument for coefficients outside their ranges (docs/agent-model.md).
+  LoadTransfer(const Grid& grid, Material material, Coefficients coefficients, RuleSet rules);
+
+  /// Propagates the loads from a clean state. Loads superpose: each entry load is swept on its own.
+  void solve(const std::vector<EntryLoad>& loads);
+
+  const Grid& grid() const { return grid_; }
+  const Material& material() const { return material_; }
+  /// Compressive normal force on each face of each agent [N], 2*dim per agent, by direction.
+  const std::vector<double>& face_forces() const { return faces_; }
+  /// Transfers from the entry agent to each agent; -1 where no load arrived.
+  const std::vector<std::int32_t>& generation() const { return generation_; }
+  const Diagnostics& diagnostics() const { return diagnostics_; }
+
+ private:
+  struct Box {
+    int u_lo, u_hi, v_lo, v_hi;
+    bool empty() const { return u_lo > u_hi; }
+  };
+  struct Touched {
+    int axis, layer;
+    Box box;
+  };
+  void sweep(const EntryLoad& load);
+  void clear_touched();
+
+  Grid grid_;
+  Material material_;
+  Coefficients k_;
+  RuleSet rules_;
+  std::vector<double> faces_;
+  std::vector<std::int32_t> generation_;
+  Diagnostics diagnostics_;
+  std::vector<Touched> touched_;
+  // Per-layer scratch, zero outside the active box: fresh (entry/friction) and downward inputs,
+  // the downward inputs of the next layer, and each agent's entering force.
+  std::vector<double> fresh_, down_, next_down_, top_;
+};
+
+}  // namespace agent

@@ -1,0 +1,30 @@
+#pragma once
+// Builds the agent grid from a gmsh mesh: a .geo file meshed through the gmsh API (with
+// parameters passed as ONELAB numbers, e.g. the agent size h) or a ready .msh file.
+// The mesh must be a structured tiling of one box by equal squares (2D) or cubes (3D); its
+// physical groups of dimension dim-1 become named sets of outer faces (loads, supports).
+#include <agent/grid.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace agent {
+
+struct ImportedMesh {
+  Grid grid;  ///< every outer face free; set supports with Grid::set_boundary
+  /// Grid cell of each mesh element, in the mesh's element order (the order of VTU/CSV output).
+  std::vector<std::size_t> cell_of_element;
+  /// Outer faces of each named physical group of dimension dim-1.
+  std::map<std::string, std::vector<BoundaryFace>> face_groups;
+  /// Names of the geometry parameters the .geo file declares (DefineConstant).
+  std::vector<std::string> parameters;
+};
+
+/// Reads or generates the mesh. `parameters` override the .geo's DefineConstant values; a name
+/// the file does not declare is an error. Every error is a std::runtime_error whose message
+/// starts with the file name and says what is wrong (element type, hole, overlap, ...).
+ImportedMesh import_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters = {});
+
+}  // namespace agent

@@ -1,0 +1,103 @@
+#include <agent/fields.h>
+
+#include <cmath>
+
+namespace agent {
+
+std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces) {
+  const int dim = grid.dim, nd = 2 * dim;
+  std::vector<double> sigma(grid.count() * dim);
+  std::array<double, 3> area{};
+  for (int a = 0; a < dim; ++a) area[a] = grid.face_area(a);
+  for (std::size_t c = 0; c < grid.count(); ++c)
+    for (int a = 0; a < dim; ++a)
+      sigma[c * dim + a] = -0.5 * (face_forces[c * nd + 2 * a] + face_forces[c * nd + 2 * a + 1]) / area[a];
+  return sigma;
+}
+
+std::vector<double> agent_strains(const Grid& grid, const Material& m, const std::vector<double>& stresses) {
+  const int dim = grid.dim;
+  const double E = m.young, nu = m.poisson;
+  std::vector<double> eps(grid.count() * 3);
+  for (std::size_t c = 0; c < grid.count(); ++c) {
+    const double sx = stresses[c * dim], sy = stresses[c * dim + 1], sz = dim == 3 ? stresses[c * dim + 2] : 0.0;
+    eps[3 * c + 0] = (sx - nu * (sy + sz)) / E;
+    eps[3 * c + 1] = (sy - nu * (sx + sz)) / E;
+    eps[3 * c + 2] = (sz - nu * (sx + sy)) / E;
+  }
+  return eps;
+}
+
+std::array<Datum, 3> choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
+  std::array<Datum, 3> datums{};
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double total = 0;
+  for (const auto& l : loads) {
+    centre += l.force * grid.centre(l.cell);
+    total += l.force;
+  }
+  if (total > 0) centre /= total;
+  for (int a = 0; a < grid.dim; ++a) {
+    auto rigid = [&](int side) {
+      for (auto b : grid.sides[side])
+        if (b == Boundary::Rigid) return true;
+      return false;
+    };
+    if (rigid(direction(a, false))) {
+      datums[a].kind = Datum::MinSide;
+    } else if (rigid(direction(a, true))) {
+      datums[a].kind = Datum::MaxSide;
+    } else {
+      datums[a].kind = Datum::Node;
+      const double f = total > 0 ? (centre[a] - grid.origin[a]) / grid.size[a] : 0.5 * grid.cells[a];
+      datums[a].node = int(std::lround(std::min(std::max(f, 0.0), double(grid.cells[a]))));
+    }
+  }
+  return datums;
+}
+
+std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
+                                       const std::array<Datum, 3>& datums) {
+  const int dim = grid.dim;
+  std::vector<double> u(grid.node_count() * dim, 0.0);
+  std::vector<double> weight(grid.node_count());
+  std::vector<double> line;
+  for (int a = 0; a < dim; ++a) {
+    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;
+    const int n = grid.cells[a];
+    const int datum = datums[a].kind == Datum::MinSide ? 0 : datums[a].kind == Datum::MaxSide ? n : datums[a].node;
+    std::fill(weight.begin(), weight.end(), 0.0);
+    line.assign(n + 1, 0.0);
+    for (int v = 0; v < grid.cells[l1]; ++v)
+      for (int w = 0; w < grid.cells[l0]; ++w) {
+        std::array<int, 3> c{};
+        c[l0] = w;
+        c[l1] = v;
+        auto strain = [&](int i) {
+          c[a] = i;
+          return strains[3 * grid.index(c[0], c[1], c[2]) + a] * grid.size[a];
+        };
+        // Integrate the column's strain from the datum node both ways.
+        line[datum] = 0;
+        for (int i = datum; i < n; ++i) line[i + 1] = line[i] + strain(i);
+        for (int i = datum - 1; i >= 0; --i) line[i] = line[i + 1] - strain(i);
+        // Add to the nodes of this column's cells (2 nodes across in 2D, 4 in 3D).
+        const int corners_v = dim == 3 ? 2 : 1;
+        for (int dv = 0; dv < corners_v; ++dv)
+          for (int dw = 0; dw < 2; ++dw)
+            for (int i = 0; i <= n; ++i) {
+              std::array<int, 3> p{};
+              p[a] = i;
+              p[l0] = w + dw;
+              p[l1] = v + dv;
+              const std::size_t node = grid.node_index(p[0], p[1], p[2]);
+              u[node * dim + a] += line[i];
+              weight[node] += 1;
+            }
+      }
+    for (std::size_t node = 0; node < grid.node_count(); ++node) u[node * dim + a] /= weight[node];
+  }
+  return u;
+}
+
+}  // namespace agent

@@ -1,0 +1,258 @@
+#include <agent/load_transfer.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace agent {
+
+namespace {
+void check(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+}  // namespace
+
+LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules)
+    : grid_(grid), material_(material), k_(k), rules_(rules) {
+  check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
+  for (int side = 0; side < 2 * grid.dim; ++side)
+    check(grid.sides[side].size() * grid.cells[axis_of(side)] == grid.count(), "grid boundary sides are not set up");
+  check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
+  check(material.poisson > -1 && material.poisson < 0.5, "poisson must be in (-1, 0.5)");
+  auto unit = [](double x) { return x >= 0 && x <= 1; };
+  check(unit(k.alpha1), "alpha1 must be in [0, 1]");
+  check(unit(k.alpha2), "alpha2 must be in [0, 1]");
+  check(unit(k.alpha3), "alpha3 must be in [0, 1]");
+  check(unit(k.beta), "beta must be in [0, 1]");
+  check(unit(k.poisson_decay), "poisson_decay must be in [0, 1]");
+  check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
+  check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
+  faces_.assign(grid.count() * 2 * grid.dim, 0.0);
+  generation_.assign(grid.count(), -1);
+  std::size_t layer = 0;
+  for (int a = 0; a < grid.dim; ++a) layer = std::max(layer, grid.count() / grid.cells[a]);
+  fresh_.assign(layer, 0.0);
+  down_.assign(layer, 0.0);
+  next_down_.assign(layer, 0.0);
+  top_.assign(layer, 0.0);
+}
+
+void LoadTransfer::clear_touched() {
+  const int nd = 2 * grid_.dim;
+  for (const auto& t : touched_) {
+    const int l0 = t.axis == 0 ? 1 : 0, l1 = t.axis == 2 ? 1 : 2;
+    const std::size_t base = std::size_t(t.layer) * grid_.stride(t.axis);
+    for (int v = t.box.v_lo; v <= t.box.v_hi; ++v)
+      for (int u = t.box.u_lo; u <= t.box.u_hi; ++u) {
+        const std::size_t cell = base + u * grid_.stride(l0) + v * grid_.stride(l1);
+        std::fill_n(&faces_[cell * nd], nd, 0.0);
+        generation_[cell] = -1;
+      }
+  }
+  touched_.clear();
+}
+
+void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
+  for (const auto& load : loads) {
+    check(load.cell < grid_.count(), "entry load outside the grid (cell " + std::to_string(load.cell) + ")");
+    check(load.dir >= 0 && load.dir < 2 * grid_.dim, "entry load direction out of range");
+    check(load.force >= 0 && std::isfinite(load.force), "entry load force must be finite and >= 0");
+  }
+  clear_touched();
+  diagnostics_ = Diagnostics{};
+  for (const auto& load : loads) sweep(load);
+}
+
+void LoadTransfer::sweep(const EntryLoad& load) {
+  const Grid& g = grid_;
+  const int nd = 2 * g.dim;
+  const int a = axis_of(load.dir);
+  const bool forward = is_positive(load.dir);
+  const int step = forward ? 1 : -1;
+  const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;  // the lateral axes (l1 has one cell in 2D)
+  const int n0 = g.cells[l0], n1 = g.cells[l1];
+  const std::size_t sa = g.stride(a), s0 = g.stride(l0), s1 = g.stride(l1);
+  const auto entry = g.coords(load.cell);
+  const int eu = entry[l0], ev = entry[l1];
+  const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
+  const bool patent = rules_ == RuleSet::Patent;
+  const bool three_d = g.dim == 3;
+  Diagnostics& d = diagnostics_;
+
+  d.applied += load.force;
+  if (!(load.force > k_.gamma)) {
+    d.dropped += load.force;
+    return;
+  }
+  auto reach = [&](std::size_t cell, int gen) {
+    auto& current = generation_[cell];
+    if (current < 0) {
+      current = gen;
+      ++d.agents_generated;
+    } else if (gen < current) {
+      current = gen;
+    }
+  };
+
+  fresh_[eu + std::size_t(n0) * ev] = load.force;
+  Box box{eu, eu, ev, ev};
+  int layer = entry[a];
+  for (int depth = 0;; ++depth, layer += step) {
+    const std::size_t layer_base = std::size_t(layer) * sa;
+    const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
+    Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+
+    // Pass a transfer across an outer face: rigid returns it, free lets it out.
+    auto leave = [&](double* f, int face, const std::array<int, 3>& c, double t) {
+      if (g.boundary(face, c) == Boundary::Rigid) {
+        f[face] += t;
+        d.rigid_reaction += t;
+      } else {
+        d.passed_out += t;
+      }
+    };
+
+    auto process = [&](int u, int v) {
+      const std::size_t b = u + std::size_t(n0) * v;
+      const double fresh = fresh_[b], down = down_[b];
+      if (fresh == 0 && down == 0) return;
+      fresh_[b] = down_[b] = 0;
+      ++d.agent_updates;
+      const std::size_t cell = layer_base + u * s0 + v * s1;
+      reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
+      double* f = &faces_[cell * nd];
+      const double input = fresh + down;
+      // Entering force: fresh loads (the entry, friction) enter with alpha1 in the patent reading.
+      const double top = patent ? k_.alpha1 * fresh + down : input;
+      f[enter_face] += top;
+      top_[b] = top;
+
+      // Friction spreads outwards, away from the load line, never back.
+      const bool u_plus = u >= eu, u_minus = u <= eu;
+      const bool v_plus = three_d && v >= ev, v_minus = three_d && v <= ev;
+      const int n_out = int(u_plus) + int(u_minus) + int(v_plus) + int(v_minus);
+      double down_t, side_t;
+      if (patent) {
+        down_t = k_.alpha2 * top;
+        side_t = k_.alpha3 * input;
+      } else {
+        const double split = k_.alpha2 + n_out * k_.alpha3;
+        down_t = top * k_.alpha2 / split;
+        side_t = top * k_.alpha3 / split;
+      }
+      std::array<int, 3> c{};
+      c[a] = layer;
+      c[l0] = u;
+      c[l1] = v;
+
+      if (down_t > k_.gamma) {
+        if (!last_layer) {
+          next_down_[b] += down_t;
+          f[exit_face] += down_t;
+          next.u_lo = std::min(next.u_lo, u);
+          next.u_hi = std::max(next.u_hi, u);
+          next.v_lo = std::min(next.v_lo, v);
+          next.v_hi = std::max(next.v_hi, v);
+        } else {
+          leave(f, exit_face, c, down_t);
+        }
+      } else {
+        d.dropped += down_t;
+      }
+
+      if (side_t > k_.gamma) {
+        auto side = [&](bool active, int coord, int n, int axis, long offset, int& bound, bool up) {
+          if (!active) return;
+          const int target = coord + (up ? 1 : -1);
+          if (target < 0 || target >= n) {
+            const int face = direction(axis, up);
+            if (g.boundary(face, c) == Boundary::Rigid) d.rigid_reaction += side_t;
+            else d.passed_out += side_t;
+            return;
+          }
+          fresh_[b + offset] += side_t;
+          bound = up ? std::max(bound, target) : std::min(bound, target);
+        };
+        side(u_plus, u, n0, l0, 1, box.u_hi, true);
+        side(u_minus, u, n0, l0, -1, box.u_lo, false);
+        side(v_plus, v, n1, l1, n0, box.v_hi, true);
+        side(v_minus, v, n1, l1, -long(n0), box.v_lo, false);
+      } else {
+        d.dropped += n_out * side_t;
+      }
+    };
+
+    auto column = [&](int u) {
+      for (int v = ev; v <= box.v_hi; ++v) process(u, v);
+      for (int v = ev - 1; v >= box.v_lo; --v) process(u, v);
+    };
+    for (int u = eu; u <= box.u_hi; ++u) column(u);
+    for (int u = eu - 1; u >= box.u_lo; --u) column(u);
+
+    // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
+    // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
+    Box touched = box;
+    auto scan_line = [&](int lateral, int n, long offset_cells, long offset_buf, std::size_t first_cell,
+                         std::size_t first_buf, int lo, int hi, int& reach_lo, int& reach_hi) {
+      const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
+      for (int dir = 0; dir < 2; ++dir) {
+        const bool up = dir == 0;
+        const int face_out = direction(lateral, up), face_in = opposite(face_out);
+        const int sgn = up ? 1 : -1;
+        double carried = 0;
+        for (int w = up ? lo : hi; w >= 0 && w < n; w += sgn) {
+          const bool inside = w >= lo && w <= hi;
+          if (!inside && carried == 0) break;
+          const std::size_t cell = first_cell + w * offset_cells;
+          const double own = inside ? push * top_[first_buf + w * offset_buf] : 0.0;
+          const double t = own + k_.poisson_decay * carried;
+          carried = 0;
+          if (t == 0) continue;
+          ++d.agent_updates;
+          if (!(t > k_.gamma)) {
+            d.lateral_dropped += t;
+            continue;
+          }
+          double* f = &faces_[cell * nd];
+          const int target = w + sgn;
+          if (target < 0 || target >= n) {
+            std::array<int, 3> c = g.coords(cell);
+            if (g.boundary(face_out, c) == Boundary::Rigid) {
+              f[face_out] += t;
+              d.lateral_reaction += t;
+            } else {
+              d.lateral_passed_out += t;
+            }
+            continue;
+          }
+          const std::size_t next_cell = cell + sgn * offset_cells;
+          f[face_out] += t;
+          faces_[next_cell * nd + face_in] += t;
+          reach(next_cell, generation_[cell] + 1);
+          carried = t;
+          reach_lo = std::min(reach_lo, target);
+          reach_hi = std::max(reach_hi, target);
+        }
+      }
+    };
+    if (k_.beta < 1 && material_.poisson != 0) {
+      for (int v = box.v_lo; v <= box.v_hi; ++v)
+        scan_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, touched.u_lo,
+                  touched.u_hi);
+      if (three_d)
+        for (int u = box.u_lo; u <= box.u_hi; ++u)
+          scan_line(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, touched.v_lo, touched.v_hi);
+    }
+    for (int v = box.v_lo; v <= box.v_hi; ++v) std::fill_n(&top_[box.u_lo + std::size_t(n0) * v], box.u_hi - box.u_lo + 1, 0.0);
+    touched_.push_back({a, layer, touched});
+
+    if (next.empty()) break;
+    box = next;
+    std::swap(down_, next_down_);
+  }
+}
+
+}  // namespace agent

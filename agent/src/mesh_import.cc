@@ -1,0 +1,252 @@
+#include <agent/mesh_import.h>
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace agent {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct MeshError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// gmsh keeps global state: initialise once per process, clear the model for every import.
+void gmsh_session() {
+  static bool initialised = false;
+  if (!initialised) {
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 1);
+    initialised = true;
+  }
+  gmsh::clear();
+  gmsh::onelab::clear();
+}
+
+std::string last_gmsh_error() {
+  std::string error;
+  gmsh::logger::getLastError(error);
+  return error.empty() ? "gmsh failed" : error;
+}
+
+std::string point_text(const Eigen::Vector3d& x, int dim) {
+  std::ostringstream s;
+  s << "(" << x[0] << ", " << x[1];
+  if (dim == 3) s << ", " << x[2];
+  s << ")";
+  return s.str();
+}
+
+}  // namespace
+
+ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
+  const std::string name = file.string();
+  if (!fs::is_regular_file(file)) throw MeshError(name + ": no such mesh file");
+  const std::string ext = file.extension().string();
+  if (ext != ".geo" && ext != ".msh") throw MeshError(name + ": a mesh must be a gmsh .geo or .msh file");
+  if (ext == ".msh" && !parameters.empty()) throw MeshError(name + ": mesh parameters apply to .geo files only");
+
+  gmsh_session();
+  ImportedMesh out;
+  try {
+    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
+    gmsh::logger::start();
+    gmsh::open(name);
+    if (ext == ".geo") {
+      std::vector<std::string> names;
+      gmsh::onelab::getNames(names);
+      for (const auto& n : names)
+        if (n.find('/') == std::string::npos) out.parameters.push_back(n);
+      for (const auto& [key, value] : parameters)
+        if (std::find(out.parameters.begin(), out.parameters.end(), key) == out.parameters.end())
+          throw MeshError(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
+      gmsh::model::mesh::generate(gmsh::model::getDimension());
+    }
+    gmsh::logger::stop();
+  } catch (const MeshError&) {
+    throw;
+  } catch (...) {
+    std::string error = last_gmsh_error();
+    gmsh::logger::stop();
+    throw MeshError(name + ": " + error);
+  }
+
+  const int dim = gmsh::model::getDimension();
+  if (dim != 2 && dim != 3) throw MeshError(name + ": the model must be 2D or 3D (got dimension " + std::to_string(dim) + ")");
+
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(node_tags, coords, parametric);
+  std::unordered_map<std::size_t, Eigen::Vector3d> node_at;
+  node_at.reserve(node_tags.size());
+  for (std::size_t i = 0; i < node_tags.size(); ++i)
+    node_at[node_tags[i]] = Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+  gmsh::model::mesh::getElements(types, element_tags, element_nodes, dim);
+  const int wanted = dim == 2 ? 3 : 5;  // 4-node quadrangle, 8-node hexahedron
+  const int corners = dim == 2 ? 4 : 8;
+  for (int t : types)
+    if (t != wanted) {
+      std::string type_name;
+      int d, order, nn, np;
+      std::vector<double> local;
+      gmsh::model::mesh::getElementProperties(t, type_name, d, order, nn, local, np);
+      throw MeshError(name + ": has " + type_name + " elements; the agent method needs a structured mesh of " +
+                      (dim == 2 ? "4-node squares" : "8-node cubes") + " (Transfinite + Recombine)");
+    }
+  if (types.empty()) throw MeshError(name + ": holds no " + std::to_string(dim) + "D elements");
+  const auto& elements = element_nodes[0];
+  const std::size_t n_elements = element_tags[0].size();
+
+  // Bounding box of each element: all equal, axis aligned, corners at the box's corners.
+  Eigen::Vector3d lo_all = Eigen::Vector3d::Constant(1e300), hi_all = Eigen::Vector3d::Constant(-1e300);
+  std::vector<Eigen::Vector3d> element_lo(n_elements);
+  Eigen::Vector3d size = Eigen::Vector3d::Ones();
+  for (std::size_t e = 0; e < n_elements; ++e) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
+    for (int c = 0; c < corners; ++c) {
+      const Eigen::Vector3d& x = node_at.at(elements[e * corners + c]);
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    const Eigen::Vector3d s = hi - lo;
+    if (e == 0) {
+      size = s;
+      for (int a = 0; a < dim; ++a)
+        if (!(size[a] > 0)) throw MeshError(name + ": element " + std::to_string(element_tags[0][e]) + " is degenerate");
+      if (dim == 2 && std::abs(s[2]) > 1e-12 * size.head<2>().norm())
+        throw MeshError(name + ": a 2D mesh must lie in the x-y plane");
+    }
+    const double tol = 1e-6 * size.head(dim).minCoeff();
+    for (int a = 0; a < dim; ++a)
+      if (std::abs(s[a] - size[a]) > tol)
+        throw MeshError(name + ": agents must all be the same size; element " + std::to_string(element_tags[0][e]) +
+                        " at " + point_text(lo, dim) + " differs (structured mesh with uniform spacing needed)");
+    for (int c = 0; c < corners; ++c) {
+      const Eigen::Vector3d& x = node_at.at(elements[e * corners + c]);
+      for (int a = 0; a < dim; ++a)
+        if (std::min(std::abs(x[a] - lo[a]), std::abs(x[a] - hi[a])) > tol)
+          throw MeshError(name + ": element " + std::to_string(element_tags[0][e]) +
+                          " is not an axis-aligned square/cube; the agent method needs a grid aligned with x, y" +
+                          (dim == 3 ? ", z" : ""));
+    }
+    element_lo[e] = lo;
+    lo_all = lo_all.cwiseMin(lo);
+    hi_all = hi_all.cwiseMax(hi);
+  }
+
+  std::array<int, 3> n{1, 1, 1};
+  for (int a = 0; a < dim; ++a) n[a] = int(std::lround((hi_all[a] - lo_all[a]) / size[a]));
+  if (dim == 2) size[2] = 1.0;
+  Grid grid = Grid::box(dim, n, size);
+  grid.origin = lo_all;
+  if (dim == 2) grid.origin[2] = lo_all[2];
+  const double tol = 1e-4;
+
+  auto grid_index = [&](double x, int a, const std::string& what) {
+    const double f = (x - lo_all[a]) / size[a];
+    const long i = std::lround(f);
+    if (std::abs(f - double(i)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
+    return int(i);
+  };
+
+  // Place every element; a second element in a slot is an overlap, an empty slot a hole.
+  out.cell_of_element.resize(n_elements);
+  std::vector<std::size_t> element_in(grid.count(), std::size_t(-1));
+  std::unordered_map<std::size_t, std::size_t> grid_node_of_tag;
+  std::vector<std::size_t> tag_at_node(grid.node_count(), 0);
+  for (std::size_t e = 0; e < n_elements; ++e) {
+    std::array<int, 3> c{0, 0, 0};
+    for (int a = 0; a < dim; ++a) c[a] = grid_index(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
+    const std::size_t cell = grid.index(c[0], c[1], c[2]);
+    if (element_in[cell] != std::size_t(-1))
+      throw MeshError(name + ": elements " + std::to_string(element_tags[0][element_in[cell]]) + " and " +
+                      std::to_string(element_tags[0][e]) + " overlap at " + point_text(element_lo[e], dim));
+    element_in[cell] = e;
+    out.cell_of_element[e] = cell;
+    // Neighbours come from the mesh: agents that share a face must share its nodes.
+    for (int k = 0; k < corners; ++k) {
+      const std::size_t tag = elements[e * corners + k];
+      const Eigen::Vector3d& x = node_at.at(tag);
+      std::array<int, 3> p{0, 0, 0};
+      for (int a = 0; a < dim; ++a) p[a] = grid_index(x[a], a, "node " + std::to_string(tag));
+      const std::size_t node = grid.node_index(p[0], p[1], p[2]);
+      if (tag_at_node[node] != 0 && tag_at_node[node] != tag)
+        throw MeshError(name + ": nodes " + std::to_string(tag_at_node[node]) + " and " + std::to_string(tag) +
+                        " coincide at " + point_text(x, dim) + "; neighbouring agents must share nodes (Coherence)");
+      tag_at_node[node] = tag;
+      grid_node_of_tag[tag] = node;
+    }
+  }
+  for (std::size_t cell = 0; cell < grid.count(); ++cell)
+    if (element_in[cell] == std::size_t(-1))
+      throw MeshError(name + ": hole in the tiling at " + point_text(grid.centre(cell), dim) +
+                      "; the agents must fill a box");
+
+  // Physical groups of dimension dim-1: outer faces.
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim - 1);
+  for (const auto& [gdim, gtag] : groups) {
+    std::string group;
+    gmsh::model::getPhysicalName(gdim, gtag, group);
+    if (group.empty()) group = std::to_string(gtag);
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
+    auto& faces = out.face_groups[group];
+    for (int entity : entities) {
+      std::vector<int> ftypes;
+      std::vector<std::vector<std::size_t>> ftags, fnodes;
+      gmsh::model::mesh::getElements(ftypes, ftags, fnodes, gdim, entity);
+      for (std::size_t t = 0; t < ftypes.size(); ++t) {
+        const int fcorners = dim == 2 ? 2 : 4;
+        if (ftypes[t] != (dim == 2 ? 1 : 3))
+          throw MeshError(name + ": physical group '" + group + "' holds elements that are not " +
+                          (dim == 2 ? "2-node lines" : "4-node quadrangles"));
+        for (std::size_t f = 0; f < ftags[t].size(); ++f) {
+          std::array<int, 3> lo{1 << 30, 1 << 30, 1 << 30}, hi{-1, -1, -1};
+          for (int k = 0; k < fcorners; ++k) {
+            const std::size_t tag = fnodes[t][f * fcorners + k];
+            auto it = grid_node_of_tag.find(tag);
+            if (it == grid_node_of_tag.end())
+              throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
+            const std::size_t node = it->second;
+            const auto nc = grid.node_counts();
+            const std::array<int, 3> p{int(node % nc[0]), int((node / nc[0]) % nc[1]), int(node / (std::size_t(nc[0]) * nc[1]))};
+            for (int a = 0; a < 3; ++a) {
+              lo[a] = std::min(lo[a], p[a]);
+              hi[a] = std::max(hi[a], p[a]);
+            }
+          }
+          int side = -1;
+          for (int a = 0; a < dim; ++a)
+            if (lo[a] == hi[a]) {
+              if (lo[a] == 0) side = direction(a, false);
+              else if (lo[a] == grid.cells[a]) side = direction(a, true);
+            }
+          if (side < 0)
+            throw MeshError(name + ": physical group '" + group +
+                            "' has a face inside the body; loads and supports act on outer faces only");
+          std::array<int, 3> c = lo;
+          if (is_positive(side)) c[axis_of(side)] -= 1;
+          if (dim == 2) c[2] = 0;
+          faces.push_back({grid.index(c[0], c[1], c[2]), side});
+        }
+      }
+    }
+  }
+  out.grid = std::move(grid);
+  return out;
+}
+
+}  // namespace agent

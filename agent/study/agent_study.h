@@ -1,0 +1,51 @@
+#pragma once
+// The agent model as a workbench study: case file -> mesh -> load steps -> VTU/PVD/CSV.
+#include <agent/fields.h>
+#include <agent/load_transfer.h>
+#include <agent/mesh_import.h>
+#include <workbench/case_file.h>
+#include <workbench/study_setup.h>
+#include <workbench/vtk_output.h>
+
+#include <filesystem>
+#include <iosfwd>
+#include <vector>
+
+namespace agent_study {
+
+struct AgentStudy {
+  workbench::StudySetup setup;
+  agent::ImportedMesh mesh;  ///< grid with the rigid groups set
+  agent::Coefficients coefficients;
+  agent::RuleSet rules = agent::RuleSet::Patent;
+  std::vector<agent::EntryLoad> loads;  ///< one per loaded face, at the full load
+};
+
+/// Reads the [agent] section (docs/case-file.md) into coefficients and a rule set.
+void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules);
+
+/// Reads the common setup and [agent], builds the mesh and the entry loads. Does not reject
+/// unknown keys: the caller does, once every module has read its sections.
+AgentStudy load_agent_study(const workbench::CaseFile& file);
+
+/// Everything the agent model gives for one load state.
+struct AgentState {
+  std::vector<double> face_forces;   ///< 2*dim per agent, grid order [N]
+  std::vector<std::int32_t> generation;
+  std::vector<double> stress;        ///< dim per agent [Pa]
+  std::vector<double> strain;        ///< 3 per agent
+  std::vector<double> displacement;  ///< dim per node [m]
+  agent::Diagnostics diagnostics;
+};
+
+/// Solves with the loads scaled by `factor` (a load step).
+AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
+
+/// Writes agent_step_NNN.vtu per step, agent.pvd, agent_cells.csv and agent_nodes.csv (full
+/// load) and agent_diagnostics.csv (per step) into `dir`, reporting progress on `log`.
+void write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
+
+/// The grid as an output mesh: all nodes, cells in the mesh's element order.
+workbench::OutputMesh output_mesh(const AgentStudy& study);
+
+}  // namespace agent_study

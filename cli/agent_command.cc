@@ -1,0 +1,33 @@
+#include "commands.h"
+
+#include <agent_study.h>
+#include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+
+#include <iostream>
+#include <memory>
+
+namespace cli {
+
+void add_agent_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("agent", "Run the agent load-transfer method (WO2001052193) on a case file");
+  auto case_file = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  cmd->add_option("case", *case_file, "case file (TOML, see docs/case-file.md)")->required();
+  cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/agent)");
+  cmd->callback([&action, case_file, output] {
+    action = [case_file, output] {
+      workbench::CaseFile file(*case_file);
+      const auto study = agent_study::load_agent_study(file);
+      file.reject_unknown_keys();
+      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/agent" : *output;
+      workbench::StagedDirectory staged(dir);
+      agent_study::write_agent_outputs(study, staged.path(), std::cerr);
+      staged.commit();
+      std::cerr << "agent: wrote " << staged.target().string() << "\n";
+      return 0;
+    };
+  });
+}
+
+}  // namespace cli

@@ -1,0 +1,33 @@
+// workbench: the command-line front door of the deformation-model workbench.
+//
+//   workbench agent cases/seed_plate.toml            agent load-transfer study (VTU/PVD/CSV)
+//   workbench <subcommand> --help                    the options of each subcommand
+//
+// Every error is one line "workbench: error: <file>: <what>" and a non-zero exit; output folders
+// appear whole or not at all.
+#include "commands.h"
+
+#include <workbench/error.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"Fast deformation models (agent load transfer, PBD angle bending) against a deal.II FEM reference"};
+  app.require_subcommand(1);
+  cli::Action action;
+  cli::add_agent_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return action();
+  } catch (const workbench::Error& e) {
+    std::cerr << "workbench: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "workbench: error: " << e.what() << "\n";
+    return 3;
+  }
+}

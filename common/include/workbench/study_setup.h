@@ -1,0 +1,42 @@
+#pragma once
+// The parts of a case file every model reads alike: the mesh, the material, the supports, the
+// loads and the load steps (docs/case-file.md). Model-specific sections ([agent], [fem], ...)
+// are read by their modules.
+#include <workbench/case_file.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace workbench {
+
+/// A load on the outer faces of a physical group: total `force` [N] along axis `axis` with
+/// sign `sign` (direction "-y" is axis 1, sign -1), shared over the faces by area.
+struct LoadSpec {
+  std::string group;
+  int axis = 1;
+  int sign = -1;
+  double force = 0;
+  std::string direction_name() const;
+};
+
+struct StudySetup {
+  std::string title;
+  std::filesystem::path mesh_file;                 ///< .geo or .msh, resolved against the case file
+  std::map<std::string, double> mesh_parameters;   ///< [mesh.parameters], passed to the .geo
+  double young = 206e9;                            ///< [Pa]
+  double poisson = 0.3;
+  double thickness = 1.0;                          ///< [m], 2D only
+  std::vector<std::string> rigid_groups;           ///< clamped faces (the seed's rigid base)
+  std::vector<LoadSpec> loads;
+  int steps = 1;                                   ///< load steps: k/steps of the loads, k = 1..steps
+};
+
+StudySetup read_study_setup(const CaseTable& root);
+
+/// Throws "case: key: group 'x' is not a physical group of mesh (it has: ...)" for a group the
+/// case names that the mesh lacks.
+void check_groups_exist(const CaseFile& file, const StudySetup& setup, const std::vector<std::string>& mesh_groups);
+
+}  // namespace workbench

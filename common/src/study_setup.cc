@@ -1,0 +1,48 @@
+#include <workbench/study_setup.h>
+
+#include <algorithm>
+
+namespace workbench {
+
+std::string LoadSpec::direction_name() const { return std::string(sign < 0 ? "-" : "+") + char('x' + axis); }
+
+StudySetup read_study_setup(const CaseTable& root) {
+  StudySetup s;
+  s.title = root.text("title", "");
+  const auto mesh = root.table("mesh");
+  s.mesh_file = mesh.path("file", std::nullopt);
+  s.mesh_parameters = mesh.number_map("parameters");
+  const auto material = root.table("material");
+  s.young = material.number("young", 206e9, Range::positive());
+  s.poisson = material.number("poisson", 0.3, Range::open(-1.0, 0.5));
+  s.thickness = material.number("thickness", 1.0, Range::positive());
+  const auto boundary = root.table("boundary");
+  s.rigid_groups = boundary.texts("rigid", std::nullopt);
+  const auto loads = root.tables("load");
+  if (loads.empty()) root.fail("load", "missing (at least one [[load]] table with group, direction and force)");
+  for (const auto& l : loads) {
+    LoadSpec spec;
+    spec.group = l.text("group", std::nullopt);
+    const std::string dir = l.text("direction", "-y", {"-x", "+x", "-y", "+y", "-z", "+z"});
+    spec.sign = dir[0] == '-' ? -1 : 1;
+    spec.axis = dir[1] - 'x';
+    spec.force = l.number("force", std::nullopt, Range::positive());
+    s.loads.push_back(spec);
+  }
+  s.steps = root.table("steps").integer("count", 1, 1, 10000);
+  return s;
+}
+
+void check_groups_exist(const CaseFile& file, const StudySetup& setup, const std::vector<std::string>& mesh_groups) {
+  std::string have;
+  for (const auto& g : mesh_groups) have += (have.empty() ? "" : ", ") + g;
+  auto check = [&](const std::string& key, const std::string& group) {
+    if (std::find(mesh_groups.begin(), mesh_groups.end(), group) == mesh_groups.end())
+      throw Error(file.path().string() + ": " + key + ": group '" + group + "' is not a physical group of " +
+                  setup.mesh_file.string() + " (it has: " + (have.empty() ? "none" : have) + ")");
+  };
+  for (const auto& g : setup.rigid_groups) check("boundary.rigid", g);
+  for (std::size_t i = 0; i < setup.loads.size(); ++i) check("load[" + std::to_string(i) + "].group", setup.loads[i].group);
+}
+
+}  // namespace workbench

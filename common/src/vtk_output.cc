@@ -1,0 +1,91 @@
+#include <workbench/error.h>
+#include <workbench/vtk_output.h>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace workbench {
+
+void OutputMesh::add_cell(int vtk_type, std::initializer_list<long long> ids) {
+  cell_types.push_back(vtk_type);
+  connectivity.insert(connectivity.end(), ids.begin(), ids.end());
+  offsets.push_back(static_cast<long long>(connectivity.size()));
+}
+
+namespace {
+vtkNew<vtkDoubleArray> to_array(const Field& field, std::size_t count, const char* where,
+                                const std::filesystem::path& file) {
+  if (field.components < 1 || field.values.size() != count * static_cast<std::size_t>(field.components))
+    throw Error(file.string() + ": field '" + field.name + "' has " + std::to_string(field.values.size()) +
+                " values for " + std::to_string(count) + " " + where);
+  for (double v : field.values)
+    if (!std::isfinite(v)) throw Error(file.string() + ": field '" + field.name + "' holds a non-finite value");
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(field.name.c_str());
+  array->SetNumberOfComponents(field.components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(count));
+  std::copy(field.values.begin(), field.values.end(), array->GetPointer(0));
+  return array;
+}
+}  // namespace
+
+void write_vtu(const std::filesystem::path& file, const OutputMesh& mesh, const std::vector<Field>& point_fields,
+               const std::vector<Field>& cell_fields) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.point_count()));
+  for (std::size_t i = 0; i < mesh.point_count(); ++i)
+    points->SetPoint(static_cast<vtkIdType>(i), &mesh.points[3 * i]);
+
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(static_cast<vtkIdType>(mesh.cell_count() + 1));
+  offsets->SetValue(0, 0);
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c) offsets->SetValue(static_cast<vtkIdType>(c + 1), mesh.offsets[c]);
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(mesh.connectivity.size()));
+  for (std::size_t i = 0; i < mesh.connectivity.size(); ++i)
+    connectivity->SetValue(static_cast<vtkIdType>(i), mesh.connectivity[i]);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfTuples(static_cast<vtkIdType>(mesh.cell_count()));
+  for (std::size_t c = 0; c < mesh.cell_count(); ++c)
+    types->SetValue(static_cast<vtkIdType>(c), static_cast<unsigned char>(mesh.cell_types[c]));
+
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(types, cells);
+  for (const auto& f : point_fields) grid->GetPointData()->AddArray(to_array(f, mesh.point_count(), "points", file));
+  for (const auto& f : cell_fields) grid->GetCellData()->AddArray(to_array(f, mesh.cell_count(), "cells", file));
+
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(file.string().c_str());
+  writer->SetInputData(grid);
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1) throw Error(file.string() + ": VTK could not write the file");
+}
+
+void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& series) {
+  std::ofstream out(file);
+  if (!out) throw Error(file.string() + ": cannot open for writing");
+  out.precision(17);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n";
+  for (const auto& [time, name] : series)
+    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << name << "\"/>\n";
+  out << "  </Collection>\n</VTKFile>\n";
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
+}  // namespace workbench

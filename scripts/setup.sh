@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian package the workbench needs (Debian 12, as root). Idempotent: quiet and
+# quick when everything is there already.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build ccache pkg-config
+  libeigen3-dev libgmsh-dev gmsh libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
+  libvtk9-dev libdeal.ii-dev libnlopt-cxx-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3-matplotlib python3-numpy jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
+  ffmpeg
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" != "install ok installed" ]; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO=sudo
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

@@ -14,7 +14,6 @@ sx = Round((nx - nl) / 2); sz = Round((nz - nl) / 2);
 If (Fabs(nx * h - W) > 1e-9 * W || Fabs(ny * h - H) > 1e-9 * H || Fabs(nz * h - D) > 1e-9 * D ||
     Fabs(nl * h - lw) > 1e-9 * W || nl < 1 || sx < 1 || sz < 1 || 2 * sx + nl != nx || 2 * sz + nl != nz)
   Error("block3d.geo: W, H, D and lw must be multiples of h, centred patch with (W - lw)/2 and (D - lw)/2 multiples of h");
-  Abort;
 EndIf
 xs[] = {0, sx * h, (sx + nl) * h, W}; cx[] = {sx, nl, sx};
 zs[] = {0, sz * h, (sz + nl) * h, D}; cz[] = {sz, nl, sz};

@@ -12,7 +12,6 @@ DefineConstant[
 nx = Round(W / h); ny = Round(H / h); nl = Round(lw / h); nside = Round((nx - nl) / 2);
 If (Fabs(nx * h - W) > 1e-9 * W || Fabs(ny * h - H) > 1e-9 * H || Fabs(nl * h - lw) > 1e-9 * W || nl < 1 || 2 * nside + nl != nx)
   Error("plate2d.geo: W, H and lw must be multiples of h with (W - lw)/2 a multiple of h");
-  Abort;
 EndIf
 x1 = nside * h; x2 = x1 + nl * h;
 Point(1) = {0, 0, 0}; Point(2) = {W, 0, 0}; Point(3) = {W, H, 0};

@@ -28,8 +28,8 @@ std::vector<double> agent_strains(const Grid& grid, const Material& m, const std
   return eps;
 }
 
-std::array<Datum, 3> choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
-  std::array<Datum, 3> datums{};
+Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
+  Datums datums{0, 0, 0};
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double total = 0;
   for (const auto& l : loads) {
@@ -43,21 +43,17 @@ std::array<Datum, 3> choose_datums(const Grid& grid, const std::vector<EntryLoad
         if (b == Boundary::Rigid) return true;
       return false;
     };
-    if (rigid(direction(a, false))) {
-      datums[a].kind = Datum::MinSide;
-    } else if (rigid(direction(a, true))) {
-      datums[a].kind = Datum::MaxSide;
-    } else {
-      datums[a].kind = Datum::Node;
-      const double f = total > 0 ? (centre[a] - grid.origin[a]) / grid.size[a] : 0.5 * grid.cells[a];
-      datums[a].node = int(std::lround(std::min(std::max(f, 0.0), double(grid.cells[a]))));
-    }
+    if (rigid(direction(a, false)))
+      datums[a] = 0;
+    else if (rigid(direction(a, true)))
+      datums[a] = grid.cells[a];
+    else
+      datums[a] = total > 0 ? (centre[a] - grid.origin[a]) / grid.size[a] : 0.5 * grid.cells[a];
   }
   return datums;
 }
 
-std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
-                                       const std::array<Datum, 3>& datums) {
+std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
   const int dim = grid.dim;
   std::vector<double> u(grid.node_count() * dim, 0.0);
   std::vector<double> weight(grid.node_count());
@@ -65,7 +61,10 @@ std::vector<double> node_displacements(const Grid& grid, const std::vector<doubl
   for (int a = 0; a < dim; ++a) {
     const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;
     const int n = grid.cells[a];
-    const int datum = datums[a].kind == Datum::MinSide ? 0 : datums[a].kind == Datum::MaxSide ? n : datums[a].node;
+    // The datum sits in agent `cell` at fraction `frac` of its length.
+    const double position = std::min(std::max(datums[a], 0.0), double(n));
+    const int cell = std::min(int(position), n - 1);
+    const double frac = position - cell;
     std::fill(weight.begin(), weight.end(), 0.0);
     line.assign(n + 1, 0.0);
     for (int v = 0; v < grid.cells[l1]; ++v)
@@ -77,11 +76,10 @@ std::vector<double> node_displacements(const Grid& grid, const std::vector<doubl
           c[a] = i;
           return strains[3 * grid.index(c[0], c[1], c[2]) + a] * grid.size[a];
         };
-        // Integrate the column's strain from the datum node both ways.
-        line[datum] = 0;
-        for (int i = datum; i < n; ++i) line[i + 1] = line[i] + strain(i);
-        for (int i = datum - 1; i >= 0; --i) line[i] = line[i + 1] - strain(i);
-        // Add to the nodes of this column's cells (2 nodes across in 2D, 4 in 3D).
+        // Integrate the column's strain from its first node, then shift to zero at the datum.
+        for (int i = 0; i < n; ++i) line[i + 1] = line[i] + strain(i);
+        const double shift = line[cell] + frac * (line[cell + 1] - line[cell]);
+        // Add to the nodes of this column's cells (2 node lines across in 2D, 4 in 3D).
         const int corners_v = dim == 3 ? 2 : 1;
         for (int dv = 0; dv < corners_v; ++dv)
           for (int dw = 0; dw < 2; ++dw)
@@ -91,7 +89,7 @@ std::vector<double> node_displacements(const Grid& grid, const std::vector<doubl
               p[l0] = w + dw;
               p[l1] = v + dv;
               const std::size_t node = grid.node_index(p[0], p[1], p[2]);
-              u[node * dim + a] += line[i];
+              u[node * dim + a] += line[i] - shift;
               weight[node] += 1;
             }
       }

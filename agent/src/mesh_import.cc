@@ -1,6 +1,7 @@
 #include <agent/mesh_import.h>
 
 #include <gmsh.h>
+#include <gmsh_session.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,19 +19,6 @@ namespace fs = std::filesystem;
 struct MeshError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-/// gmsh keeps global state: initialise once per process, clear the model for every import.
-void gmsh_session() {
-  static bool initialised = false;
-  if (!initialised) {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-    initialised = true;
-  }
-  gmsh::clear();
-  gmsh::onelab::clear();
-}
 
 std::string last_gmsh_error() {
   std::string error;
@@ -55,13 +43,12 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
   if (ext != ".geo" && ext != ".msh") throw MeshError(name + ": a mesh must be a gmsh .geo or .msh file");
   if (ext == ".msh" && !parameters.empty()) throw MeshError(name + ": mesh parameters apply to .geo files only");
 
-  gmsh_session();
   ImportedMesh out;
   try {
-    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
-    gmsh::logger::start();
-    gmsh::open(name);
     if (ext == ".geo") {
+      // The names the .geo declares (DefineConstant), read before any is set from outside.
+      workbench::gmsh_begin();
+      gmsh::open(name);
       std::vector<std::string> names;
       gmsh::onelab::getNames(names);
       for (const auto& n : names)
@@ -69,14 +56,28 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       for (const auto& [key, value] : parameters)
         if (std::find(out.parameters.begin(), out.parameters.end(), key) == out.parameters.end())
           throw MeshError(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
-      gmsh::model::mesh::generate(gmsh::model::getDimension());
     }
+    workbench::gmsh_begin();
+    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
+    gmsh::logger::stop();
+    gmsh::logger::start();
+    gmsh::open(name);
+    // Error() in a .geo is logged, not thrown: report the first one.
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    for (const auto& line : log)
+      if (line.rfind("Error", 0) == 0) {
+        const auto colon = line.find(':');
+        throw MeshError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
+      }
+    if (ext == ".geo") gmsh::model::mesh::generate(gmsh::model::getDimension());
     gmsh::logger::stop();
   } catch (const MeshError&) {
+    workbench::gmsh_reset();
     throw;
   } catch (...) {
     std::string error = last_gmsh_error();
-    gmsh::logger::stop();
+    workbench::gmsh_reset();
     throw MeshError(name + ": " + error);
   }
 

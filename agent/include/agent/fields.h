@@ -16,20 +16,18 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
 /// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. Agents carry no shear.
 std::vector<double> agent_strains(const Grid& grid, const Material& material, const std::vector<double>& stresses);
 
-/// Where each displacement component is zero (docs/agent-model.md, "Displacement").
-struct Datum {
-  enum Kind { MinSide, MaxSide, Node } kind = MinSide;
-  int node = 0;  ///< node index along the axis, for Kind::Node
-};
+/// Where each displacement component is zero, per axis: a position along the axis in agent
+/// lengths from the grid's lower side (0 = the lower outer side, cells[a] = the upper one).
+using Datums = std::array<double, 3>;
 
-/// The seed plate's choice, generalised: along an axis with a rigid outer side, integrate from
-/// that side; otherwise from the node plane nearest the force-weighted centre of the entry loads.
-std::array<Datum, 3> choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
+/// The seed plate's choice, generalised (docs/agent-model.md, "Displacement"): along an axis with
+/// a rigid outer side, zero on that side; otherwise zero at the force-weighted centre of the loads.
+Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
 
 /// Nodal displacement [m], `dim` values per node (Grid::node_index order): each component is the
 /// agent strain integrated along its axis from the datum, column by column, and averaged over
 /// the columns that share the node.
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
-                                       const std::array<Datum, 3>& datums);
+                                       const Datums& datums);
 
 }  // namespace agent

@@ -1,0 +1,107 @@
+// The agent model as a study: case file -> mesh -> loads -> outputs.
+#include <agent_study.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kMeshes = WORKBENCH_SOURCE_DIR "/meshes/";
+
+// A case file in a temporary folder; `extra` replaces nothing, it is appended.
+fs::path write_case(const std::string& name, const std::string& body) {
+  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study";
+  fs::create_directories(dir);
+  const fs::path file = dir / name;
+  std::ofstream(file) << body;
+  return file;
+}
+
+std::string plate_case(const std::string& boundary = "rigid = [\"base\"]", const std::string& direction = "-y",
+                       const std::string& group = "load") {
+  return "[mesh]\nfile = \"" + kMeshes + "plate2d.geo\"\n[mesh.parameters]\nh = 0.01\nlw = 0.02\n" +
+         "[material]\nyoung = 206e9\npoisson = 0.3\nthickness = 0.002\n[boundary]\n" + boundary +
+         "\n[[load]]\ngroup = \"" + group + "\"\ndirection = \"" + direction + "\"\nforce = 2.0\n" +
+         "[agent]\nrule_set = \"conserving\"\ngamma = 1e-6\n[steps]\ncount = 3\n";
+}
+
+std::string study_error(const std::string& body) {
+  try {
+    workbench::CaseFile file(write_case("bad.toml", body));
+    agent_study::load_agent_study(file);
+    file.reject_unknown_keys();
+  } catch (const workbench::Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(AgentStudy, SeedPlateLoadIsSharedOverThePatchFaces) {
+  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  const auto study = agent_study::load_agent_study(file);
+  ASSERT_EQ(study.loads.size(), 2u);
+  for (const auto& l : study.loads) {
+    EXPECT_DOUBLE_EQ(l.force, 1.0);
+    EXPECT_EQ(l.dir, agent::direction(1, false));
+  }
+  EXPECT_DOUBLE_EQ(study.mesh.grid.thickness, 0.002);
+  EXPECT_EQ(study.rules, agent::RuleSet::Conserving);
+}
+
+TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
+  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  const auto study = agent_study::load_agent_study(file);
+  agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
+  const auto s = agent_study::evaluate(study, model, 1.0);
+  const auto& g = study.mesh.grid;
+  // The conserving rule set returns the whole load at the rigid base.
+  EXPECT_NEAR(s.diagnostics.rigid_reaction + s.diagnostics.passed_out + s.diagnostics.dropped, 2.0, 1e-12);
+  double max_uy = 0;
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 20; ++i) {
+      const std::size_t n = g.node_index(i, j, 0), m = g.node_index(20 - i, j, 0);
+      EXPECT_NEAR(s.displacement[2 * n], -s.displacement[2 * m], 1e-20);
+      EXPECT_NEAR(s.displacement[2 * n + 1], s.displacement[2 * m + 1], 1e-20);
+      if (j == 0) EXPECT_EQ(s.displacement[2 * n + 1], 0.0);
+      max_uy = std::min(max_uy, s.displacement[2 * n + 1]);
+    }
+  // The plate is squeezed: the top under the load moves down, by 1e-9 m order for 2 N on steel.
+  EXPECT_LT(max_uy, -1e-10);
+  EXPECT_GT(max_uy, -1e-7);
+}
+
+TEST(AgentStudy, WritesEveryStepAndTheTables) {
+  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  const auto study = agent_study::load_agent_study(file);
+  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study_out";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ostringstream log;
+  agent_study::write_agent_outputs(study, dir, log);
+  for (const char* f : {"agent.pvd", "agent_step_001.vtu", "agent_step_003.vtu", "agent_cells.csv", "agent_nodes.csv",
+                        "agent_diagnostics.csv"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  std::ifstream cells(dir / "agent_cells.csv");
+  std::string line;
+  int rows = -1;
+  while (std::getline(cells, line)) ++rows;
+  EXPECT_EQ(rows, 400);
+  EXPECT_NE(log.str().find("step 3/3"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(AgentStudy, BadCasesNameTheFileAndTheKey) {
+  EXPECT_NE(study_error(plate_case("rigid = []")).find("boundary.rigid: no rigid faces"), std::string::npos);
+  EXPECT_NE(study_error(plate_case("rigid = [\"floor\"]")).find("boundary.rigid: group 'floor' is not a physical group"),
+            std::string::npos);
+  EXPECT_NE(study_error(plate_case("rigid = [\"base\"]", "-z")).find("load[0].direction: -z is not an axis of a 2D mesh"),
+            std::string::npos);
+  EXPECT_NE(study_error(plate_case() + "[mesh.extra]\n").find("unknown key"), std::string::npos);
+  EXPECT_NE(study_error(plate_case() + "[output]\n").find("unknown key 'output'"), std::string::npos);
+}

@@ -1,0 +1,53 @@
+// Stress, strain and displacement from face forces, against closed forms.
+#include <agent/fields.h>
+
+#include <gtest/gtest.h>
+
+using namespace agent;
+
+TEST(AgentFields, StressIsMeanFaceForceOverAreaCompressionNegative) {
+  Grid g = Grid::box(2, {1, 1, 1}, Eigen::Vector3d(0.5, 0.25, 1), 0.1);
+  // faces -x, +x, -y, +y
+  const std::vector<double> f{1.0, 3.0, 2.0, 4.0};
+  const auto s = agent_stresses(g, f);
+  EXPECT_DOUBLE_EQ(s[0], -2.0 / (0.25 * 0.1));  // x faces have area h_y * t
+  EXPECT_DOUBLE_EQ(s[1], -3.0 / (0.5 * 0.1));   // y faces have area h_x * t
+}
+
+TEST(AgentFields, PlaneStressHooke) {
+  Grid g = Grid::box(2, {1, 1, 1}, Eigen::Vector3d(1, 1, 1));
+  const Material m{200.0, 0.25};
+  const auto e = agent_strains(g, m, {-10.0, -20.0});
+  EXPECT_DOUBLE_EQ(e[0], (-10.0 + 0.25 * 20.0) / 200.0);
+  EXPECT_DOUBLE_EQ(e[1], (-20.0 + 0.25 * 10.0) / 200.0);
+  EXPECT_DOUBLE_EQ(e[2], 0.25 * 30.0 / 200.0);
+}
+
+TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
+  for (int dim : {2, 3}) {
+    Grid g = Grid::box(dim, {6, 5, 4}, Eigen::Vector3d(0.5, 0.25, 2.0));
+    for (auto& b : g.sides[2]) b = Boundary::Rigid;  // base: u_y = 0 at y = 0
+    std::vector<double> eps(g.count() * 3);
+    for (std::size_t c = 0; c < g.count(); ++c) {
+      eps[3 * c] = 1e-3;
+      eps[3 * c + 1] = -2e-3;
+      eps[3 * c + 2] = 3e-3;
+    }
+    // x: no rigid side, datum at the load; z likewise.
+    const std::vector<EntryLoad> loads{{g.index(2, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
+    const auto datums = choose_datums(g, loads);
+    EXPECT_DOUBLE_EQ(datums[1], 0.0);  // the rigid base
+    EXPECT_DOUBLE_EQ(datums[0], 2.5);  // the centre of the loaded agent
+    if (dim == 3) EXPECT_DOUBLE_EQ(datums[2], 1.5);
+    const auto u = node_displacements(g, eps, datums);
+    const auto nn = g.node_counts();
+    for (int k = 0; k < nn[2]; ++k)
+      for (int j = 0; j < nn[1]; ++j)
+        for (int i = 0; i < nn[0]; ++i) {
+          const std::size_t n = g.node_index(i, j, k);
+          EXPECT_NEAR(u[n * dim + 0], 1e-3 * (i - 2.5) * 0.5, 1e-15);
+          EXPECT_NEAR(u[n * dim + 1], -2e-3 * j * 0.25, 1e-15);
+          if (dim == 3) EXPECT_NEAR(u[n * dim + 2], 3e-3 * (k - 1.5) * 2.0, 1e-15);
+        }
+  }
+}

@@ -1,0 +1,239 @@
+// The agent rules, each on a small grid against hand-computed face forces.
+#include <agent/fields.h>
+#include <agent/load_transfer.h>
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+using namespace agent;
+
+namespace {
+
+constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
+
+// A W x H grid of unit squares, thickness 1, base (-y side) rigid, everything else free.
+Grid plate(int w, int h, bool rigid_base = true) {
+  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
+  if (rigid_base)
+    for (auto& b : g.sides[kMinusY]) b = Boundary::Rigid;
+  return g;
+}
+
+double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
+
+Coefficients coefficients(double a1, double a2, double a3, double beta, double gamma) {
+  Coefficients k;
+  k.alpha1 = a1;
+  k.alpha2 = a2;
+  k.alpha3 = a3;
+  k.beta = beta;
+  k.gamma = gamma;
+  k.poisson_decay = 0.5;
+  return k;
+}
+
+const Material kMaterial{1.0, 0.3};
+
+// 1 N downwards into the top-centre agent of a w x h plate.
+std::vector<EntryLoad> top_centre(const Grid& g, double force = 1.0) {
+  return {{g.index(g.cells[0] / 2, g.cells[1] - 1, 0), direction(1, false), force}};
+}
+
+}  // namespace
+
+TEST(AgentRules, EntryTakesAlpha1AndEachStepDownAlpha2) {
+  const Grid g = plate(5, 4);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.0, 1.0, 0.0), RuleSet::Patent);
+  m.solve(top_centre(g));
+  // P1 = alpha1 P0 = 0.5 on the entry agent's top; P2 = alpha2 P1 = 0.25 below, and so on.
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kPlusY), 0.5);
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kMinusY), 0.25);
+  EXPECT_DOUBLE_EQ(face(m, 2, 2, kPlusY), 0.25);
+  EXPECT_DOUBLE_EQ(face(m, 2, 1, kPlusY), 0.125);
+  EXPECT_DOUBLE_EQ(face(m, 2, 0, kPlusY), 0.0625);
+  // The rigid base returns what the bottom agent passes on: equal and opposite.
+  EXPECT_DOUBLE_EQ(face(m, 2, 0, kMinusY), 0.03125);
+  EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, 0.03125);
+  EXPECT_DOUBLE_EQ(m.diagnostics().applied, 1.0);
+  EXPECT_EQ(m.diagnostics().agents_generated, 4u);
+  EXPECT_EQ(m.generation()[g.index(2, 0, 0)], 3);
+  EXPECT_EQ(m.generation()[g.index(1, 3, 0)], -1);
+}
+
+TEST(AgentRules, FrictionPassesAlpha3OfTheInputAndReentersWithAlpha1) {
+  const Grid g = plate(5, 4);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.25, 1.0, 0.0), RuleSet::Patent);
+  m.solve(top_centre(g));
+  // P3 = alpha3 P0 = 0.25 is the side agent's input; its top carries alpha1 P3.
+  EXPECT_DOUBLE_EQ(face(m, 3, 3, kPlusY), 0.125);
+  EXPECT_DOUBLE_EQ(face(m, 1, 3, kPlusY), 0.125);
+  // The next one out gets alpha3 of that input (0.0625), entering with alpha1.
+  EXPECT_DOUBLE_EQ(face(m, 4, 3, kPlusY), 0.03125);
+  EXPECT_DOUBLE_EQ(face(m, 0, 3, kPlusY), 0.03125);
+  // Friction never comes back: the entry agent keeps alpha1 P0.
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kPlusY), 0.5);
+  // At the free sides the last friction load (alpha3 * 0.0625) is passed out, both sides.
+  EXPECT_DOUBLE_EQ(m.diagnostics().passed_out, 2 * 0.015625);
+  EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, 0.0);
+}
+
+TEST(AgentRules, PoissonPushIsOneMinusBetaNuEpsAEAndDecaysAlongThePush) {
+  const Grid g = plate(5, 4);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 1e-3), RuleSet::Patent);
+  m.solve(top_centre(g));
+  // Entry top 0.5 N on a 1 x 1 face: eps_y = 0.5 / (A E); P4 = (1 - 0.5) * 0.3 * eps_y * A * E = 0.075 N.
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kMinusX), 0.075);
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kPlusX), 0.075);
+  EXPECT_DOUBLE_EQ(face(m, 3, 3, kMinusX), 0.075);
+  EXPECT_DOUBLE_EQ(face(m, 3, 3, kPlusX), 0.0375);
+  EXPECT_DOUBLE_EQ(face(m, 4, 3, kMinusX), 0.0375);
+  // The free side lets the last push out: nothing pushes back on the outer face.
+  EXPECT_DOUBLE_EQ(face(m, 4, 3, kPlusX), 0.0);
+  EXPECT_DOUBLE_EQ(m.diagnostics().lateral_passed_out, 2 * 0.01875);
+  // sigma_x of the entry agent is the mean of its two side faces; Hooke then gives
+  // eps_x = -beta nu eps_y (to first order): the agent keeps beta of its Poisson expansion.
+  const auto sigma = agent_stresses(g, m.face_forces());
+  const std::size_t entry = g.index(2, 3, 0);
+  EXPECT_DOUBLE_EQ(sigma[2 * entry], -0.075);
+  EXPECT_DOUBLE_EQ(sigma[2 * entry + 1], -0.25);  // (0.5 top + 0 bottom) / 2
+  const auto eps = agent_strains(g, kMaterial, sigma);
+  EXPECT_NEAR(eps[3 * entry], -0.075 + 0.3 * 0.25, 1e-15);
+}
+
+TEST(AgentRules, ThresholdStopsTransfersAtOrBelowGamma) {
+  const Grid g = plate(5, 6);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.0, 1.0, 0.1), RuleSet::Patent);
+  m.solve(top_centre(g));
+  // Tops 0.5, 0.25, 0.125; the next transfer 0.0625 <= 0.1 is dropped and generates no agent.
+  EXPECT_EQ(m.diagnostics().agents_generated, 3u);
+  EXPECT_DOUBLE_EQ(m.diagnostics().dropped, 0.0625);
+  EXPECT_EQ(m.generation()[g.index(2, 3, 0)], 2);
+  EXPECT_EQ(m.generation()[g.index(2, 2, 0)], -1);
+  EXPECT_DOUBLE_EQ(face(m, 2, 3, kMinusY), 0.0);
+  // A load at or below gamma never enters.
+  m.solve(top_centre(g, 0.1));
+  EXPECT_EQ(m.diagnostics().agents_generated, 0u);
+  EXPECT_DOUBLE_EQ(m.diagnostics().dropped, 0.1);
+}
+
+TEST(AgentRules, FreeBaseLetsTheLoadOutRigidBaseReturnsIt) {
+  for (bool rigid : {false, true}) {
+    const Grid g = plate(3, 2, rigid);
+    LoadTransfer m(g, kMaterial, coefficients(1.0, 1.0, 0.0, 1.0, 0.0), RuleSet::Patent);
+    m.solve(top_centre(g));
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kPlusY), 1.0);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kMinusY), rigid ? 1.0 : 0.0);
+    EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, rigid ? 1.0 : 0.0);
+    EXPECT_DOUBLE_EQ(m.diagnostics().passed_out, rigid ? 0.0 : 1.0);
+  }
+}
+
+TEST(AgentRules, CentredLoadGivesMirrorSymmetricForces) {
+  for (auto rules : {RuleSet::Patent, RuleSet::Conserving}) {
+    const Grid g = plate(21, 15);
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 1e-4), rules);
+    m.solve(top_centre(g, 2.0));
+    ASSERT_GT(m.diagnostics().agents_generated, 20u);
+    for (int j = 0; j < 15; ++j)
+      for (int i = 0; i < 21; ++i) {
+        const int k = 20 - i;
+        EXPECT_DOUBLE_EQ(face(m, i, j, kMinusX), face(m, k, j, kPlusX));
+        EXPECT_DOUBLE_EQ(face(m, i, j, kMinusY), face(m, k, j, kMinusY));
+        EXPECT_DOUBLE_EQ(face(m, i, j, kPlusY), face(m, k, j, kPlusY));
+        EXPECT_EQ(m.generation()[g.index(i, j, 0)], m.generation()[g.index(k, j, 0)]);
+      }
+  }
+}
+
+TEST(AgentRules, CubesPassFrictionAndPoissonToFourSideNeighbours) {
+  Grid g = Grid::box(3, {5, 4, 5}, Eigen::Vector3d(1, 1, 1));
+  for (auto& b : g.sides[kMinusY]) b = Boundary::Rigid;
+  const std::size_t entry = g.index(2, 3, 2);
+  {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.25, 1.0, 0.0), RuleSet::Patent);
+    m.solve({{entry, direction(1, false), 1.0}});
+    const auto& f = m.face_forces();
+    for (auto [i, k] : {std::pair{1, 2}, {3, 2}, {2, 1}, {2, 3}})
+      EXPECT_DOUBLE_EQ(f[g.index(i, 3, k) * 6 + kPlusY], 0.125) << i << "," << k;
+    // A diagonal agent gets friction from both of its inner neighbours: 2 alpha3^2 P0, times alpha1.
+    EXPECT_DOUBLE_EQ(f[g.index(3, 3, 3) * 6 + kPlusY], 0.5 * 2 * 0.0625);
+  }
+  {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 1e-3), RuleSet::Patent);
+    m.solve({{entry, direction(1, false), 1.0}});
+    const auto& f = m.face_forces();
+    for (int side : {0, 1, 4, 5}) EXPECT_DOUBLE_EQ(f[entry * 6 + side], 0.075) << side;
+    EXPECT_DOUBLE_EQ(f[g.index(2, 3, 3) * 6 + 4], 0.075);  // -z face of the +z neighbour
+    EXPECT_DOUBLE_EQ(f[g.index(2, 3, 3) * 6 + 5], 0.0375);
+  }
+}
+
+TEST(AgentRules, LoadsFarApartSuperpose) {
+  const Grid g = plate(61, 20);
+  const Coefficients k = coefficients(0.5, 0.5, 0.25, 0.5, 1e-3);
+  const EntryLoad left{g.index(10, 19, 0), direction(1, false), 2.0};
+  const EntryLoad right{g.index(50, 19, 0), direction(1, false), 1.5};
+  LoadTransfer a(g, kMaterial, k, RuleSet::Patent), b(g, kMaterial, k, RuleSet::Patent), both(g, kMaterial, k, RuleSet::Patent);
+  a.solve({left});
+  b.solve({right});
+  both.solve({left, right});
+  for (std::size_t i = 0; i < a.face_forces().size(); ++i)
+    EXPECT_DOUBLE_EQ(both.face_forces()[i], a.face_forces()[i] + b.face_forces()[i]);
+  EXPECT_EQ(both.diagnostics().agents_generated, a.diagnostics().agents_generated + b.diagnostics().agents_generated);
+}
+
+TEST(AgentRules, LoadSteppingGrowsTheLoadedRegionMonotonically) {
+  const Grid g = plate(41, 30);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 1e-3), RuleSet::Patent);
+  std::vector<std::int32_t> previous(g.count(), -1);
+  std::size_t previous_count = 0;
+  for (int k = 1; k <= 20; ++k) {
+    m.solve(top_centre(g, 0.1 * k));
+    const auto& gen = m.generation();
+    for (std::size_t c = 0; c < g.count(); ++c)
+      if (previous[c] >= 0) EXPECT_GE(gen[c], 0) << "step " << k << " lost agent " << c;
+    EXPECT_GE(m.diagnostics().agents_generated, previous_count);
+    previous = gen;
+    previous_count = m.diagnostics().agents_generated;
+  }
+  EXPECT_GT(previous_count, 20u);
+}
+
+TEST(AgentRules, ConservingRuleSetBalancesTheLoad) {
+  const Grid g = plate(81, 40);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 1e-6), RuleSet::Conserving);
+  m.solve(top_centre(g, 2.0));
+  const auto& d = m.diagnostics();
+  // Nothing is lost on the way: what enters is returned by the base, passed out or dropped.
+  EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped, d.applied, 1e-12);
+  EXPECT_GT(d.rigid_reaction, 0.99 * d.applied);
+  // And every row carries the whole load down, less what was dropped under gamma above it.
+  EXPECT_LT(d.dropped, 2e-3);
+  for (int j : {39, 20, 1}) {
+    double row = 0;
+    for (int i = 0; i < 81; ++i) row += face(m, i, j, kMinusY);
+    EXPECT_LE(row, 2.0 + 1e-12) << "row " << j;
+    EXPECT_GE(row, 2.0 - d.dropped - d.passed_out - 1e-12) << "row " << j;
+  }
+}
+
+TEST(AgentRules, ASolveLeavesNoTraceOfThePreviousOne) {
+  const Grid g = plate(101, 60);
+  const Coefficients k = coefficients(0.5, 0.5, 0.25, 0.5, 1e-4);
+  LoadTransfer reused(g, kMaterial, k, RuleSet::Conserving), fresh(g, kMaterial, k, RuleSet::Conserving);
+  reused.solve(top_centre(g, 50.0));
+  reused.solve({{g.index(3, 59, 0), direction(1, false), 0.01}});
+  fresh.solve({{g.index(3, 59, 0), direction(1, false), 0.01}});
+  EXPECT_EQ(reused.face_forces(), fresh.face_forces());
+  EXPECT_EQ(reused.generation(), fresh.generation());
+}
+
+TEST(AgentRules, RejectsCoefficientsOutOfRange) {
+  const Grid g = plate(3, 3);
+  EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(1.5, 0.5, 0.25, 0.5, 0), RuleSet::Patent), std::invalid_argument);
+  EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.5, 0.25, -0.1, 0), RuleSet::Patent), std::invalid_argument);
+  EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, -1), RuleSet::Patent), std::invalid_argument);
+  EXPECT_THROW(LoadTransfer(g, {1.0, 0.5}, coefficients(0.5, 0.5, 0.25, 0.5, 0), RuleSet::Patent), std::invalid_argument);
+  EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 0), RuleSet::Conserving), std::invalid_argument);
+}

@@ -1,0 +1,90 @@
+// Case files: typed, range-checked keys; every mistake named with its file and key.
+#include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+#include <workbench/study_setup.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace workbench;
+
+namespace {
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+}  // namespace
+
+TEST(CaseFile, ReadsTypedValuesAndDefaults) {
+  CaseFile f("[material]\nyoung = 2e11\npoisson = 0.25\n[steps]\ncount = 4\n", "case.toml");
+  const auto m = f.root().table("material");
+  EXPECT_DOUBLE_EQ(m.number("young", {}, Range::positive()), 2e11);
+  EXPECT_DOUBLE_EQ(m.number("poisson", 0.3), 0.25);
+  EXPECT_DOUBLE_EQ(m.number("thickness", 1.5), 1.5);
+  EXPECT_EQ(f.root().table("steps").integer("count", 1, 1, 100), 4);
+  EXPECT_NO_THROW(f.reject_unknown_keys());
+}
+
+TEST(CaseFile, NamesFileKeyAndReason) {
+  CaseFile f("[material]\nyoung = -1\npoisson = \"x\"\n[agent]\nrule_set = \"other\"\n", "case.toml");
+  const auto m = f.root().table("material");
+  EXPECT_EQ(error_of([&] { m.number("young", {}, Range::positive()); }), "case.toml: material.young: must be > 0 (got -1)");
+  EXPECT_EQ(error_of([&] { m.number("poisson", 0.3); }), "case.toml: material.poisson: must be a number, not a string");
+  EXPECT_EQ(error_of([&] { m.number("thickness", {}); }), "case.toml: material.thickness: missing (required, a number)");
+  EXPECT_EQ(error_of([&] { f.root().table("agent").text("rule_set", "patent", {"patent", "conserving"}); }),
+            "case.toml: agent.rule_set: must be one of \"patent\", \"conserving\" (got \"other\")");
+}
+
+TEST(CaseFile, RejectsUnknownKeysIncludingInsideArraysOfTables) {
+  CaseFile f("[material]\nyoung = 1\nyuong = 2\n", "case.toml");
+  f.root().table("material").number("young", {});
+  EXPECT_EQ(error_of([&] { f.reject_unknown_keys(); }),
+            "case.toml: unknown key 'material.yuong'; see docs/case-file.md for the keys");
+  CaseFile g("[[load]]\ngroup = \"a\"\nforce = 1\nforse = 2\n", "case.toml");
+  for (const auto& l : g.root().tables("load")) {
+    l.text("group", {});
+    l.number("force", {});
+  }
+  EXPECT_NE(error_of([&] { g.reject_unknown_keys(); }).find("unknown key 'load[0].forse'"), std::string::npos);
+}
+
+TEST(CaseFile, SyntaxErrorsGiveLineAndColumn) {
+  EXPECT_NE(error_of([] { CaseFile("a = 1\nb = = 2\n", "bad.toml"); }).find("bad.toml:2:"), std::string::npos);
+  EXPECT_NE(error_of([] { CaseFile(std::filesystem::path("/nonexistent/case.toml")); }).find("no such file"),
+            std::string::npos);
+}
+
+TEST(StudySetup, ReadsLoadsAndChecksGroups) {
+  CaseFile f(
+      "[mesh]\nfile = \"m.geo\"\n[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"top\"\ndirection = \"-y\"\nforce = 2\n",
+      "dir/case.toml");
+  const auto s = read_study_setup(f.root());
+  EXPECT_EQ(s.mesh_file, std::filesystem::path("dir/m.geo"));
+  ASSERT_EQ(s.loads.size(), 1u);
+  EXPECT_EQ(s.loads[0].axis, 1);
+  EXPECT_EQ(s.loads[0].sign, -1);
+  EXPECT_EQ(error_of([&] { check_groups_exist(f, s, {"base", "free"}); }),
+            "dir/case.toml: load[0].group: group 'top' is not a physical group of dir/m.geo (it has: base, free)");
+}
+
+TEST(StagedDirectory, AppearsWholeOrNotAtAll) {
+  const auto target = std::filesystem::temp_directory_path() / "workbench_staged_test";
+  std::filesystem::remove_all(target);
+  {
+    StagedDirectory staged(target);
+    std::ofstream(staged.path() / "a.txt") << "half";
+  }  // abandoned: nothing appears
+  EXPECT_FALSE(std::filesystem::exists(target));
+  {
+    StagedDirectory staged(target);
+    std::ofstream(staged.path() / "a.txt") << "whole";
+    staged.commit();
+  }
+  EXPECT_TRUE(std::filesystem::exists(target / "a.txt"));
+  std::filesystem::remove_all(target);
+}

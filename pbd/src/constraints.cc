@@ -1,0 +1,121 @@
+#include <pbd/constraints.h>
+
+#include <cmath>
+
+namespace pbd {
+
+namespace {
+constexpr double kTinySquaredLength = 1e-300;
+/// Below this |sin theta| the unsigned form has no gradient direction.
+constexpr double kMinSin = 1e-12;
+}  // namespace
+
+double angle(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  const Vec3 a = p1 - p3, b = p2 - p3;
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+double signed_angle(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& axis) {
+  const Vec3 a = p1 - p3, b = p2 - p3;
+  return std::atan2(axis.dot(a.cross(b)), a.dot(b));
+}
+
+AngleGradient angle_constraint_gradient(const Vec3& p1, const Vec3& p2, const Vec3& p3, double theta0,
+                                        const Vec3* axis) {
+  AngleGradient g;
+  const Vec3 a = p1 - p3, b = p2 - p3;
+  const double la2 = a.squaredNorm(), lb2 = b.squaredNorm();
+  if (!(la2 > kTinySquaredLength) || !(lb2 > kTinySquaredLength)) return g;
+  const double inv_la = 1.0 / std::sqrt(la2), inv_lb = 1.0 / std::sqrt(lb2);
+  const Vec3 ua = a * inv_la, ub = b * inv_lb;
+  const Vec3 cr = ua.cross(ub);
+  const double c = ua.dot(ub);
+  Vec3 n;
+  double s;
+  if (axis) {
+    n = *axis;
+    s = n.dot(cr);
+  } else {
+    s = cr.norm();
+    if (s < kMinSin) {
+      g.C = std::atan2(s, c) - theta0;
+      return g;
+    }
+    n = cr / s;
+  }
+  const double rc = std::cos(theta0), rs = std::sin(theta0);
+  g.C = std::atan2(s * rc - c * rs, c * rc + s * rs);
+  g.g1 = -n.cross(ua) * inv_la;
+  g.g2 = n.cross(ub) * inv_lb;
+  g.g3 = -g.g1 - g.g2;
+  g.valid = true;
+  return g;
+}
+
+double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double w3, double rest_cos,
+                     double rest_sin, double alpha_tilde, double& lambda, const Vec3* axis) {
+  const Vec3 a = p1 - p3, b = p2 - p3;
+  const double la2 = a.squaredNorm(), lb2 = b.squaredNorm();
+  if (!(la2 > kTinySquaredLength) || !(lb2 > kTinySquaredLength)) return 0;
+  const double inv_la = 1.0 / std::sqrt(la2), inv_lb = 1.0 / std::sqrt(lb2);
+  const Vec3 ua = a * inv_la, ub = b * inv_lb;
+  const Vec3 cr = ua.cross(ub);
+  const double c = ua.dot(ub);
+  Vec3 n;
+  double s;
+  if (axis) {
+    n = *axis;
+    s = n.dot(cr);
+  } else {
+    s = cr.norm();
+    if (s < kMinSin) return 0;
+    n = cr * (1.0 / s);
+  }
+  const double C = std::atan2(s * rest_cos - c * rest_sin, c * rest_cos + s * rest_sin);
+  const Vec3 g1 = -n.cross(ua) * inv_la;
+  const Vec3 g2 = n.cross(ub) * inv_lb;
+  const Vec3 g3 = -g1 - g2;
+  const double den = w1 * g1.squaredNorm() + w2 * g2.squaredNorm() + w3 * g3.squaredNorm() + alpha_tilde;
+  if (!(den > 0)) return 0;
+  const double dl = (-C - alpha_tilde * lambda) / den;
+  lambda += dl;
+  p1 += (w1 * dl) * g1;
+  p2 += (w2 * dl) * g2;
+  p3 += (w3 * dl) * g3;
+  return dl;
+}
+
+bool seed_angle_correction(const Vec3& p1, const Vec3& p2, const Vec3& p3, double w1, double w2, double w3,
+                           double theta0, double k, Vec3& dp1, Vec3& dp2, Vec3& dp3) {
+  const double L1 = (p1 - p3).norm(), L2 = (p2 - p3).norm();
+  const Vec3 n1 = (p2 - p3) / L2, n2 = (p1 - p3) / L1;
+  const double d = n1.dot(n2);
+  const Vec3 q1 = (d * n2 - n1) / L1;
+  const Vec3 q2 = (d * n1 - n2) / L2;
+  const Vec3 q3 = -q1 - q2;
+  const double den = w1 * q1.squaredNorm() + w2 * q2.squaredNorm() + w3 * q3.squaredNorm();
+  const double root = std::sqrt(std::max(0.0, 1 - d * d));
+  if (!(root > 0) || !(den > 0)) return false;
+  const double f = -k * root * (std::acos(d) - theta0) / den;
+  dp1 = f * w1 * q1;
+  dp2 = f * w2 * q2;
+  dp3 = f * w3 * q3;
+  return true;
+}
+
+double project_distance(Vec3& pa, Vec3& pb, double wa, double wb, double rest, double alpha_tilde, double& lambda) {
+  const Vec3 d = pa - pb;
+  const double l2 = d.squaredNorm();
+  if (!(l2 > kTinySquaredLength)) return 0;
+  const double l = std::sqrt(l2);
+  const Vec3 n = d * (1.0 / l);
+  const double den = wa + wb + alpha_tilde;
+  if (!(den > 0)) return 0;
+  const double dl = (-(l - rest) - alpha_tilde * lambda) / den;
+  lambda += dl;
+  pa += (wa * dl) * n;
+  pb -= (wb * dl) * n;
+  return dl;
+}
+
+}  // namespace pbd

@@ -1,0 +1,111 @@
+#include <pbd/solver.h>
+
+#include <algorithm>
+#include <cmath>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace pbd {
+
+Solver::Solver(Model& model)
+    : model_(model), lambda_distance_(model.distances.size(), 0.0), lambda_angle_(model.angles.size(), 0.0) {}
+
+bool Solver::parallel_available() {
+#ifdef _OPENMP
+  return true;
+#else
+  return false;
+#endif
+}
+
+void Solver::step(const StepSettings& s) {
+  const int substeps = std::max(1, s.substeps);
+  const double h = s.dt / substeps;
+  for (int k = 0; k < substeps; ++k) substep(h, s);
+}
+
+void Solver::substep(double h, const StepSettings& s) {
+  auto& P = model_.particles;
+  const long n = long(P.size());
+  const int threads = std::max(1, s.threads);
+  const double keep = std::exp(-s.damping * h);
+  (void)threads;
+  // Prediction (seed step 3, gravity as an acceleration).
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096)
+  for (long i = 0; i < n; ++i) {
+    P.x_prev[i] = P.x[i];
+    if (P.w[i] == 0) {
+      P.v[i].setZero();
+      continue;
+    }
+    P.v[i] += h * (s.gravity + P.w[i] * s.node_force);
+    P.x[i] += h * P.v[i];
+  }
+  std::fill(lambda_distance_.begin(), lambda_distance_.end(), 0.0);
+  std::fill(lambda_angle_.begin(), lambda_angle_.end(), 0.0);
+  for (int it = 0; it < std::max(1, s.iterations); ++it) project(h, threads);
+  // Velocity from the position change, then damping.
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096)
+  for (long i = 0; i < n; ++i)
+    if (P.w[i] != 0) P.v[i] = (P.x[i] - P.x_prev[i]) * (keep / h);
+}
+
+void Solver::project(double h, int threads) {
+  auto& P = model_.particles;
+  Vec3* x = P.x.data();
+  const double* w = P.w.data();
+  const double inv_h2 = 1.0 / (h * h);
+  const Vec3* axis = model_.axis_ptr();
+  const DistanceConstraint* D = model_.distances.data();
+  const AngleConstraint* A = model_.angles.data();
+  const auto& db = model_.distance_colour_begin;
+  const auto& ab = model_.angle_colour_begin;
+  double* ld = lambda_distance_.data();
+  double* la = lambda_angle_.data();
+  auto distance = [&](long c) {
+    const auto& d = D[c];
+    project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, ld[c]);
+  };
+  auto bend = [&](long c) {
+    const auto& a = A[c];
+    project_angle(x[a.best], x[a.k], x[a.i], w[a.best], w[a.k], w[a.i], a.rest_cos, a.rest_sin,
+                  a.compliance * inv_h2, la[c], axis);
+  };
+  if (threads <= 1) {
+    // Same order as the parallel path (colour by colour), so results do not depend on threads.
+    for (long c = 0; c < long(model_.distances.size()); ++c) distance(c);
+    for (long c = 0; c < long(model_.angles.size()); ++c) bend(c);
+    return;
+  }
+#pragma omp parallel num_threads(threads)
+  {
+    for (std::size_t col = 0; col + 1 < db.size(); ++col) {
+      const long b = long(db[col]), e = long(db[col + 1]);
+#pragma omp for schedule(static)
+      for (long c = b; c < e; ++c) distance(c);
+    }
+    for (std::size_t col = 0; col + 1 < ab.size(); ++col) {
+      const long b = long(ab[col]), e = long(ab[col + 1]);
+#pragma omp for schedule(static)
+      for (long c = b; c < e; ++c) bend(c);
+    }
+  }
+}
+
+Residuals Solver::residuals() const {
+  Residuals r;
+  const auto& x = model_.particles.x;
+  for (const auto& d : model_.distances)
+    r.distance = std::max(r.distance, std::abs((x[d.a] - x[d.b]).norm() - d.rest) / d.rest);
+  const Vec3* axis = model_.axis_ptr();
+  for (const auto& a : model_.angles) {
+    const double theta0 = std::atan2(a.rest_sin, a.rest_cos);
+    const auto g = angle_constraint_gradient(x[a.best], x[a.k], x[a.i], theta0, axis);
+    r.angle = std::max(r.angle, std::abs(g.C));
+  }
+  return r;
+}
+
+}  // namespace pbd

@@ -40,6 +40,12 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   top_.assign(layer, 0.0);
 }
 
+std::size_t LoadTransfer::memory_bytes() const {
+  return faces_.capacity() * sizeof(double) + generation_.capacity() * sizeof(std::int32_t) +
+         (fresh_.capacity() + down_.capacity() + next_down_.capacity() + top_.capacity()) * sizeof(double) +
+         touched_.capacity() * sizeof(Touched);
+}
+
 void LoadTransfer::clear_touched() {
   const int nd = 2 * grid_.dim;
   for (const auto& t : touched_) {
@@ -80,15 +86,22 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
   const bool patent = rules_ == RuleSet::Patent;
   const bool three_d = g.dim == 3;
-  Diagnostics& d = diagnostics_;
+  const double alpha1 = k_.alpha1, alpha2 = k_.alpha2, alpha3 = k_.alpha3, gamma = k_.gamma;
+  // Locals, not members, in the hot loops: the compiler cannot keep members in registers
+  // across the stores into the face array.
+  Diagnostics d;
+  double* const faces = faces_.data();
+  std::int32_t* const generation = generation_.data();
+  double* const fresh_buf = fresh_.data();
+  double* const top_buf = top_.data();
 
-  d.applied += load.force;
-  if (!(load.force > k_.gamma)) {
-    d.dropped += load.force;
+  diagnostics_.applied += load.force;
+  if (!(load.force > gamma)) {
+    diagnostics_.dropped += load.force;
     return;
   }
   auto reach = [&](std::size_t cell, int gen) {
-    auto& current = generation_[cell];
+    auto& current = generation[cell];
     if (current < 0) {
       current = gen;
       ++d.agents_generated;
@@ -97,6 +110,14 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     }
   };
 
+  // The conserving split of an agent's load by its number of outward sides.
+  std::array<double, 5> down_share{}, side_share{};
+  for (int n = 1; n <= 4; ++n) {
+    const double split = k_.alpha2 + n * k_.alpha3;
+    down_share[n] = k_.alpha2 / split;
+    side_share[n] = k_.alpha3 / split;
+  }
+
   fresh_[eu + std::size_t(n0) * ev] = load.force;
   Box box{eu, eu, ev, ev};
   int layer = entry[a];
@@ -104,10 +125,12 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     const std::size_t layer_base = std::size_t(layer) * sa;
     const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
     Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    double* const down_buf = down_.data();
+    double* const next_down_buf = next_down_.data();
 
     // Pass a transfer across an outer face: rigid returns it, free lets it out.
-    auto leave = [&](double* f, int face, const std::array<int, 3>& c, double t) {
-      if (g.boundary(face, c) == Boundary::Rigid) {
+    auto leave = [&](double* f, int face, std::size_t cell, double t) {
+      if (g.boundary(face, g.coords(cell)) == Boundary::Rigid) {
         f[face] += t;
         d.rigid_reaction += t;
       } else {
@@ -117,69 +140,60 @@ void LoadTransfer::sweep(const EntryLoad& load) {
 
     auto process = [&](int u, int v) {
       const std::size_t b = u + std::size_t(n0) * v;
-      const double fresh = fresh_[b], down = down_[b];
+      const double fresh = fresh_buf[b], down = down_buf[b];
       if (fresh == 0 && down == 0) return;
-      fresh_[b] = down_[b] = 0;
+      fresh_buf[b] = down_buf[b] = 0;
       ++d.agent_updates;
       const std::size_t cell = layer_base + u * s0 + v * s1;
       reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
-      double* f = &faces_[cell * nd];
+      double* f = faces + cell * nd;
       const double input = fresh + down;
       // Entering force: fresh loads (the entry, friction) enter with alpha1 in the patent reading.
-      const double top = patent ? k_.alpha1 * fresh + down : input;
+      const double top = patent ? alpha1 * fresh + down : input;
       f[enter_face] += top;
-      top_[b] = top;
+      top_buf[b] = top;
 
       // Friction spreads outwards, away from the load line, never back.
       const bool u_plus = u >= eu, u_minus = u <= eu;
       const bool v_plus = three_d && v >= ev, v_minus = three_d && v <= ev;
       const int n_out = int(u_plus) + int(u_minus) + int(v_plus) + int(v_minus);
-      double down_t, side_t;
-      if (patent) {
-        down_t = k_.alpha2 * top;
-        side_t = k_.alpha3 * input;
-      } else {
-        const double split = k_.alpha2 + n_out * k_.alpha3;
-        down_t = top * k_.alpha2 / split;
-        side_t = top * k_.alpha3 / split;
-      }
-      std::array<int, 3> c{};
-      c[a] = layer;
-      c[l0] = u;
-      c[l1] = v;
+      const double down_t = patent ? alpha2 * top : top * down_share[n_out];
+      const double side_t = patent ? alpha3 * input : top * side_share[n_out];
 
-      if (down_t > k_.gamma) {
+      if (down_t > gamma) {
         if (!last_layer) {
-          next_down_[b] += down_t;
+          next_down_buf[b] += down_t;
           f[exit_face] += down_t;
           next.u_lo = std::min(next.u_lo, u);
           next.u_hi = std::max(next.u_hi, u);
           next.v_lo = std::min(next.v_lo, v);
           next.v_hi = std::max(next.v_hi, v);
         } else {
-          leave(f, exit_face, c, down_t);
+          leave(f, exit_face, cell, down_t);
         }
       } else {
         d.dropped += down_t;
       }
 
-      if (side_t > k_.gamma) {
+      if (side_t > gamma) {
         auto side = [&](bool active, int coord, int n, int axis, long offset, int& bound, bool up) {
           if (!active) return;
           const int target = coord + (up ? 1 : -1);
           if (target < 0 || target >= n) {
             const int face = direction(axis, up);
-            if (g.boundary(face, c) == Boundary::Rigid) d.rigid_reaction += side_t;
+            if (g.boundary(face, g.coords(cell)) == Boundary::Rigid) d.rigid_reaction += side_t;
             else d.passed_out += side_t;
             return;
           }
-          fresh_[b + offset] += side_t;
+          fresh_buf[b + offset] += side_t;
           bound = up ? std::max(bound, target) : std::min(bound, target);
         };
         side(u_plus, u, n0, l0, 1, box.u_hi, true);
         side(u_minus, u, n0, l0, -1, box.u_lo, false);
-        side(v_plus, v, n1, l1, n0, box.v_hi, true);
-        side(v_minus, v, n1, l1, -long(n0), box.v_lo, false);
+        if (three_d) {
+          side(v_plus, v, n1, l1, n0, box.v_hi, true);
+          side(v_minus, v, n1, l1, -long(n0), box.v_lo, false);
+        }
       } else {
         d.dropped += n_out * side_t;
       }
@@ -198,6 +212,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     auto scan_line = [&](int lateral, int n, long offset_cells, long offset_buf, std::size_t first_cell,
                          std::size_t first_buf, int lo, int hi, int& reach_lo, int& reach_hi) {
       const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
+      const double decay = k_.poisson_decay;
       for (int dir = 0; dir < 2; ++dir) {
         const bool up = dir == 0;
         const int face_out = direction(lateral, up), face_in = opposite(face_out);
@@ -207,16 +222,16 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           const bool inside = w >= lo && w <= hi;
           if (!inside && carried == 0) break;
           const std::size_t cell = first_cell + w * offset_cells;
-          const double own = inside ? push * top_[first_buf + w * offset_buf] : 0.0;
-          const double t = own + k_.poisson_decay * carried;
+          const double own = inside ? push * top_buf[first_buf + w * offset_buf] : 0.0;
+          const double t = own + decay * carried;
           carried = 0;
           if (t == 0) continue;
           ++d.agent_updates;
-          if (!(t > k_.gamma)) {
+          if (!(t > gamma)) {
             d.lateral_dropped += t;
             continue;
           }
-          double* f = &faces_[cell * nd];
+          double* f = faces + cell * nd;
           const int target = w + sgn;
           if (target < 0 || target >= n) {
             std::array<int, 3> c = g.coords(cell);
@@ -230,8 +245,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           }
           const std::size_t next_cell = cell + sgn * offset_cells;
           f[face_out] += t;
-          faces_[next_cell * nd + face_in] += t;
-          reach(next_cell, generation_[cell] + 1);
+          faces[next_cell * nd + face_in] += t;
+          reach(next_cell, generation[cell] + 1);
           carried = t;
           reach_lo = std::min(reach_lo, target);
           reach_hi = std::max(reach_hi, target);
@@ -246,13 +261,22 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         for (int u = box.u_lo; u <= box.u_hi; ++u)
           scan_line(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, touched.v_lo, touched.v_hi);
     }
-    for (int v = box.v_lo; v <= box.v_hi; ++v) std::fill_n(&top_[box.u_lo + std::size_t(n0) * v], box.u_hi - box.u_lo + 1, 0.0);
+    for (int v = box.v_lo; v <= box.v_hi; ++v) std::fill_n(top_buf + box.u_lo + std::size_t(n0) * v, box.u_hi - box.u_lo + 1, 0.0);
     touched_.push_back({a, layer, touched});
 
     if (next.empty()) break;
     box = next;
     std::swap(down_, next_down_);
   }
+
+  diagnostics_.agents_generated += d.agents_generated;
+  diagnostics_.agent_updates += d.agent_updates;
+  diagnostics_.rigid_reaction += d.rigid_reaction;
+  diagnostics_.passed_out += d.passed_out;
+  diagnostics_.dropped += d.dropped;
+  diagnostics_.lateral_reaction += d.lateral_reaction;
+  diagnostics_.lateral_passed_out += d.lateral_passed_out;
+  diagnostics_.lateral_dropped += d.lateral_dropped;
 }
 
 }  // namespace agent

@@ -1,0 +1,92 @@
+// Throughput and locality of the agent load transfer (issue 2; results in docs/performance.md).
+//
+//   build/bench/agent_bench --benchmark_counters_tabular=true
+//
+// - Agent2D/n, Agent3D/n: a load that reaches (nearly) every agent of an n x n (x n) grid:
+//   conserving rule set, gamma = 1e-300 (just above denormals, which are slow and meaningless).
+// - Reach2D/4096/percent: the same grid, gamma chosen so that the load reaches `percent` % of it;
+//   the seed's claim is that cost follows reach, not the body.
+// Counters: updates/s (agent visits per second), agents reached, bytes per agent.
+#include <agent/load_transfer.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+using namespace agent;
+
+namespace {
+
+Grid plate(int dim, int n) {
+  Grid g = Grid::box(dim, {n, n, dim == 3 ? n : 1}, Eigen::Vector3d::Constant(1e-3), 1e-3);
+  for (auto& b : g.sides[direction(1, false)]) b = Boundary::Rigid;
+  return g;
+}
+
+EntryLoad top_centre(const Grid& g) {
+  return {g.index(g.cells[0] / 2, g.cells[1] - 1, g.dim == 3 ? g.cells[2] / 2 : 0), direction(1, false), 1.0};
+}
+
+Coefficients coefficients(double gamma) {
+  Coefficients k;
+  k.gamma = gamma;
+  return k;
+}
+
+void report(benchmark::State& state, const LoadTransfer& m) {
+  const auto& d = m.diagnostics();
+  state.counters["updates/s"] =
+      benchmark::Counter(double(d.agent_updates), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["reached"] = double(d.agents_generated);
+  state.counters["reach_%"] = 100.0 * double(d.agents_generated) / double(m.grid().count());
+  state.counters["B/agent"] = double(m.memory_bytes()) / double(m.grid().count());
+}
+
+void full_reach(benchmark::State& state, int dim) {
+  const Grid g = plate(dim, int(state.range(0)));
+  LoadTransfer m(g, {206e9, 0.3}, coefficients(1e-300), RuleSet::Conserving);
+  const std::vector<EntryLoad> loads{top_centre(g)};
+  for (auto _ : state) {
+    m.solve(loads);
+    benchmark::DoNotOptimize(m.face_forces().data());
+  }
+  report(state, m);
+}
+
+void Agent2D(benchmark::State& state) { full_reach(state, 2); }
+void Agent3D(benchmark::State& state) { full_reach(state, 3); }
+
+/// gamma that makes the load reach `percent` % of the grid (bisection on log gamma).
+double gamma_for_reach(const Grid& g, double percent) {
+  double lo = -300, hi = 0;
+  LoadTransfer m(g, {206e9, 0.3}, coefficients(1), RuleSet::Conserving);
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    m = LoadTransfer(g, {206e9, 0.3}, coefficients(std::pow(10.0, mid)), RuleSet::Conserving);
+    m.solve({top_centre(g)});
+    const double reach = 100.0 * double(m.diagnostics().agents_generated) / double(g.count());
+    (reach > percent ? lo : hi) = mid;
+  }
+  return std::pow(10.0, hi);
+}
+
+void Reach2D(benchmark::State& state) {
+  const Grid g = plate(2, int(state.range(0)));
+  const double gamma = state.range(1) >= 100 ? 1e-300 : gamma_for_reach(g, double(state.range(1)));
+  LoadTransfer m(g, {206e9, 0.3}, coefficients(gamma), RuleSet::Conserving);
+  const std::vector<EntryLoad> loads{top_centre(g)};
+  for (auto _ : state) {
+    m.solve(loads);
+    benchmark::DoNotOptimize(m.face_forces().data());
+  }
+  report(state, m);
+  state.counters["gamma"] = gamma;
+}
+
+}  // namespace
+
+BENCHMARK(Agent2D)->Arg(200)->Arg(512)->Arg(1024)->Arg(2048)->Arg(4096)->Unit(benchmark::kMillisecond);
+BENCHMARK(Agent3D)->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+BENCHMARK(Reach2D)->Args({4096, 1})->Args({4096, 10})->Args({4096, 100})->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -10,5 +10,6 @@ namespace cli {
 using Action = std::function<int()>;
 
 void add_agent_command(CLI::App& app, Action& action);
+void add_pbd_command(CLI::App& app, Action& action);
 
 }  // namespace cli

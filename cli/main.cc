@@ -1,6 +1,7 @@
 // workbench: the command-line front door of the deformation-model workbench.
 //
 //   workbench agent cases/seed_plate.toml            agent load-transfer study (VTU/PVD/CSV)
+//   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //
 // Every error is one line "workbench: error: <file>: <what>" and a non-zero exit; output folders
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   cli::Action action;
   cli::add_agent_command(app, action);
+  cli::add_pbd_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

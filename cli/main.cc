@@ -1,6 +1,7 @@
 // workbench: the command-line front door of the deformation-model workbench.
 //
 //   workbench agent cases/seed_plate.toml            agent load-transfer study (VTU/PVD/CSV)
+//   workbench fem cases/seed_plate.toml              deal.II FEM reference (mpirun -np N for MPI)
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //
@@ -18,6 +19,8 @@ int main(int argc, char** argv) {
   cli::Action action;
   cli::add_agent_command(app, action);
   cli::add_pbd_command(app, action);
+  cli::add_fem_command(app, action);
+  cli::add_compare_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -18,6 +18,7 @@ StudySetup read_study_setup(const CaseTable& root) {
   s.thickness = material.number("thickness", 1.0, Range::positive());
   const auto boundary = root.table("boundary");
   s.rigid_groups = boundary.texts("rigid", std::nullopt);
+  s.roller_groups = boundary.texts("rollers", std::vector<std::string>{});
   const auto loads = root.tables("load");
   if (loads.empty()) root.fail("load", "missing (at least one [[load]] table with group, direction and force)");
   for (const auto& l : loads) {
@@ -42,6 +43,7 @@ void check_groups_exist(const CaseFile& file, const StudySetup& setup, const std
                   setup.mesh_file.string() + " (it has: " + (have.empty() ? "none" : have) + ")");
   };
   for (const auto& g : setup.rigid_groups) check("boundary.rigid", g);
+  for (const auto& g : setup.roller_groups) check("boundary.rollers", g);
   for (std::size_t i = 0; i < setup.loads.size(); ++i) check("load[" + std::to_string(i) + "].group", setup.loads[i].group);
 }
 

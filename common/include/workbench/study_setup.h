@@ -29,6 +29,7 @@ struct StudySetup {
   double poisson = 0.3;
   double thickness = 1.0;                          ///< [m], 2D only
   std::vector<std::string> rigid_groups;           ///< clamped faces (the seed's rigid base)
+  std::vector<std::string> roller_groups;          ///< [boundary] rollers: normal displacement zero (FEM)
   std::vector<LoadSpec> loads;
   int steps = 1;                                   ///< load steps: k/steps of the loads, k = 1..steps
 };

@@ -1,0 +1,49 @@
+#include "commands.h"
+
+#include <agent_study.h>
+#include <fem_reference/fem.h>
+#include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace cli {
+
+void add_fem_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("fem", "Run the deal.II linear-elastic FEM reference on a case file "
+                                        "(serial, or distributed under mpirun)");
+  auto case_file = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  cmd->add_option("case", *case_file, "case file (TOML, see docs/case-file.md)")->required();
+  cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/fem)");
+  cmd->callback([&action, case_file, output] {
+    action = [case_file, output] {
+      workbench::CaseFile file(*case_file);
+      const auto problem = fem_reference::problem_from_case(file);
+      {  // a case file serves every model: check the other models' sections too before rejecting the rest
+        agent::Coefficients k;
+        agent::RuleSet rules;
+        agent_study::read_agent_section(file.root(), k, rules);
+      }
+      file.reject_unknown_keys();
+      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/fem" : *output;
+      // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
+      const bool root = fem_reference::mpi_rank() == 0;
+      std::optional<workbench::StagedDirectory> staged;
+      if (root) staged.emplace(dir);
+      const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
+      const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
+      if (root) fem_reference::write_fem_csv(result, path);
+      fem_reference::mpi_barrier();
+      if (root) {
+        staged->commit();
+        std::cerr << "fem: wrote " << staged->target().string() << "\n";
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace cli

@@ -1,0 +1,169 @@
+#pragma once
+// The deal.II linear-elastic FEM reference (docs/fem-reference.md), seen through plain data only:
+// this header includes no deal.II, so the comparison module and the tests compile against it
+// cheaply. The deal.II code lives in fem_reference/src/elastic_problem.cc.
+//
+//   workbench::CaseFile file("cases/seed_plate.toml");
+//   auto problem = fem_reference::problem_from_case(file);   // [mesh], [material], [boundary], [[load]], [fem]
+//   file.reject_unknown_keys();
+//   auto result = fem_reference::solve_fem(problem);          // result.sigma_y[e]: element e in gmsh order
+//
+// Small-strain linear elasticity: 2D plane stress (per unit thickness, forces reported times the
+// thickness) or plane strain, and 3D; Q1/Q2 on quadrilateral/hexahedral meshes (serial or MPI on a
+// p4est mesh), P1/P2 on triangle/tetrahedron meshes (serial only). Units: SI (m, N, Pa).
+// Every bad input raises a workbench::Error with a one-line message naming the file and the cause.
+#include <workbench/case_file.h>
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fem_reference {
+
+enum class Model { PlaneStress, PlaneStrain };   ///< 2D only; 3D meshes are solved as solids
+enum class SolverKind { Auto, Direct, Amg };
+enum class LoadKind { Traction, Point };
+
+/// The [fem] table of a case file (docs/case-file.md lists each key with unit and default).
+struct FemOptions {
+  int degree = 1;                       ///< polynomial degree 1 or 2
+  Model model = Model::PlaneStress;
+  SolverKind solver = SolverKind::Auto;
+  long direct_limit = 50000;            ///< Auto: direct solver up to this many DoFs, else CG + AMG
+  double tolerance = 1e-10;             ///< CG: stop at ||K u - f|| <= tolerance * ||f||
+  int max_iterations = 2000;
+  int refine = 0;                       ///< global refinements of the gmsh mesh
+  LoadKind load = LoadKind::Traction;   ///< how [[load]] acts: traction on the group or point force
+  bool write_vtu = true;                ///< VTU/PVTU + PVD next to the CSV files
+};
+
+/// Reads [fem] from the case root; range-checks every key.
+FemOptions read_fem_options(const workbench::CaseTable& root);
+
+/// f(x, value): x has 3 entries (z = 0 in 2D), value has dim entries.
+using VectorFunction = std::function<void(const double* x, double* value)>;
+/// g(x, grad): grad[i * dim + j] = d u_i / d x_j.
+using GradientFunction = std::function<void(const double* x, double* grad)>;
+
+enum class SupportKind {
+  Clamped,       ///< all displacement components zero (the rigid base)
+  Roller,        ///< the normal component zero; the group must lie in a plane x_a = const
+  Displacement,  ///< all components prescribed by `displacement`
+};
+
+struct Support {
+  std::string group;
+  SupportKind kind = SupportKind::Clamped;
+  VectorFunction displacement;  ///< Displacement only [m]
+};
+
+/// A load on the faces of a group: either a total force spread uniformly over the group's area
+/// (traction = force / area, area = length * thickness in 2D) or a traction field [Pa].
+struct Traction {
+  std::string group;
+  std::array<double, 3> force{};  ///< total force [N] (used when `traction` is empty)
+  VectorFunction traction;        ///< [Pa], per unit thickness in 2D
+};
+
+/// A force [N] at the mesh vertex nearest to `point` (or, when `group` is set, nearest to the
+/// centre of that group's faces).
+struct PointForce {
+  std::array<double, 3> point{};
+  std::array<double, 3> force{};
+  std::string group;
+};
+
+/// A structured box mesh instead of a gmsh file (tests): cells[2] == 0 means 2D. Its faces form the
+/// groups "x0", "x1", "y0", "y1" (and "z0", "z1"): the sides at the low/high end of each axis.
+struct Box {
+  std::array<double, 3> lo{}, hi{1, 1, 1};
+  std::array<int, 3> cells{1, 1, 0};
+};
+
+/// A complete problem: what the case file describes, or what a test builds directly.
+struct FemProblem {
+  std::string name = "fem";                    ///< names the input in messages (the case file)
+  std::filesystem::path mesh_file;             ///< gmsh .geo or .msh
+  std::map<std::string, double> mesh_parameters;
+  std::optional<Box> box;                      ///< used instead of mesh_file when set
+  double young = 206e9;                        ///< [Pa]
+  double poisson = 0.3;
+  double thickness = 1.0;                      ///< [m], 2D
+  std::vector<Support> supports;
+  std::vector<Traction> tractions;
+  std::vector<PointForce> point_forces;
+  std::array<double, 3> body_force{};          ///< [N/m^3]
+  VectorFunction body_force_function;          ///< [N/m^3], added to body_force
+  VectorFunction exact_displacement;           ///< if set, result.l2_error/h1_error are computed
+  GradientFunction exact_gradient;
+  FemOptions options;
+};
+
+/// Reads [mesh], [material], [boundary], [[load]] (workbench::read_study_setup) and [fem]. Does not
+/// reject unknown keys: the caller does, once every module has read its sections.
+FemProblem problem_from_case(const workbench::CaseFile& file);
+
+struct GroupReaction {
+  std::string group;
+  std::string kind;              ///< "clamped", "roller" or "displacement"
+  std::array<double, 3> force{}; ///< force the support exerts on the body [N]
+};
+
+struct FemResult {
+  int dim = 2;
+  int degree = 1;
+  std::string model;             ///< "plane_stress", "plane_strain" or "3d"
+  std::string cells;             ///< "quadrilateral", "hexahedron", "triangle" or "tetrahedron"
+  int ranks = 1;
+  std::size_t n_dofs = 0, n_active_cells = 0;
+
+  /// Mesh nodes (the gmsh nodes of the elements, in gmsh node order): 3 coordinates each, and
+  /// dim displacement components each [m].
+  std::vector<double> node_points, node_displacement;
+  std::size_t node_count() const { return node_points.size() / 3; }
+  /// Per element in gmsh element order (getElements of the model dimension), averaged over the
+  /// element (over its refined children too) [Pa]: centre (3 each), stresses, von Mises.
+  std::vector<double> cell_centres;
+  std::vector<double> sigma_x, sigma_y, sigma_z, tau_xy, tau_yz, tau_xz, von_mises;
+  std::size_t cell_count() const { return sigma_x.size(); }
+
+  std::vector<GroupReaction> reactions;  ///< one per support, in the order of the supports
+  std::array<double, 3> applied{};       ///< total applied force (tractions, points, body) [N]
+
+  std::string solver;                    ///< "direct (Amesos_Klu)", "cg+amg (ML)"
+  int iterations = 0;                    ///< CG iterations (0 for the direct solver)
+  double residual = 0;                   ///< final ||K u - f|| / ||f||
+  double l2_error = std::numeric_limits<double>::quiet_NaN();  ///< ||u - u_exact||_L2
+  double h1_error = std::numeric_limits<double>::quiet_NaN();  ///< |u - u_exact|_H1 (seminorm)
+  double mesh_seconds = 0, setup_seconds = 0, assemble_seconds = 0, solve_seconds = 0, output_seconds = 0;
+  double peak_memory_bytes = 0;          ///< this process's peak resident size after solving
+
+  /// Displacement (3 entries, z = 0 in 2D) at the mesh node nearest to x.
+  std::array<double, 3> displacement_at(const std::array<double, 3>& x) const;
+};
+
+/// Solves; with `output_dir` non-empty and options.write_vtu, writes fem.pvd and fem_000.vtu
+/// (fem_000.pvtu + pieces under MPI) there. Runs on MPI_COMM_WORLD when MPI is initialised with
+/// more than one rank (initialises MPI itself if needed). Progress goes to `log` (rank 0 only).
+FemResult solve_fem(const FemProblem& problem, const std::filesystem::path& output_dir = {},
+                    std::ostream* log = nullptr);
+
+/// Writes fem_cells.csv, fem_nodes.csv, fem_reactions.csv and fem_summary.csv into `dir`.
+void write_fem_csv(const FemResult& result, const std::filesystem::path& dir);
+
+/// MPI rank of this process and the number of ranks (1 without mpirun); these initialise MPI
+/// (finalised at exit) if the program has not.
+int mpi_rank();
+int mpi_size();
+/// Waits for every rank.
+void mpi_barrier();
+/// Broadcasts a string from rank 0.
+std::string mpi_broadcast(const std::string& text);
+
+}  // namespace fem_reference

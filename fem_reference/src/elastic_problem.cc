@@ -1,0 +1,987 @@
+// The deal.II part of the FEM reference: small-strain linear elasticity (step-8 / step-18 / step-40
+// style), one problem class with make_grid / setup_system / assemble_system / solve / postprocess,
+// dim-templated and instantiated for 2 and 3 in this one translation unit.
+//
+//   -div sigma(u) = b in the body,  sigma = lambda tr(eps) I + 2 mu eps,  eps = sym grad u,
+//   u = 0 on clamped groups, u.n = 0 on rollers, u = g on displacement groups,
+//   sigma n = t on traction groups, point forces at vertices.
+// 2D plane stress uses lambda* = 2 lambda mu / (lambda + 2 mu) and is solved per unit thickness;
+// forces (loads, reactions) are reported times the thickness.
+//
+// Meshes with quadrilaterals/hexahedra live on a parallel::distributed::Triangulation (p4est, also on
+// one rank), triangles/tetrahedra on a serial Triangulation with FE_SimplexP. Linear algebra:
+// Trilinos (Epetra) matrices; CG with ML smoothed-aggregation AMG given the rigid body modes as
+// near-null space, or Amesos KLU as the direct solver.
+#include "plain_mesh.h"
+
+#include <workbench/error.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <Teuchos_ParameterList.hpp>
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+namespace fem_reference {
+
+namespace fs = std::filesystem;
+using namespace dealii;
+using workbench::Error;
+
+// ------------------------------------------------------------------------------------------------
+// MPI
+// ------------------------------------------------------------------------------------------------
+
+namespace {
+
+bool mpi_running() {
+  int init = 0, fin = 0;
+  MPI_Initialized(&init);
+  MPI_Finalized(&fin);
+  return init && !fin;
+}
+
+/// MPI (and p4est's sc library) initialised once per process and finalised at exit, unless the
+/// program did it itself.
+void ensure_mpi() {
+  deal_II_exceptions::disable_abort_on_exception();
+  deal_II_exceptions::suppress_stacktrace_in_exceptions();
+  int init = 0;
+  MPI_Initialized(&init);
+  if (init) return;
+  static int argc = 1;
+  static char program[] = "workbench";
+  static char* args[] = {program, nullptr};
+  static char** argv = args;
+  static std::unique_ptr<Utilities::MPI::MPI_InitFinalize> session =
+      std::make_unique<Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// One line out of a deal.II exception: its "Additional information", else its name.
+std::string one_line(const ExceptionBase& e) {
+  std::string text = e.what();
+  const std::string marker = "Additional information:";
+  auto pos = text.find(marker);
+  text = pos == std::string::npos ? e.get_exc_name() : text.substr(pos + marker.size());
+  std::string out;
+  bool space = false;
+  for (char c : text) {
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      space = !out.empty();
+    } else {
+      if (space) out += ' ';
+      out += c;
+      space = false;
+    }
+  }
+  return out;
+}
+
+/// Eigenvalues and eigenvectors of a small symmetric matrix (cyclic Jacobi).
+void symmetric_eigen(std::vector<double> a, int n, std::vector<double>& values, std::vector<double>& vectors) {
+  vectors.assign(n * n, 0.0);
+  for (int i = 0; i < n; ++i) vectors[i * n + i] = 1;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    double off = 0;
+    for (int p = 0; p < n; ++p)
+      for (int q = p + 1; q < n; ++q) off += a[p * n + q] * a[p * n + q];
+    if (off < 1e-300) break;
+    for (int p = 0; p < n; ++p)
+      for (int q = p + 1; q < n; ++q) {
+        if (std::abs(a[p * n + q]) < 1e-300) continue;
+        const double theta = (a[q * n + q] - a[p * n + p]) / (2 * a[p * n + q]);
+        const double t = (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (int k = 0; k < n; ++k) {
+          const double akp = a[k * n + p], akq = a[k * n + q];
+          a[k * n + p] = c * akp - s * akq;
+          a[k * n + q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double apk = a[p * n + k], aqk = a[q * n + k];
+          a[p * n + k] = c * apk - s * aqk;
+          a[q * n + k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double vkp = vectors[k * n + p], vkq = vectors[k * n + q];
+          vectors[k * n + p] = c * vkp - s * vkq;
+          vectors[k * n + q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  values.resize(n);
+  for (int i = 0; i < n; ++i) values[i] = a[i * n + i];
+}
+
+/// A plain vector function as a deal.II Function (values and, if given, gradients).
+template <int dim>
+class PlainFunction : public Function<dim> {
+ public:
+  PlainFunction(VectorFunction f, GradientFunction g = {}) : Function<dim>(dim), f_(std::move(f)), g_(std::move(g)) {}
+  double value(const Point<dim>& p, const unsigned int component) const override {
+    double x[3] = {p[0], p[1], dim == 3 ? p[dim - 1] : 0.0}, v[3] = {0, 0, 0};
+    f_(x, v);
+    return v[component];
+  }
+  void vector_value(const Point<dim>& p, Vector<double>& values) const override {
+    double x[3] = {p[0], p[1], dim == 3 ? p[dim - 1] : 0.0}, v[3] = {0, 0, 0};
+    f_(x, v);
+    for (int c = 0; c < dim; ++c) values[c] = v[c];
+  }
+  Tensor<1, dim> gradient(const Point<dim>& p, const unsigned int component) const override {
+    double x[3] = {p[0], p[1], dim == 3 ? p[dim - 1] : 0.0}, g[9] = {};
+    g_(x, g);
+    Tensor<1, dim> out;
+    for (int j = 0; j < dim; ++j) out[j] = g[component * dim + j];
+    return out;
+  }
+
+ private:
+  VectorFunction f_;
+  GradientFunction g_;
+};
+
+const char* kind_name(SupportKind k) {
+  return k == SupportKind::Clamped ? "clamped" : k == SupportKind::Roller ? "roller" : "displacement";
+}
+
+}  // namespace
+
+int mpi_rank() {
+  ensure_mpi();
+  return mpi_running() ? int(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) : 0;
+}
+int mpi_size() {
+  ensure_mpi();
+  return mpi_running() ? int(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) : 1;
+}
+void mpi_barrier() {
+  ensure_mpi();
+  if (mpi_running()) MPI_Barrier(MPI_COMM_WORLD);
+}
+std::string mpi_broadcast(const std::string& text) {
+  if (mpi_size() == 1) return text;
+  return Utilities::MPI::broadcast(MPI_COMM_WORLD, text, 0);
+}
+
+// ------------------------------------------------------------------------------------------------
+// The problem
+// ------------------------------------------------------------------------------------------------
+
+namespace {
+
+template <int dim>
+class ElasticProblem {
+ public:
+  ElasticProblem(const FemProblem& problem, const PlainMesh& mesh, std::ostream* log);
+  FemResult run(const fs::path& output_dir);
+
+ private:
+  void make_grid();
+  void setup_system();
+  void check_rigid_motion() const;
+  void assemble_system();
+  void solve();
+  void compute_reactions();
+  void postprocess();
+  void compute_errors();
+  void write_vtu(const fs::path& dir);
+
+  /// Element matrix and load vector of one cell (body force and tractions).
+  void cell_system(const typename DoFHandler<dim>::active_cell_iterator& cell, FEValues<dim>& fe_values,
+                   FEFaceValues<dim>& fe_face_values, FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs);
+  std::vector<int> constrained_components(const Support& s) const;
+  void say(const std::string& line) const {
+    if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) *log_ << "fem: " << line << std::endl;
+  }
+
+  MPI_Comm comm_ = MPI_COMM_WORLD;
+  const FemProblem& problem_;
+  const PlainMesh& mesh_;
+  std::ostream* log_;
+  const int degree_;
+  double lambda_ = 0, mu_ = 0, lambda_solid_ = 0;  // lambda_ is lambda* in plane stress
+  double thickness_ = 1;                          // 2D: force = thickness * per-unit-thickness force
+
+  std::unique_ptr<Triangulation<dim>> tria_;
+  std::unique_ptr<Mapping<dim>> mapping_;
+  std::unique_ptr<FiniteElement<dim>> fe_;
+  std::unique_ptr<Quadrature<dim>> quadrature_;
+  std::unique_ptr<Quadrature<dim - 1>> face_quadrature_;
+  DoFHandler<dim> dof_handler_;
+  IndexSet owned_, relevant_;
+  AffineConstraints<double> constraints_;
+  TrilinosWrappers::SparseMatrix matrix_;
+  TrilinosWrappers::MPI::Vector rhs_, solution_, ghosted_;
+
+  // Groups: name -> index; every boundary id stands for one set of group indices.
+  std::vector<std::string> groups_;
+  std::vector<std::vector<unsigned>> groups_of_id_;   // by boundary id
+  std::vector<int> support_group_, traction_group_;   // group index of each support / traction
+  std::vector<Tensor<1, dim>> uniform_traction_;      // per traction (when not a function)
+  std::vector<std::pair<types::global_dof_index, double>> point_loads_;  // owned dofs, per unit thickness
+  std::array<double, 3> applied_{};
+
+  FemResult result_;
+  std::vector<Vector<float>> cell_fields_;  // per active cell, for VTU
+};
+
+template <int dim>
+ElasticProblem<dim>::ElasticProblem(const FemProblem& problem, const PlainMesh& mesh, std::ostream* log)
+    : problem_(problem), mesh_(mesh), log_(log), degree_(problem.options.degree) {
+  const double E = problem.young, nu = problem.poisson;
+  mu_ = E / (2 * (1 + nu));
+  lambda_solid_ = E * nu / ((1 + nu) * (1 - 2 * nu));
+  lambda_ = lambda_solid_;
+  if (dim == 2) {
+    thickness_ = problem.thickness;
+    if (problem.options.model == Model::PlaneStress) lambda_ = 2 * lambda_solid_ * mu_ / (lambda_solid_ + 2 * mu_);
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::make_grid() {
+  std::vector<Point<dim>> vertices(mesh_.node_count());
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    for (int a = 0; a < dim; ++a) vertices[i][a] = mesh_.nodes[3 * i + a];
+  std::vector<CellData<dim>> cells(mesh_.cell_count(), CellData<dim>(mesh_.corners));
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (int k = 0; k < mesh_.corners; ++k) cells[c].vertices[k] = mesh_.cells[c * mesh_.corners + k];
+  if (mesh_.simplex) {
+    tria_ = std::make_unique<Triangulation<dim>>();
+    mapping_ = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+    fe_ = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(degree_), dim);
+    quadrature_ = std::make_unique<QGaussSimplex<dim>>(degree_ + 1);
+    face_quadrature_ = std::make_unique<QGaussSimplex<dim - 1>>(degree_ + 1);
+  } else {
+    GridTools::invert_all_negative_measure_cells(vertices, cells);
+    GridTools::consistently_order_cells(cells);
+    tria_ = std::make_unique<parallel::distributed::Triangulation<dim>>(comm_);
+    mapping_ = std::make_unique<MappingQ<dim>>(1);
+    fe_ = std::make_unique<FESystem<dim>>(FE_Q<dim>(degree_), dim);
+    quadrature_ = std::make_unique<QGauss<dim>>(degree_ + 1);
+    face_quadrature_ = std::make_unique<QGauss<dim - 1>>(degree_ + 1);
+  }
+  // The coarse cells keep the order of `cells` (gmsh element order) and the vertices their indices.
+  tria_->create_triangulation(vertices, cells, SubCellData());
+
+  // Boundary ids: one per distinct set of named groups a face belongs to (0: none).
+  auto group_index = [&](const std::string& name) {
+    auto it = std::find(groups_.begin(), groups_.end(), name);
+    if (it != groups_.end()) return int(it - groups_.begin());
+    groups_.push_back(name);
+    return int(groups_.size() - 1);
+  };
+  for (const auto& s : problem_.supports) support_group_.push_back(group_index(s.group));
+  for (const auto& t : problem_.tractions) traction_group_.push_back(group_index(t.group));
+  std::map<std::vector<unsigned>, std::set<unsigned>> groups_of_face;
+  for (unsigned g = 0; g < groups_.size(); ++g)
+    for (auto face : mesh_.face_groups.at(groups_[g])) {
+      std::sort(face.begin(), face.end());
+      groups_of_face[face].insert(g);
+    }
+  std::map<std::set<unsigned>, types::boundary_id> id_of_set;
+  groups_of_id_.assign(1, {});
+  std::vector<std::size_t> matched(groups_.size(), 0);
+  for (const auto& cell : tria_->cell_iterators_on_level(0))
+    for (unsigned f = 0; f < cell->n_faces(); ++f) {
+      if (!cell->face(f)->at_boundary()) continue;
+      std::vector<unsigned> key;
+      for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) key.push_back(cell->face(f)->vertex_index(v));
+      std::sort(key.begin(), key.end());
+      auto it = groups_of_face.find(key);
+      types::boundary_id id = 0;
+      if (it != groups_of_face.end()) {
+        auto [pos, inserted] = id_of_set.emplace(it->second, types::boundary_id(groups_of_id_.size()));
+        if (inserted) groups_of_id_.emplace_back(it->second.begin(), it->second.end());
+        id = pos->second;
+        for (unsigned g : it->second) ++matched[g];
+      }
+      cell->face(f)->set_boundary_id(id);
+    }
+  for (unsigned g = 0; g < groups_.size(); ++g)
+    if (matched[g] != mesh_.face_groups.at(groups_[g]).size())
+      throw Error(problem_.name + ": group '" + groups_[g] + "' of " + mesh_.source + " has " +
+                  std::to_string(mesh_.face_groups.at(groups_[g]).size() - matched[g]) +
+                  " faces inside the body; supports and loads act on outer faces only");
+  if (problem_.options.refine > 0) tria_->refine_global(problem_.options.refine);
+}
+
+template <int dim>
+std::vector<int> ElasticProblem<dim>::constrained_components(const Support& s) const {
+  if (s.kind == SupportKind::Roller) return {normal_axis(mesh_, s.group)};
+  std::vector<int> all(dim);
+  for (int c = 0; c < dim; ++c) all[c] = c;
+  return all;
+}
+
+template <int dim>
+void ElasticProblem<dim>::setup_system() {
+  dof_handler_.reinit(*tria_);
+  dof_handler_.distribute_dofs(*fe_);
+  owned_ = dof_handler_.locally_owned_dofs();
+  DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
+
+  constraints_.clear();
+  constraints_.reinit(relevant_);
+  DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
+  for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
+    const Support& support = problem_.supports[s];
+    ComponentMask mask(dim, false);
+    for (int c : constrained_components(support)) mask.set(c, true);
+    std::unique_ptr<Function<dim>> g;
+    if (support.kind == SupportKind::Displacement)
+      g = std::make_unique<PlainFunction<dim>>(support.displacement);
+    else
+      g = std::make_unique<Functions::ZeroFunction<dim>>(dim);
+    for (types::boundary_id id = 1; id < groups_of_id_.size(); ++id)
+      if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s])))
+        VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, id, *g, constraints_, mask);
+  }
+  constraints_.close();
+
+  DynamicSparsityPattern dsp(relevant_);
+  DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
+  matrix_.reinit(owned_, owned_, dsp, comm_);
+  rhs_.reinit(owned_, comm_);
+  solution_.reinit(owned_, comm_);
+  ghosted_.reinit(owned_, relevant_, comm_);
+}
+
+/// The supports must hold every rigid body motion: translations and rotations, evaluated at the
+/// vertices of the supported faces, must not vanish on all constrained components together.
+template <int dim>
+void ElasticProblem<dim>::check_rigid_motion() const {
+  const int n_modes = dim == 2 ? 3 : 6;
+  std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+  for (std::size_t i = 0; i < mesh_.node_count(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], mesh_.nodes[3 * i + a]);
+      hi[a] = std::max(hi[a], mesh_.nodes[3 * i + a]);
+    }
+  double size = 0;
+  for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
+  std::vector<double> gram(n_modes * n_modes, 0.0);
+  for (const auto& cell : tria_->active_cell_iterators()) {
+    if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
+    for (unsigned f = 0; f < cell->n_faces(); ++f) {
+      if (!cell->face(f)->at_boundary()) continue;
+      const auto id = cell->face(f)->boundary_id();
+      if (id == 0 || id >= groups_of_id_.size()) continue;
+      for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
+        if (!std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s]))) continue;
+        for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) {
+          double x[3] = {0, 0, 0};
+          for (int a = 0; a < dim; ++a) x[a] = (cell->face(f)->vertex(v)[a] - 0.5 * (lo[a] + hi[a])) / size;
+          for (int c : constrained_components(problem_.supports[s])) {
+            std::vector<double> row(n_modes, 0.0);
+            row[c] = 1;  // translations
+            if (dim == 2) {
+              row[2] = c == 0 ? -x[1] : x[0];
+            } else {
+              // rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0)
+              const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
+              row[3] = rx[c];
+              row[4] = ry[c];
+              row[5] = rz[c];
+            }
+            for (int i = 0; i < n_modes; ++i)
+              for (int j = 0; j < n_modes; ++j) gram[i * n_modes + j] += row[i] * row[j];
+          }
+        }
+      }
+    }
+  }
+  Utilities::MPI::sum(gram, comm_, gram);
+  std::vector<double> values, vectors;
+  symmetric_eigen(gram, n_modes, values, vectors);
+  double top = 0;
+  for (double v : values) top = std::max(top, v);
+  const char* names2[3] = {"translation along x", "translation along y", "rotation about z"};
+  const char* names3[6] = {"translation along x", "translation along y", "translation along z",
+                           "rotation about x",    "rotation about y",    "rotation about z"};
+  for (int k = 0; k < n_modes; ++k)
+    if (!(values[k] > 1e-10 * top) || top == 0) {
+      int dominant = 0;
+      for (int i = 0; i < n_modes; ++i)
+        if (std::abs(vectors[i * n_modes + k]) > std::abs(vectors[dominant * n_modes + k])) dominant = i;
+      throw Error(problem_.name + ": the supports leave the body free to move rigidly (" +
+                  (dim == 2 ? names2[dominant] : names3[dominant]) +
+                  "): no unique solution; add a rigid group or rollers that hold it");
+    }
+}
+
+template <int dim>
+void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cell_iterator& cell,
+                                      FEValues<dim>& fe_values, FEFaceValues<dim>& fe_face_values,
+                                      FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs) {
+  const unsigned n = fe_->n_dofs_per_cell(), nq = fe_values.n_quadrature_points;
+  cell_matrix = 0;
+  cell_rhs = 0;
+  fe_values.reinit(cell);
+  std::vector<Tensor<1, dim>> grads(n);
+  std::vector<unsigned> comp(n);
+  for (unsigned i = 0; i < n; ++i) comp[i] = fe_->system_to_component_index(i).first;
+  const bool body = problem_.body_force_function || problem_.body_force[0] != 0 || problem_.body_force[1] != 0 ||
+                    problem_.body_force[2] != 0;
+  for (unsigned q = 0; q < nq; ++q) {
+    const double JxW = fe_values.JxW(q);
+    for (unsigned i = 0; i < n; ++i) grads[i] = fe_values.shape_grad(i, q);
+    for (unsigned i = 0; i < n; ++i) {
+      const unsigned ci = comp[i];
+      const Tensor<1, dim>& gi = grads[i];
+      for (unsigned j = 0; j <= i; ++j) {
+        const unsigned cj = comp[j];
+        const Tensor<1, dim>& gj = grads[j];
+        double v = lambda_ * gi[ci] * gj[cj] + mu_ * gi[cj] * gj[ci];
+        if (ci == cj) v += mu_ * (gi * gj);
+        cell_matrix(i, j) += v * JxW;
+      }
+    }
+    if (body) {
+      double b[3] = {problem_.body_force[0], problem_.body_force[1], problem_.body_force[2]};
+      if (problem_.body_force_function) {
+        const Point<dim>& p = fe_values.quadrature_point(q);
+        double x[3] = {p[0], p[1], dim == 3 ? p[dim - 1] : 0.0}, extra[3] = {0, 0, 0};
+        problem_.body_force_function(x, extra);
+        for (int a = 0; a < 3; ++a) b[a] += extra[a];
+      }
+      for (unsigned i = 0; i < n; ++i) cell_rhs(i) += fe_values.shape_value(i, q) * b[comp[i]] * JxW;
+    }
+  }
+  for (unsigned i = 0; i < n; ++i)
+    for (unsigned j = i + 1; j < n; ++j) cell_matrix(i, j) = cell_matrix(j, i);
+
+  if (!cell->at_boundary() || traction_group_.empty()) return;
+  for (unsigned f = 0; f < cell->n_faces(); ++f) {
+    if (!cell->face(f)->at_boundary()) continue;
+    const auto id = cell->face(f)->boundary_id();
+    if (id == 0 || id >= groups_of_id_.size()) continue;
+    bool reinit = false;
+    for (std::size_t t = 0; t < traction_group_.size(); ++t) {
+      if (!std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(traction_group_[t]))) continue;
+      if (!reinit) fe_face_values.reinit(cell, f);
+      reinit = true;
+      const auto& traction = problem_.tractions[t];
+      for (unsigned q = 0; q < fe_face_values.n_quadrature_points; ++q) {
+        Tensor<1, dim> tq = uniform_traction_[t];
+        if (traction.traction) {
+          const Point<dim>& p = fe_face_values.quadrature_point(q);
+          double x[3] = {p[0], p[1], dim == 3 ? p[dim - 1] : 0.0}, v[3] = {0, 0, 0};
+          traction.traction(x, v);
+          for (int a = 0; a < dim; ++a) tq[a] = v[a];
+        }
+        const double JxW = fe_face_values.JxW(q);
+        for (unsigned i = 0; i < n; ++i) cell_rhs(i) += fe_face_values.shape_value(i, q) * tq[comp[i]] * JxW;
+      }
+    }
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::assemble_system() {
+  FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_,
+                          update_values | update_gradients | update_quadrature_points | update_JxW_values);
+  FEFaceValues<dim> fe_face_values(*mapping_, *fe_, *face_quadrature_,
+                                   update_values | update_quadrature_points | update_JxW_values);
+
+  // Uniform tractions: total force over the group's area (times the thickness in 2D).
+  std::vector<double> area(traction_group_.size(), 0.0);
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
+    for (unsigned f = 0; f < cell->n_faces(); ++f) {
+      if (!cell->face(f)->at_boundary()) continue;
+      const auto id = cell->face(f)->boundary_id();
+      if (id == 0 || id >= groups_of_id_.size()) continue;
+      bool reinit = false;
+      for (std::size_t t = 0; t < traction_group_.size(); ++t)
+        if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(traction_group_[t]))) {
+          if (!reinit) fe_face_values.reinit(cell, f);
+          reinit = true;
+          for (unsigned q = 0; q < fe_face_values.n_quadrature_points; ++q) area[t] += fe_face_values.JxW(q);
+        }
+    }
+  }
+  Utilities::MPI::sum(area, comm_, area);
+  uniform_traction_.assign(traction_group_.size(), Tensor<1, dim>());
+  for (std::size_t t = 0; t < traction_group_.size(); ++t)
+    for (int a = 0; a < dim; ++a) uniform_traction_[t][a] = problem_.tractions[t].force[a] / (area[t] * thickness_);
+
+  const unsigned n = fe_->n_dofs_per_cell();
+  FullMatrix<double> cell_matrix(n, n);
+  Vector<double> cell_rhs(n);
+  std::vector<types::global_dof_index> dofs(n);
+  std::array<double, 3> applied{};
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
+    for (unsigned i = 0; i < n; ++i) applied[fe_->system_to_component_index(i).first] += cell_rhs(i);
+    cell->get_dof_indices(dofs);
+    constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, matrix_, rhs_);
+  }
+
+  // Point forces at the nearest vertex: every rank proposes its nearest vertex, all agree on the
+  // closest (ties by coordinates), the owners of its DoFs add the force.
+  point_loads_.clear();
+  for (const auto& pf : problem_.point_forces) {
+    Point<dim> target;
+    for (int a = 0; a < dim; ++a) target[a] = pf.point[a];
+    std::array<double, 4> best{1e308, 0, 0, 0};
+    for (const auto& cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+          const double d = cell->vertex(v).distance(target);
+          std::array<double, 4> cand{d, 0, 0, 0};
+          for (int a = 0; a < dim; ++a) cand[1 + a] = cell->vertex(v)[a];
+          if (cand < best) best = cand;
+        }
+    const auto all = Utilities::MPI::all_gather(comm_, best);
+    best = *std::min_element(all.begin(), all.end());
+    std::set<types::global_dof_index> done;
+    for (const auto& cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+          bool same = true;
+          for (int a = 0; a < dim; ++a) same = same && cell->vertex(v)[a] == best[1 + a];
+          if (!same) continue;
+          for (int c = 0; c < dim; ++c) {
+            const auto dof = cell->vertex_dof_index(v, c);
+            if (!owned_.is_element(dof) || !done.insert(dof).second) continue;
+            const double value = pf.force[c] / thickness_;
+            point_loads_.emplace_back(dof, value);
+            applied[c] += value;
+            if (!constraints_.is_constrained(dof)) rhs_(dof) += value;
+          }
+        }
+  }
+  matrix_.compress(VectorOperation::add);
+  rhs_.compress(VectorOperation::add);
+  for (int a = 0; a < 3; ++a) applied_[a] = Utilities::MPI::sum(applied[a], comm_) * thickness_;
+}
+
+template <int dim>
+void ElasticProblem<dim>::solve() {
+  const auto& o = problem_.options;
+  const bool direct = o.solver == SolverKind::Direct ||
+                      (o.solver == SolverKind::Auto && dof_handler_.n_dofs() <= std::size_t(o.direct_limit));
+  const double rhs_norm = rhs_.l2_norm();
+  if (rhs_norm == 0) {
+    solution_ = 0;
+    result_.solver = "none (no load)";
+  } else if (direct) {
+    SolverControl control(1, 0);
+    TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
+    TrilinosWrappers::SolverDirect solver(control, data);
+    solver.solve(matrix_, solution_, rhs_);
+    result_.solver = "direct (Amesos_Klu)";
+    result_.iterations = 0;
+  } else {
+    // ML smoothed aggregation with the rigid body modes as near-null space.
+    const int n_modes = dim == 2 ? 3 : 6;
+    const std::size_t n_local = owned_.n_elements();
+    std::vector<double> modes(n_local * n_modes, 0.0);
+    {
+      std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+      for (std::size_t i = 0; i < mesh_.node_count(); ++i)
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], mesh_.nodes[3 * i + a]);
+          hi[a] = std::max(hi[a], mesh_.nodes[3 * i + a]);
+        }
+      double size = 0;
+      for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
+      Quadrature<dim> support_points(fe_->get_unit_support_points());
+      FEValues<dim> fe_values(*mapping_, *fe_, support_points, update_quadrature_points);
+      std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
+      for (const auto& cell : dof_handler_.active_cell_iterators()) {
+        if (!cell->is_locally_owned()) continue;
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned i = 0; i < dofs.size(); ++i) {
+          if (!owned_.is_element(dofs[i])) continue;
+          const std::size_t row = owned_.index_within_set(dofs[i]);
+          const unsigned c = fe_->system_to_component_index(i).first;
+          double x[3] = {0, 0, 0};
+          for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
+          modes[c * n_local + row] = 1;
+          if (dim == 2) {
+            modes[2 * n_local + row] = c == 0 ? -x[1] : x[0];
+          } else {
+            const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
+            modes[3 * n_local + row] = rx[c];
+            modes[4 * n_local + row] = ry[c];
+            modes[5 * n_local + row] = rz[c];
+          }
+        }
+      }
+    }
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic = true;
+    data.higher_order_elements = degree_ > 1;
+    data.smoother_sweeps = 2;
+    data.aggregation_threshold = 0.02;
+    Teuchos::ParameterList list;
+    std::unique_ptr<Epetra_MultiVector> constant_modes;
+    data.set_parameters(list, constant_modes, matrix_);
+    list.set("PDE equations", dim);
+    list.set("null space: type", "pre-computed");
+    list.set("null space: dimension", n_modes);
+    list.set("null space: vectors", modes.data());
+    list.set("ML output", 0);
+    TrilinosWrappers::PreconditionAMG amg;
+    amg.initialize(matrix_, list);
+    SolverControl control(o.max_iterations, o.tolerance * rhs_norm, false, false);
+    SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+    cg.solve(matrix_, solution_, rhs_, amg);
+    result_.solver = "cg+amg (ML)";
+    result_.iterations = int(control.last_step());
+  }
+  constraints_.distribute(solution_);
+  TrilinosWrappers::MPI::Vector residual(owned_, comm_);
+  matrix_.vmult(residual, solution_);
+  residual -= rhs_;
+  result_.residual = rhs_norm == 0 ? 0.0 : residual.l2_norm() / rhs_norm;
+  ghosted_ = solution_;
+}
+
+/// Reactions: r = K u - f assembled without constraints, summed over each support's DoFs (a DoF
+/// shared by two supports counts for the first).
+template <int dim>
+void ElasticProblem<dim>::compute_reactions() {
+  FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_,
+                          update_values | update_gradients | update_quadrature_points | update_JxW_values);
+  FEFaceValues<dim> fe_face_values(*mapping_, *fe_, *face_quadrature_,
+                                   update_values | update_quadrature_points | update_JxW_values);
+  const unsigned n = fe_->n_dofs_per_cell();
+  FullMatrix<double> cell_matrix(n, n);
+  Vector<double> cell_rhs(n), u(n), r(n);
+  std::vector<types::global_dof_index> dofs(n);
+  TrilinosWrappers::MPI::Vector residual(owned_, comm_);
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    cell->get_dof_indices(dofs);
+    bool any = false;
+    for (auto d : dofs) any = any || constraints_.is_constrained(d);
+    if (!any) continue;
+    cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
+    for (unsigned i = 0; i < n; ++i) u(i) = ghosted_(dofs[i]);
+    cell_matrix.vmult(r, u);
+    r -= cell_rhs;
+    residual.add(dofs, r);
+  }
+  for (const auto& [dof, value] : point_loads_) residual(dof) -= value;
+  residual.compress(VectorOperation::add);
+
+  std::set<types::global_dof_index> claimed;
+  std::vector<double> forces(problem_.supports.size() * 3, 0.0);
+  std::vector<types::global_dof_index> face_dofs;
+  for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
+    const auto comps = constrained_components(problem_.supports[s]);
+    for (const auto& cell : dof_handler_.active_cell_iterators()) {
+      if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
+      for (unsigned f = 0; f < cell->n_faces(); ++f) {
+        if (!cell->face(f)->at_boundary()) continue;
+        const auto id = cell->face(f)->boundary_id();
+        if (id == 0 || id >= groups_of_id_.size() ||
+            !std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s])))
+          continue;
+        face_dofs.resize(fe_->n_dofs_per_face(f));
+        cell->face(f)->get_dof_indices(face_dofs);
+        for (unsigned i = 0; i < face_dofs.size(); ++i) {
+          const int c = fe_->face_system_to_component_index(i, f).first;
+          if (std::find(comps.begin(), comps.end(), c) == comps.end()) continue;
+          if (!owned_.is_element(face_dofs[i]) || !claimed.insert(face_dofs[i]).second) continue;
+          forces[3 * s + c] += residual(face_dofs[i]);
+        }
+      }
+    }
+  }
+  Utilities::MPI::sum(forces, comm_, forces);
+  result_.reactions.clear();
+  for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
+    GroupReaction g{problem_.supports[s].group, kind_name(problem_.supports[s].kind), {}};
+    for (int a = 0; a < dim; ++a) g.force[a] = forces[3 * s + a] * thickness_;
+    result_.reactions.push_back(g);
+  }
+}
+
+/// Per-element (gmsh order) averages of the stress over the element's active descendants, nodal
+/// displacements at the gmsh nodes, per-active-cell fields for the VTU.
+template <int dim>
+void ElasticProblem<dim>::postprocess() {
+  const std::size_t n_el = mesh_.cell_count();
+  constexpr int K = 11;  // volume, centre x y z, sx sy sz txy tyz txz, von Mises (unused)
+  std::vector<double> acc(n_el * K, 0.0);
+  FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_, update_gradients | update_quadrature_points | update_JxW_values);
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<Tensor<2, dim>> grads(quadrature_->size());
+  cell_fields_.assign(7, Vector<float>(tria_->n_active_cells()));
+  const bool plane_strain = dim == 2 && problem_.options.model == Model::PlaneStrain;
+  auto von_mises = [](const double* s) {
+    const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
+    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  };
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fe_values.reinit(cell);
+    fe_values[displacement].get_function_gradients(ghosted_, grads);
+    double local[K] = {};
+    for (unsigned q = 0; q < grads.size(); ++q) {
+      const double JxW = fe_values.JxW(q);
+      const Tensor<2, dim>& g = grads[q];
+      double tr = 0;
+      for (int a = 0; a < dim; ++a) tr += g[a][a];
+      double s[6];  // xx yy zz xy yz xz
+      s[0] = lambda_ * tr + 2 * mu_ * g[0][0];
+      s[1] = lambda_ * tr + 2 * mu_ * g[1][1];
+      s[3] = mu_ * (g[0][1] + g[1][0]);
+      if (dim == 3) {
+        s[2] = lambda_ * tr + 2 * mu_ * g[dim - 1][dim - 1];
+        s[4] = mu_ * (g[1][dim - 1] + g[dim - 1][1]);
+        s[5] = mu_ * (g[0][dim - 1] + g[dim - 1][0]);
+      } else {
+        s[2] = plane_strain ? lambda_solid_ * tr : 0.0;
+        s[4] = s[5] = 0;
+      }
+      local[0] += JxW;
+      for (int a = 0; a < dim; ++a) local[1 + a] += JxW * fe_values.quadrature_point(q)[a];
+      for (int k = 0; k < 6; ++k) local[4 + k] += JxW * s[k];
+    }
+    double avg[6];
+    for (int k = 0; k < 6; ++k) avg[k] = local[4 + k] / local[0];
+    for (int k = 0; k < 6; ++k) cell_fields_[k][cell->active_cell_index()] = float(avg[k]);
+    cell_fields_[6][cell->active_cell_index()] = float(von_mises(avg));
+    typename Triangulation<dim>::cell_iterator coarse = cell;
+    while (coarse->level() > 0) coarse = coarse->parent();
+    const std::size_t e = coarse->index();
+    for (int k = 0; k < K; ++k) acc[e * K + k] += local[k];
+  }
+  Utilities::MPI::sum(acc, comm_, acc);
+
+  auto& r = result_;
+  r.cell_centres.assign(3 * n_el, 0.0);
+  for (auto* v : {&r.sigma_x, &r.sigma_y, &r.sigma_z, &r.tau_xy, &r.tau_yz, &r.tau_xz, &r.von_mises}) v->assign(n_el, 0.0);
+  for (std::size_t e = 0; e < n_el; ++e) {
+    const double* a = &acc[e * K];
+    const double vol = a[0] > 0 ? a[0] : 1.0;
+    for (int k = 0; k < dim; ++k) r.cell_centres[3 * e + k] = a[1 + k] / vol;
+    double s[6];
+    for (int k = 0; k < 6; ++k) s[k] = a[4 + k] / vol;
+    r.sigma_x[e] = s[0];
+    r.sigma_y[e] = s[1];
+    r.sigma_z[e] = s[2];
+    r.tau_xy[e] = s[3];
+    r.tau_yz[e] = s[4];
+    r.tau_xz[e] = s[5];
+    r.von_mises[e] = von_mises(s);
+  }
+
+  const std::size_t n_nodes = mesh_.node_count();
+  std::vector<double> u(n_nodes * (dim + 1), 0.0);
+  std::vector<char> seen(n_nodes, 0);
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+      const auto vi = cell->vertex_index(v);
+      if (vi >= n_nodes || seen[vi]) continue;
+      seen[vi] = 1;
+      for (int c = 0; c < dim; ++c) u[vi * (dim + 1) + c] = ghosted_(cell->vertex_dof_index(v, c));
+      u[vi * (dim + 1) + dim] = 1;
+    }
+  }
+  Utilities::MPI::sum(u, comm_, u);
+  r.node_points = mesh_.nodes;
+  r.node_displacement.assign(n_nodes * dim, 0.0);
+  for (std::size_t i = 0; i < n_nodes; ++i) {
+    const double count = u[i * (dim + 1) + dim];
+    for (int c = 0; c < dim; ++c) r.node_displacement[i * dim + c] = count > 0 ? u[i * (dim + 1) + c] / count : 0.0;
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::compute_errors() {
+  if (!problem_.exact_displacement) return;
+  PlainFunction<dim> exact(problem_.exact_displacement, problem_.exact_gradient);
+  std::unique_ptr<Quadrature<dim>> q;
+  if (mesh_.simplex)
+    q = std::make_unique<QGaussSimplex<dim>>(degree_ + 2);
+  else
+    q = std::make_unique<QGauss<dim>>(degree_ + 2);
+  Vector<float> cell_errors(tria_->n_active_cells());
+  VectorTools::integrate_difference(*mapping_, dof_handler_, ghosted_, exact, cell_errors, *q, VectorTools::L2_norm);
+  result_.l2_error = VectorTools::compute_global_error(*tria_, cell_errors, VectorTools::L2_norm);
+  if (problem_.exact_gradient) {
+    VectorTools::integrate_difference(*mapping_, dof_handler_, ghosted_, exact, cell_errors, *q,
+                                      VectorTools::H1_seminorm);
+    result_.h1_error = VectorTools::compute_global_error(*tria_, cell_errors, VectorTools::H1_seminorm);
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::write_vtu(const fs::path& dir) {
+  DataOut<dim> data_out;
+  data_out.attach_dof_handler(dof_handler_);
+  std::vector<std::string> names(dim, "displacement");
+  std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+  data_out.add_data_vector(ghosted_, names, DataOut<dim>::type_dof_data, interpretation);
+  const char* cell_names[7] = {"sigma_x", "sigma_y", "sigma_z", "tau_xy", "tau_yz", "tau_xz", "von_mises"};
+  for (int k = 0; k < 7; ++k) {
+    if (dim == 2 && (k == 4 || k == 5)) continue;
+    data_out.add_data_vector(cell_fields_[k], cell_names[k], DataOut<dim>::type_cell_data);
+  }
+  Vector<float> subdomain(tria_->n_active_cells());
+  for (auto& x : subdomain) x = float(tria_->locally_owned_subdomain());
+  data_out.add_data_vector(subdomain, "rank", DataOut<dim>::type_cell_data);
+  data_out.build_patches(*mapping_, mesh_.simplex ? 1 : degree_);
+  std::string name;
+  if (Utilities::MPI::n_mpi_processes(comm_) == 1) {
+    name = "fem_000.vtu";
+    std::ofstream out(dir / name);
+    data_out.write_vtu(out);
+    if (!out) throw Error((dir / name).string() + ": write failed");
+  } else {
+    name = data_out.write_vtu_with_pvtu_record(dir.string() + "/", "fem", 0, comm_, 3, 0);
+  }
+  if (Utilities::MPI::this_mpi_process(comm_) == 0) {
+    std::ofstream pvd(dir / "fem.pvd");
+    DataOutBase::write_pvd_record(pvd, {{1.0, name}});
+    if (!pvd) throw Error((dir / "fem.pvd").string() + ": write failed");
+  }
+}
+
+template <int dim>
+FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
+  auto t = std::chrono::steady_clock::now();
+  make_grid();
+  setup_system();
+  result_.dim = dim;
+  result_.degree = degree_;
+  result_.model = dim == 3 ? "3d" : problem_.options.model == Model::PlaneStress ? "plane_stress" : "plane_strain";
+  result_.cells = mesh_.simplex ? (dim == 2 ? "triangle" : "tetrahedron") : (dim == 2 ? "quadrilateral" : "hexahedron");
+  result_.ranks = int(Utilities::MPI::n_mpi_processes(comm_));
+  result_.n_dofs = dof_handler_.n_dofs();
+  result_.n_active_cells = tria_->n_global_active_cells();
+  check_rigid_motion();
+  result_.setup_seconds = seconds_since(t);
+  std::ostringstream line;
+  line << result_.n_dofs << " DoFs, " << result_.n_active_cells << " cells (" << (mesh_.simplex ? "P" : "Q") << degree_
+       << ", " << result_.model << ", " << result_.ranks << " rank" << (result_.ranks > 1 ? "s" : "") << "), setup "
+       << result_.setup_seconds << " s";
+  say(line.str());
+
+  t = std::chrono::steady_clock::now();
+  assemble_system();
+  result_.assemble_seconds = seconds_since(t);
+  say("assembled in " + std::to_string(result_.assemble_seconds) + " s");
+
+  t = std::chrono::steady_clock::now();
+  solve();
+  result_.solve_seconds = seconds_since(t);
+  {
+    std::ostringstream s;
+    s << "solved with " << result_.solver << ": " << result_.iterations << " iterations, relative residual "
+      << result_.residual << " (" << result_.solve_seconds << " s)";
+    say(s.str());
+  }
+
+  t = std::chrono::steady_clock::now();
+  compute_reactions();
+  postprocess();
+  compute_errors();
+  result_.applied = applied_;
+  if (!output_dir.empty() && problem_.options.write_vtu) write_vtu(output_dir);
+  result_.output_seconds = seconds_since(t);
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << "applied (" << applied_[0] << ", " << applied_[1] << (dim == 3 ? ", " + std::to_string(applied_[2]) : "")
+      << ") N;";
+    for (const auto& g : result_.reactions)
+      s << " reaction " << g.group << " (" << g.force[0] << ", " << g.force[1]
+        << (dim == 3 ? ", " + std::to_string(g.force[2]) : "") << ") N;";
+    say(s.str());
+  }
+  struct rusage usage {};
+  getrusage(RUSAGE_SELF, &usage);
+  result_.peak_memory_bytes = Utilities::MPI::max(double(usage.ru_maxrss) * 1024.0, comm_);
+  return std::move(result_);
+}
+
+}  // namespace
+
+FemResult solve_on_mesh(const FemProblem& problem, const PlainMesh& mesh, const fs::path& output_dir,
+                        std::ostream* log, double mesh_seconds) {
+  ensure_mpi();
+  FemResult result;
+  const char* solver = "solver";
+  try {
+    if (mesh.dim == 2) {
+      ElasticProblem<2> p(problem, mesh, log);
+      result = p.run(output_dir);
+    } else {
+      ElasticProblem<3> p(problem, mesh, log);
+      result = p.run(output_dir);
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const SolverControl::NoConvergence& e) {
+    std::ostringstream s;
+    s << problem.name << ": CG with AMG did not reach the relative residual " << problem.options.tolerance << " in "
+      << e.last_step << " iterations (residual " << e.last_residual
+      << "); raise fem.max_iterations or use fem.solver = \"direct\"";
+    throw Error(s.str());
+  } catch (const ExceptionBase& e) {
+    throw Error(problem.name + ": " + mesh.source + ": deal.II: " + one_line(e));
+  } catch (const std::exception& e) {
+    throw Error(problem.name + ": " + e.what());
+  } catch (int code) {
+    throw Error(problem.name + ": the Trilinos " + solver + " failed (error code " + std::to_string(code) + ")");
+  }
+  result.mesh_seconds = mesh_seconds;
+  return result;
+}
+
+}  // namespace fem_reference

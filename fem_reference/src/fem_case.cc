@@ -1,0 +1,248 @@
+// The FEM reference's plain-data side: [fem] options, case file -> FemProblem, input checks that
+// need no deal.II, CSV output.
+#include "plain_mesh.h"
+
+#include <workbench/error.h>
+#include <workbench/study_setup.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <ostream>
+
+namespace fem_reference {
+
+namespace fs = std::filesystem;
+using workbench::Error;
+using workbench::Range;
+
+FemOptions read_fem_options(const workbench::CaseTable& root) {
+  const auto t = root.table("fem");
+  FemOptions o;
+  o.degree = t.integer("degree", 1, 1, 2);
+  const std::string model = t.text("model", "plane_stress", {"plane_stress", "plane_strain"});
+  o.model = model == "plane_stress" ? Model::PlaneStress : Model::PlaneStrain;
+  const std::string solver = t.text("solver", "auto", {"auto", "direct", "amg"});
+  o.solver = solver == "auto" ? SolverKind::Auto : solver == "direct" ? SolverKind::Direct : SolverKind::Amg;
+  o.direct_limit = t.integer("direct_limit", 50000, 0, 2000000000);
+  o.tolerance = t.number("tolerance", 1e-10, Range{0.0, 1e-2, true, false});
+  o.max_iterations = t.integer("max_iterations", 2000, 1, 1000000);
+  o.refine = t.integer("refine", 0, 0, 10);
+  const std::string load = t.text("load", "traction", {"traction", "point"});
+  o.load = load == "traction" ? LoadKind::Traction : LoadKind::Point;
+  o.write_vtu = t.flag("vtu", true);
+  return o;
+}
+
+FemProblem problem_from_case(const workbench::CaseFile& file) {
+  const auto root = file.root();
+  const auto setup = workbench::read_study_setup(root);
+  FemProblem p;
+  p.name = file.path().string();
+  p.mesh_file = setup.mesh_file;
+  p.mesh_parameters = setup.mesh_parameters;
+  p.young = setup.young;
+  p.poisson = setup.poisson;
+  p.thickness = setup.thickness;
+  for (const auto& g : setup.rigid_groups) p.supports.push_back({g, SupportKind::Clamped, {}});
+  for (const auto& g : setup.roller_groups) p.supports.push_back({g, SupportKind::Roller, {}});
+  p.options = read_fem_options(root);
+  const auto body = root.table("fem").numbers("body_force", std::vector<double>{});
+  if (!body.empty() && body.size() != 2 && body.size() != 3)
+    root.table("fem").fail("body_force", "must have 2 (2D) or 3 (3D) components [N/m^3]");
+  for (std::size_t a = 0; a < body.size(); ++a) p.body_force[a] = body[a];
+  for (const auto& l : setup.loads) {
+    std::array<double, 3> force{};
+    force[l.axis] = l.sign * l.force;
+    if (p.options.load == LoadKind::Traction)
+      p.tractions.push_back({l.group, force, {}});
+    else
+      p.point_forces.push_back({{}, force, l.group});
+  }
+  if (p.supports.empty())
+    root.table("boundary").fail("rigid", "no supports (rigid and rollers are both empty): the body could move "
+                                         "freely, the FEM problem has no unique solution");
+  return p;
+}
+
+namespace {
+
+std::string have_groups(const PlainMesh& mesh) {
+  std::string have;
+  for (const auto& [g, faces] : mesh.face_groups) have += (have.empty() ? "" : ", ") + g;
+  return have.empty() ? "none" : have;
+}
+
+void check_problem(const FemProblem& p, const PlainMesh& mesh) {
+  const std::string mesh_name = p.box ? std::string("the box mesh") : p.mesh_file.string();
+  auto check = [&](const std::string& group, const std::string& role) {
+    auto it = mesh.face_groups.find(group);
+    if (it == mesh.face_groups.end())
+      throw Error(p.name + ": " + role + ": group '" + group + "' is not a physical group of " + mesh_name +
+                  " (it has: " + have_groups(mesh) + ")");
+    if (it->second.empty()) throw Error(p.name + ": " + role + ": group '" + group + "' has no faces in " + mesh_name);
+  };
+  if (p.supports.empty())
+    throw Error(p.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
+  for (const auto& s : p.supports) {
+    const std::string role = s.kind == SupportKind::Clamped   ? "boundary.rigid"
+                             : s.kind == SupportKind::Roller ? "boundary.rollers"
+                                                             : "displacement support";
+    check(s.group, role);
+    if (s.kind == SupportKind::Roller && normal_axis(mesh, s.group) < 0)
+      throw Error(p.name + ": boundary.rollers: group '" + s.group +
+                  "' does not lie in a plane perpendicular to the x, y or z axis (rollers need one normal axis)");
+    if (s.kind == SupportKind::Displacement && !s.displacement)
+      throw Error(p.name + ": displacement support on '" + s.group + "' has no displacement function");
+  }
+  for (std::size_t i = 0; i < p.tractions.size(); ++i) {
+    check(p.tractions[i].group, "load[" + std::to_string(i) + "].group");
+    if (!p.tractions[i].traction)
+      for (int a = mesh.dim; a < 3; ++a)
+        if (p.tractions[i].force[a] != 0)
+          throw Error(p.name + ": load[" + std::to_string(i) + "].direction: " + char('x' + a) +
+                      " is not an axis of a 2D mesh");
+  }
+  for (std::size_t i = 0; i < p.point_forces.size(); ++i) {
+    if (!p.point_forces[i].group.empty()) check(p.point_forces[i].group, "load[" + std::to_string(i) + "].group");
+    for (int a = mesh.dim; a < 3; ++a)
+      if (p.point_forces[i].force[a] != 0)
+        throw Error(p.name + ": load[" + std::to_string(i) + "].direction: " + char('x' + a) +
+                    " is not an axis of a 2D mesh");
+  }
+  if (mesh.dim == 2 && p.body_force[2] != 0)
+    throw Error(p.name + ": fem.body_force: a 2D mesh takes 2 components, got a z component");
+  if (mesh.simplex && mpi_size() > 1)
+    throw Error(p.name + ": " + mesh.source + ": has " + (mesh.dim == 2 ? "triangles" : "tetrahedra") +
+                "; a distributed (MPI) run needs a quadrilateral/hexahedral mesh (Transfinite + Recombine in the .geo)");
+}
+
+/// Area-weighted centre of a group's faces.
+std::array<double, 3> group_centre(const PlainMesh& mesh, const std::string& group) {
+  std::array<double, 3> c{};
+  double total = 0;
+  for (const auto& face : mesh.face_groups.at(group)) {
+    std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308}, m{};
+    for (unsigned v : face)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], mesh.nodes[3 * v + a]);
+        hi[a] = std::max(hi[a], mesh.nodes[3 * v + a]);
+        m[a] += mesh.nodes[3 * v + a] / face.size();
+      }
+    double w = 0;
+    for (int a = 0; a < 3; ++a) w = std::max(w, hi[a] - lo[a]);
+    w = std::max(w, 1e-300);
+    for (int a = 0; a < 3; ++a) c[a] += w * m[a];
+    total += w;
+  }
+  for (auto& x : c) x /= total;
+  return c;
+}
+
+}  // namespace
+
+FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  if (problem.supports.empty())
+    throw Error(problem.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
+  PlainMesh mesh = problem.box ? box_mesh(*problem.box) : read_gmsh_mesh(problem.mesh_file, problem.mesh_parameters);
+  check_problem(problem, mesh);
+  FemProblem p = problem;
+  for (auto& f : p.point_forces)
+    if (!f.group.empty()) f.point = group_centre(mesh, f.group);
+  const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (log && mpi_rank() == 0)
+    *log << "fem: mesh " << mesh.source << ": " << mesh.cell_count() << " cells, " << mesh.node_count() << " nodes ("
+         << mesh_seconds << " s)\n";
+  return solve_on_mesh(p, mesh, output_dir, log, mesh_seconds);
+}
+
+std::array<double, 3> FemResult::displacement_at(const std::array<double, 3>& x) const {
+  std::size_t best = 0;
+  double best_d = 1e308;
+  for (std::size_t i = 0; i < node_count(); ++i) {
+    double d = 0;
+    for (int a = 0; a < 3; ++a) d += (node_points[3 * i + a] - x[a]) * (node_points[3 * i + a] - x[a]);
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  std::array<double, 3> u{};
+  for (int a = 0; a < dim && best < node_count(); ++a) u[a] = node_displacement[dim * best + a];
+  return u;
+}
+
+namespace {
+
+std::ofstream open_csv(const fs::path& file) {
+  std::ofstream out(file);
+  if (!out) throw Error(file.string() + ": cannot open for writing");
+  out.precision(12);
+  return out;
+}
+
+void close_csv(std::ofstream& out, const fs::path& file) {
+  out.close();
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
+}  // namespace
+
+void write_fem_csv(const FemResult& r, const fs::path& dir) {
+  const int dim = r.dim;
+  {
+    const auto file = dir / "fem_cells.csv";
+    auto out = open_csv(file);
+    out << "cell,x,y" << (dim == 3 ? ",z" : "") << ",sigma_x,sigma_y,sigma_z,tau_xy"
+        << (dim == 3 ? ",tau_yz,tau_xz" : "") << ",von_mises\n";
+    for (std::size_t e = 0; e < r.cell_count(); ++e) {
+      out << e;
+      for (int a = 0; a < dim; ++a) out << ',' << r.cell_centres[3 * e + a];
+      out << ',' << r.sigma_x[e] << ',' << r.sigma_y[e] << ',' << r.sigma_z[e] << ',' << r.tau_xy[e];
+      if (dim == 3) out << ',' << r.tau_yz[e] << ',' << r.tau_xz[e];
+      out << ',' << r.von_mises[e] << '\n';
+    }
+    close_csv(out, file);
+  }
+  {
+    const auto file = dir / "fem_nodes.csv";
+    auto out = open_csv(file);
+    out << "node,x,y" << (dim == 3 ? ",z" : "") << ",u_x,u_y" << (dim == 3 ? ",u_z" : "") << "\n";
+    for (std::size_t n = 0; n < r.node_count(); ++n) {
+      out << n;
+      for (int a = 0; a < dim; ++a) out << ',' << r.node_points[3 * n + a];
+      for (int a = 0; a < dim; ++a) out << ',' << r.node_displacement[dim * n + a];
+      out << '\n';
+    }
+    close_csv(out, file);
+  }
+  {
+    const auto file = dir / "fem_reactions.csv";
+    auto out = open_csv(file);
+    out << "group,kind,f_x,f_y" << (dim == 3 ? ",f_z" : "") << "\n";
+    for (const auto& g : r.reactions) {
+      out << g.group << ',' << g.kind;
+      for (int a = 0; a < dim; ++a) out << ',' << g.force[a];
+      out << '\n';
+    }
+    out << "(applied),load";
+    for (int a = 0; a < dim; ++a) out << ',' << r.applied[a];
+    out << '\n';
+    close_csv(out, file);
+  }
+  {
+    const auto file = dir / "fem_summary.csv";
+    auto out = open_csv(file);
+    out << "key,value\n"
+        << "dim," << r.dim << "\ndegree," << r.degree << "\nmodel," << r.model << "\ncells," << r.cells
+        << "\nranks," << r.ranks << "\ndofs," << r.n_dofs << "\nactive_cells," << r.n_active_cells << "\nsolver,"
+        << r.solver << "\niterations," << r.iterations << "\nresidual," << r.residual << "\nmesh_seconds,"
+        << r.mesh_seconds << "\nsetup_seconds," << r.setup_seconds << "\nassemble_seconds," << r.assemble_seconds
+        << "\nsolve_seconds," << r.solve_seconds << "\noutput_seconds," << r.output_seconds
+        << "\npeak_memory_bytes," << r.peak_memory_bytes << "\n";
+    close_csv(out, file);
+  }
+}
+
+}  // namespace fem_reference

@@ -8,6 +8,23 @@ namespace {
 constexpr double kTinySquaredLength = 1e-300;
 /// Below this |sin theta| the unsigned form has no gradient direction.
 constexpr double kMinSin = 1e-12;
+/// atan2(y, x), fast where the angle is small (|y| < 0.1 x: the deviation from the rest angle in
+/// almost every projection): the Taylor series of atan(t) to t^15, whose truncation error is below
+/// t^17 / 17 < 6e-18 |t|; elsewhere std::atan2.
+inline double small_atan2(double y, double x) {
+  if (x > 0 && std::abs(y) < 0.1 * x) {
+    const double t = y / x, t2 = t * t;
+    double p = -1.0 / 15;
+    p = p * t2 + 1.0 / 13;
+    p = p * t2 - 1.0 / 11;
+    p = p * t2 + 1.0 / 9;
+    p = p * t2 - 1.0 / 7;
+    p = p * t2 + 1.0 / 5;
+    p = p * t2 - 1.0 / 3;
+    return t + t * t2 * p;
+  }
+  return std::atan2(y, x);
+}
 }  // namespace
 
 double angle(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
@@ -71,7 +88,7 @@ double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double 
     if (s < kMinSin) return 0;
     n = cr * (1.0 / s);
   }
-  const double C = std::atan2(s * rest_cos - c * rest_sin, c * rest_cos + s * rest_sin);
+  const double C = small_atan2(s * rest_cos - c * rest_sin, c * rest_cos + s * rest_sin);
   const Vec3 g1 = -n.cross(ua) * inv_la;
   const Vec3 g2 = n.cross(ub) * inv_lb;
   const Vec3 g3 = -g1 - g2;

@@ -134,7 +134,11 @@ Model build_model(const Mesh& mesh, const std::vector<int>& pinned, const ModelO
   const auto triples = angle_triples(x, neighbour_sets(n, edges), &model.raw_triple_count);
   for (const auto& t : triples) {
     if (is_pinned[t.best] && is_pinned[t.k] && is_pinned[t.i]) continue;
-    const double theta0 = model.planar ? signed_angle(x[t.best], x[t.k], x[t.i], model.axis) : angle(x[t.best], x[t.k], x[t.i]);
+    // cos and sin of the rest angle straight from the edge vectors (exact for a straight chain:
+    // (-1, 0), where sin(double(pi)) would leave 1.2e-16).
+    const Vec3 ua = (x[t.best] - x[t.i]).normalized(), ub = (x[t.k] - x[t.i]).normalized();
+    const Vec3 cr = ua.cross(ub);
+    const double rc = ua.dot(ub), rs = model.planar ? model.axis.dot(cr) : cr.norm(), r = std::hypot(rc, rs);
     double compliance = options.bending_compliance;
     if (options.bending_stiffness > 0) {
       double lv = 0;
@@ -142,7 +146,7 @@ Model build_model(const Mesh& mesh, const std::vector<int>& pinned, const ModelO
       if (!(is_pinned[t.k] && is_pinned[t.i])) lv += 0.5 * (x[t.k] - x[t.i]).norm();
       compliance = lv / options.bending_stiffness;
     }
-    model.angles.push_back({t.best, t.k, t.i, std::cos(theta0), std::sin(theta0), compliance});
+    model.angles.push_back({t.best, t.k, t.i, rc / r, rs / r, compliance});
   }
 
   // Order by rest positions, not node numbers (numbering-independent Gauss-Seidel order).

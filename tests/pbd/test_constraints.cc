@@ -172,3 +172,21 @@ TEST(PbdDistanceConstraint, ProjectionRestoresTheLength) {
   pbd::project_distance(c, d, 1, 1, 1, 0, lambda);
   EXPECT_TRUE(c.allFinite() && d.allFinite());
 }
+
+TEST(PbdAngleConstraint, ProjectionUsesTheExactDeviation) {
+  // Small and large deviations (the fast small-angle atan path and std::atan2) give the exact
+  // PBD step: C / sum w |grad C|^2 along the gradient.
+  const Vec3 z = Vec3::UnitZ();
+  for (double dev : {1e-9, 1e-4, 0.05, 0.0999, 0.3, 2.0}) {
+    Vec3 p1(-1, 0, 0), p3(0, 0, 0), p2(std::cos(dev), std::sin(dev), 0);
+    const auto g = pbd::angle_constraint_gradient(p1, p2, p3, kPi, &z);
+    ASSERT_TRUE(g.valid);
+    EXPECT_NEAR(std::abs(g.C), dev, 1e-15 * dev + 2e-16);  // sin(double(pi)) = 1.2e-16
+    const double den = g.g1.squaredNorm() + g.g2.squaredNorm() + g.g3.squaredNorm();
+    const Vec3 expect = p2 - g.C / den * g.g2;
+    double lambda = 0;
+    pbd::project_angle(p1, p2, p3, 1, 1, 1, -1, 0, 0.0, lambda, &z);
+    EXPECT_LT((p2 - expect).norm(), 1e-15);
+    EXPECT_NEAR(lambda, -g.C / den, 1e-15 * std::abs(g.C / den) + 1e-16);
+  }
+}

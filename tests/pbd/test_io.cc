@@ -169,7 +169,8 @@ TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
   while (std::getline(in, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), 11u);  // header + ghost + 9 rod nodes
   EXPECT_EQ(rows[0], "s,x0,y0,z0,x,y,z,u_x,u_y,u_z");
-  EXPECT_EQ(rows[1].rfind("0,-0.125,0,0,-0.125,0,0,0,0,0", 0), 0u) << rows[1];  // starts at the clamp
+  EXPECT_EQ(rows[1].rfind("-0.125,-0.125,0,0,-0.125,0,0,0,0,0", 0), 0u) << rows[1];  // ghost node in the clamp
+  EXPECT_EQ(rows[2].rfind("0,0,0,0,0,0,0,0,0,0", 0), 0u) << rows[2];                   // s = 0 at the clamp face
   double tip_uy = std::stod(rows.back().substr(rows.back().rfind(',', rows.back().rfind(',') - 1) + 1));
   EXPECT_LT(tip_uy, 0.0);  // sags
   EXPECT_NE(log.str().find("pbd: frame 6/6"), std::string::npos);

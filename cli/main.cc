@@ -2,6 +2,7 @@
 //
 //   workbench agent cases/seed_plate.toml            agent load-transfer study (VTU/PVD/CSV)
 //   workbench fem cases/seed_plate.toml              deal.II FEM reference (mpirun -np N for MPI)
+//   workbench compare cases/seed_plate.toml          both on one mesh: metrics, Figures 8-11, gate
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //

@@ -1,0 +1,44 @@
+#include "commands.h"
+
+#include <compare/compare_study.h>
+#include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace cli {
+
+void add_compare_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand(
+      "compare", "Run the agent method and the FEM reference on one case and compare them (exit 1 if the gate fails)");
+  auto case_file = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto junit = std::make_shared<std::string>();
+  cmd->add_option("case", *case_file, "case file (TOML, see docs/case-file.md)")->required();
+  cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/compare)");
+  cmd->add_option("--junit", *junit, "also copy the gate's JUnit XML report to this file");
+  cmd->callback([&action, case_file, output, junit] {
+    action = [case_file, output, junit] {
+      workbench::CaseFile file(*case_file);
+      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/compare" : *output;
+      workbench::StagedDirectory staged(dir);
+      const auto outcome = compare::run_compare(file, staged.path(), std::cerr);
+      staged.commit();
+      if (!junit->empty())
+        std::filesystem::copy_file(staged.target() / "junit.xml", *junit,
+                                   std::filesystem::copy_options::overwrite_existing);
+      std::cerr << "compare: wrote " << staged.target().string() << "\n";
+      for (const auto& f : outcome.failures)
+        std::cerr << "compare: gate: " << f.metric << " = " << f.value << " exceeds " << f.limit << " by "
+                  << f.value - f.limit << "\n";
+      if (outcome.gated > 0)
+        std::cerr << "compare: gate: " << outcome.gated - outcome.failures.size() << " passed, "
+                  << outcome.failures.size() << " failed\n";
+      return outcome.failures.empty() ? 0 : 1;
+    };
+  });
+}
+
+}  // namespace cli

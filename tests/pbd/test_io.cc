@@ -117,11 +117,12 @@ TEST(PbdMeshIo, DegenerateMeshesGiveOneLineErrors) {
             std::string::npos);
 }
 
-TEST(PbdMeshIo, GmshVolumeMeshAndGeoErrorsAreReported) {
-  TempDir tmp;
-  const auto f = tmp.write("bad.geo", "Point(1) = {0, 0, 0};\nLine(1) = {1, 7};\n");
-  const std::string e = error_of([&] { pbd_io::read_mesh(f); });
-  EXPECT_EQ(e.rfind(f.string() + ": ", 0), 0u) << e;
+TEST(PbdMeshIo, GeoErrorsAreReportedAndTheSessionRecovers) {
+  // An Error() in the .geo (N < 2) is reported with the file name.
+  // (A syntax error would do too, but gmsh 4.8 leaks in its parser then, which LeakSanitizer flags.)
+  const auto f = kSource / "meshes/rod2d.geo";
+  const std::string e = error_of([&] { pbd_io::read_mesh(f, {{"N", 1}}); });
+  EXPECT_EQ(e, f.string() + ": rod2d.geo: N must be at least 2");
   // The session recovers: a good file reads after the error.
   EXPECT_EQ(pbd_io::read_mesh(kSource / "meshes/rod2d.geo", {{"N", 3}}).mesh.points.size(), 5u);
 }

@@ -134,7 +134,7 @@ TEST(PbdSolver, MeshAtRestStaysAtRest) {
     s.gravity.setZero();
     s.substeps = 4;
     s.iterations = 2;
-    for (int f = 0; f < 100; ++f) solver.step(s);
+    for (int f = 0; f < 30; ++f) solver.step(s);
     EXPECT_LT(max_abs(model.particles.x, mesh->points), 1e-13);
   }
 }
@@ -200,9 +200,9 @@ TEST(PbdSolver, ResultsDoNotDependOnNodeNumbering) {
   pbd::Solver sa(a), sb(b);
   pbd::StepSettings s;
   s.gravity = Vec3(0, 0, -9.81);
-  s.substeps = 5;
+  s.substeps = 3;
   s.iterations = 2;
-  for (int f = 0; f < 30; ++f) {
+  for (int f = 0; f < 20; ++f) {
     sa.step(s);
     sb.step(s);
   }
@@ -213,9 +213,9 @@ TEST(PbdSolver, ResultsDoNotDependOnNodeNumbering) {
 }
 
 TEST(PbdSolver, ParallelColoursGiveTheSerialResult) {
-  auto sheet = pbd::Mesh::grid(40, 30, 0.05, true);
+  auto sheet = pbd::Mesh::grid(24, 16, 0.05, true);
   std::vector<int> pinned;
-  for (int j = 0; j <= 30; ++j) pinned.push_back(j * 41);
+  for (int j = 0; j <= 16; ++j) pinned.push_back(j * 25);
   pbd::ModelOptions o;
   o.bending_compliance = 1e-3;
   auto a = pbd::build_model(sheet, pinned, o), b = a;
@@ -223,7 +223,7 @@ TEST(PbdSolver, ParallelColoursGiveTheSerialResult) {
   pbd::StepSettings s;
   s.gravity = Vec3(0, 0, -9.81);
   s.substeps = 2;
-  for (int f = 0; f < 10; ++f) {
+  for (int f = 0; f < 5; ++f) {
     s.threads = 1;
     sa.step(s);
     s.threads = 2;
@@ -246,4 +246,27 @@ TEST(PbdSolver, FlatSheetOnTheStraightSingularityStaysFinite) {
     for (int f = 0; f < 30; ++f) solver.step(s);
     for (const auto& x : model.particles.x) ASSERT_TRUE(x.allFinite());
   }
+}
+
+TEST(PbdSolver, ClampedRodSmokeTest) {
+  // The validation rod (tests/pbd/test_validation.cc) at N = 10, cheap enough for the sanitizer
+  // build: E I = 1, rho A = 1, L = 1, q = 0.008, clamp by a pinned ghost node.
+  const int N = 10;
+  const double l = 1.0 / N;
+  const auto mesh = pbd::Mesh::polyline(Vec3(-l, 0, 0), Vec3(1, 0, 0), N + 1);
+  pbd::ModelOptions o;
+  o.masses = pbd::ModelOptions::Masses::Lumped;
+  o.bending_stiffness = 1.0;
+  o.planar_axis = Vec3::UnitZ();
+  auto model = pbd::build_model(mesh, {0, 1}, o);
+  pbd::Solver solver(model);
+  pbd::StepSettings s;
+  s.dt = 0.01;
+  s.substeps = 5;
+  s.iterations = 4;
+  s.gravity = Vec3(0, -0.008, 0);
+  s.damping = 2 * 3.516;
+  for (int f = 0; f < 400; ++f) solver.step(s);
+  // Euler-Bernoulli: 1e-3; the N = 10 chain is 1.0 % softer (converges as 1/N^2).
+  EXPECT_NEAR(-model.particles.x.back()[1], 1.00998e-3, 2e-7);
 }

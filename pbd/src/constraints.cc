@@ -78,6 +78,9 @@ double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double 
   const Vec3 ua = a * inv_la, ub = b * inv_lb;
   const Vec3 cr = ua.cross(ub);
   const double c = ua.dot(ub);
+  // Gradients g1 = -(n x ua) / la, g2 = (n x ub) / lb with n the unit rotation axis (cr / |cr|
+  // unsigned, the fixed axis signed); n is perpendicular to ua and ub, so |g1|^2 = 1/la^2,
+  // |g2|^2 = 1/lb^2 and g1 . g2 = -c / (la lb): the denominator needs no gradient products.
   Vec3 n;
   double s;
   if (axis) {
@@ -89,16 +92,16 @@ double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double 
     n = cr * (1.0 / s);
   }
   const double C = small_atan2(s * rest_cos - c * rest_sin, c * rest_cos + s * rest_sin);
-  const Vec3 g1 = -n.cross(ua) * inv_la;
-  const Vec3 g2 = n.cross(ub) * inv_lb;
-  const Vec3 g3 = -g1 - g2;
-  const double den = w1 * g1.squaredNorm() + w2 * g2.squaredNorm() + w3 * g3.squaredNorm() + alpha_tilde;
+  const double ia2 = inv_la * inv_la, ib2 = inv_lb * inv_lb;
+  const double den = (w1 + w3) * ia2 + (w2 + w3) * ib2 - 2 * w3 * c * inv_la * inv_lb + alpha_tilde;
   if (!(den > 0)) return 0;
   const double dl = (-C - alpha_tilde * lambda) / den;
   lambda += dl;
+  const Vec3 g1 = -n.cross(ua) * inv_la;
+  const Vec3 g2 = n.cross(ub) * inv_lb;
   p1 += (w1 * dl) * g1;
   p2 += (w2 * dl) * g2;
-  p3 += (w3 * dl) * g3;
+  p3 -= (w3 * dl) * (g1 + g2);
   return dl;
 }
 

@@ -31,31 +31,45 @@ double cell_measure(const Mesh& mesh, std::size_t c) {
   }
 }
 
-/// Greedy colouring of constraints given by their particle lists; returns the permutation that
-/// sorts them by colour (stable within a colour) and the colour offsets.
+/// Cuts `count` constraints (given by their particle lists) into blocks of `block_size`, colours
+/// the blocks greedily (a colour may not touch a particle twice) and returns the permutation that
+/// orders the blocks by colour, each block's constraints unchanged in order.
 template <class Nodes>
-std::vector<std::size_t> colour_order(std::size_t count, std::size_t particles, Nodes nodes,
-                                      std::vector<std::size_t>& begin) {
+std::vector<std::size_t> colour_blocks(std::size_t count, std::size_t particles, Nodes nodes, std::size_t block_size,
+                                       Colouring& out) {
+  const std::size_t blocks = (count + block_size - 1) / block_size;
   std::vector<std::vector<int>> used(particles);  // colours already touching each particle
-  std::vector<int> colour(count);
+  std::vector<int> colour(blocks);
   int colours = 0;
   std::vector<char> taken;
-  for (std::size_t c = 0; c < count; ++c) {
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t lo = b * block_size, hi = std::min(count, lo + block_size);
     taken.assign(colours + 1, 0);
-    for (int p : nodes(c))
-      for (int u : used[p]) taken[u] = 1;
+    for (std::size_t c = lo; c < hi; ++c)
+      for (int p : nodes(c))
+        for (int u : used[p]) taken[u] = 1;
     int col = 0;
     while (taken[col]) ++col;
-    colour[c] = col;
+    colour[b] = col;
     colours = std::max(colours, col + 1);
-    for (int p : nodes(c)) used[p].push_back(col);
+    for (std::size_t c = lo; c < hi; ++c)
+      for (int p : nodes(c))
+        if (used[p].empty() || used[p].back() != col) used[p].push_back(col);
   }
-  std::vector<std::size_t> order(count);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return colour[a] < colour[b]; });
-  begin.assign(colours + 1, 0);
-  for (std::size_t c = 0; c < count; ++c) ++begin[colour[c] + 1];
-  for (int k = 0; k < colours; ++k) begin[k + 1] += begin[k];
+  std::vector<std::size_t> block_order(blocks);
+  std::iota(block_order.begin(), block_order.end(), std::size_t(0));
+  std::stable_sort(block_order.begin(), block_order.end(), [&](std::size_t a, std::size_t b) { return colour[a] < colour[b]; });
+  std::vector<std::size_t> order;
+  order.reserve(count);
+  out.block_begin.assign(1, 0);
+  out.colour_begin.assign(colours + 1, 0);
+  for (std::size_t b : block_order) {
+    const std::size_t lo = b * block_size, hi = std::min(count, lo + block_size);
+    for (std::size_t c = lo; c < hi; ++c) order.push_back(c);
+    out.block_begin.push_back(order.size());
+    ++out.colour_begin[colour[b] + 1];
+  }
+  for (int k = 0; k < colours; ++k) out.colour_begin[k + 1] += out.colour_begin[k];
   return order;
 }
 
@@ -79,15 +93,16 @@ bool lies_in_xy_plane(const std::vector<Vec3>& points) {
   return hi[2] - lo[2] <= 1e-12 * std::max((hi - lo).norm(), 1e-300);
 }
 
-void colour_constraints(Model& model) {
+void colour_constraints(Model& model, int block_size) {
   const std::size_t n = model.particles.size();
+  const std::size_t bs = std::size_t(std::max(1, block_size));
   auto& d = model.distances;
-  auto od = colour_order(d.size(), n, [&](std::size_t c) { return std::array<int, 2>{d[c].a, d[c].b}; },
-                         model.distance_colour_begin);
+  auto od = colour_blocks(d.size(), n, [&](std::size_t c) { return std::array<int, 2>{d[c].a, d[c].b}; }, bs,
+                          model.distance_colouring);
   permute(d, od);
   auto& a = model.angles;
-  auto oa = colour_order(a.size(), n, [&](std::size_t c) { return std::array<int, 3>{a[c].best, a[c].k, a[c].i}; },
-                         model.angle_colour_begin);
+  auto oa = colour_blocks(a.size(), n, [&](std::size_t c) { return std::array<int, 3>{a[c].best, a[c].k, a[c].i}; },
+                          bs, model.angle_colouring);
   permute(a, oa);
 }
 
@@ -168,7 +183,7 @@ Model build_model(const Mesh& mesh, const std::vector<int>& pinned, const ModelO
       std::swap(c.k, c.best);
       if (model.planar) c.rest_sin = -c.rest_sin;
     }
-  colour_constraints(model);
+  colour_constraints(model, options.block_size);
   return model;
 }
 

@@ -60,8 +60,8 @@ void Solver::project(double h, int threads) {
   const Vec3* axis = model_.axis_ptr();
   const DistanceConstraint* D = model_.distances.data();
   const AngleConstraint* A = model_.angles.data();
-  const auto& db = model_.distance_colour_begin;
-  const auto& ab = model_.angle_colour_begin;
+  const Colouring& dc = model_.distance_colouring;
+  const Colouring& ac = model_.angle_colouring;
   double* ld = lambda_distance_.data();
   double* la = lambda_angle_.data();
   auto distance = [&](long c) {
@@ -74,22 +74,25 @@ void Solver::project(double h, int threads) {
                   a.compliance * inv_h2, la[c], axis);
   };
   if (threads <= 1) {
-    // Same order as the parallel path (colour by colour), so results do not depend on threads.
+    // Same order as the parallel path (the arrays are in colour-major block order), so results do
+    // not depend on the thread count.
     for (long c = 0; c < long(model_.distances.size()); ++c) distance(c);
     for (long c = 0; c < long(model_.angles.size()); ++c) bend(c);
     return;
   }
 #pragma omp parallel num_threads(threads)
   {
-    for (std::size_t col = 0; col + 1 < db.size(); ++col) {
-      const long b = long(db[col]), e = long(db[col + 1]);
-#pragma omp for schedule(static)
-      for (long c = b; c < e; ++c) distance(c);
+    for (std::size_t col = 0; col < dc.colours(); ++col) {
+      const long b = long(dc.colour_begin[col]), e = long(dc.colour_begin[col + 1]);
+#pragma omp for schedule(dynamic, 4)
+      for (long k = b; k < e; ++k)
+        for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) distance(c);
     }
-    for (std::size_t col = 0; col + 1 < ab.size(); ++col) {
-      const long b = long(ab[col]), e = long(ab[col + 1]);
-#pragma omp for schedule(static)
-      for (long c = b; c < e; ++c) bend(c);
+    for (std::size_t col = 0; col < ac.colours(); ++col) {
+      const long b = long(ac.colour_begin[col]), e = long(ac.colour_begin[col + 1]);
+#pragma omp for schedule(dynamic, 4)
+      for (long k = b; k < e; ++k)
+        for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) bend(c);
     }
   }
 }

@@ -98,21 +98,30 @@ TEST(PbdModel, BendingComplianceFromEIIsHalvedAtAClamp) {
   EXPECT_DOUBLE_EQ(c[1], 0.5 / 2.0);   // interior: l / EI
 }
 
-TEST(PbdModel, ColoursShareNoParticle) {
-  const auto mesh = pbd::Mesh::grid(12, 9, 0.1, true);
-  const auto m = pbd::build_model(mesh, {0, 1, 2}, {});
-  auto check = [](const std::vector<std::size_t>& begin, auto nodes_of) {
-    for (std::size_t c = 0; c + 1 < begin.size(); ++c) {
+TEST(PbdModel, BlocksOfAColourShareNoParticle) {
+  const auto mesh = pbd::Mesh::grid(40, 30, 0.1, true);
+  pbd::ModelOptions o;
+  o.block_size = 16;
+  const auto m = pbd::build_model(mesh, {0, 1, 2}, o);
+  auto check = [](const pbd::Colouring& col, std::size_t count, auto nodes_of) {
+    EXPECT_EQ(col.block_begin.back(), count);
+    EXPECT_EQ(col.colour_begin.back(), col.blocks());
+    EXPECT_GT(col.colours(), 1u);
+    EXPECT_LE(col.colours(), 8u);  // blocks along rows: few colours
+    for (std::size_t c = 0; c < col.colours(); ++c) {
       std::set<int> seen;
-      for (std::size_t k = begin[c]; k < begin[c + 1]; ++k)
-        for (int p : nodes_of(k)) EXPECT_TRUE(seen.insert(p).second) << "colour " << c;
+      for (std::size_t b = col.colour_begin[c]; b < col.colour_begin[c + 1]; ++b) {
+        std::set<int> mine;
+        for (std::size_t k = col.block_begin[b]; k < col.block_begin[b + 1]; ++k)
+          for (int p : nodes_of(k)) mine.insert(p);
+        for (int p : mine) EXPECT_TRUE(seen.insert(p).second) << "colour " << c << " particle " << p;
+      }
     }
   };
-  check(m.distance_colour_begin, [&](std::size_t k) { return std::vector<int>{m.distances[k].a, m.distances[k].b}; });
-  check(m.angle_colour_begin,
+  check(m.distance_colouring, m.distances.size(),
+        [&](std::size_t k) { return std::vector<int>{m.distances[k].a, m.distances[k].b}; });
+  check(m.angle_colouring, m.angles.size(),
         [&](std::size_t k) { return std::vector<int>{m.angles[k].best, m.angles[k].k, m.angles[k].i}; });
-  EXPECT_EQ(m.angle_colour_begin.back(), m.angles.size());
-  EXPECT_LE(m.angle_colour_begin.size() - 1, 16u);
 }
 
 TEST(PbdSolver, MeshAtRestStaysAtRest) {
@@ -218,6 +227,7 @@ TEST(PbdSolver, ParallelColoursGiveTheSerialResult) {
   for (int j = 0; j <= 16; ++j) pinned.push_back(j * 25);
   pbd::ModelOptions o;
   o.bending_compliance = 1e-3;
+  o.block_size = 8;  // many blocks per colour
   auto a = pbd::build_model(sheet, pinned, o), b = a;
   pbd::Solver sa(a), sb(b);
   pbd::StepSettings s;

@@ -27,15 +27,27 @@ struct ModelOptions {
   /// Unit axis of the signed angle form for a planar mesh (see constraints.h); zero vector = the
   /// unsigned form (3D meshes).
   Vec3 planar_axis = Vec3::Zero();
+  /// Constraints per block of the parallel solve (see Model::angle_colouring).
+  int block_size = 256;
+};
+
+/// Block b holds constraints [block_begin[b], block_begin[b+1]); colour c holds blocks
+/// [colour_begin[c], colour_begin[c+1]).
+struct Colouring {
+  std::vector<std::size_t> block_begin{0};
+  std::vector<std::size_t> colour_begin{0};
+  std::size_t colours() const { return colour_begin.size() - 1; }
+  std::size_t blocks() const { return block_begin.size() - 1; }
 };
 
 struct Model {
   Particles particles;
   std::vector<DistanceConstraint> distances;
   std::vector<AngleConstraint> angles;
-  /// Constraints of colour c are [colour_begin[c], colour_begin[c+1]) of their array: no two of a
-  /// colour share a free particle, so a colour can be projected in parallel.
-  std::vector<std::size_t> distance_colour_begin{0}, angle_colour_begin{0};
+  /// Blocks of consecutive constraints (kept in their geometric order, for locality and a natural
+  /// Gauss-Seidel order), greedily coloured so that no two blocks of a colour share a particle:
+  /// the blocks of a colour can be projected in parallel, each block serially.
+  Colouring distance_colouring, angle_colouring;
   bool planar = false;
   Vec3 axis = Vec3::UnitZ();
   std::size_t raw_triple_count = 0;  ///< chains found by step 4b before deduplication
@@ -50,7 +62,8 @@ Model build_model(const Mesh& mesh, const std::vector<int>& pinned, const ModelO
 /// True when every point has the same z (relative tolerance of the bounding box).
 bool lies_in_xy_plane(const std::vector<Vec3>& points);
 
-/// Greedy colouring of both constraint arrays in their current order (build_model calls it).
-void colour_constraints(Model& model);
+/// Cuts both constraint arrays into blocks of `block_size` in their current order and colours the
+/// blocks greedily, reordering the arrays colour by colour (build_model calls it).
+void colour_constraints(Model& model, int block_size);
 
 }  // namespace pbd

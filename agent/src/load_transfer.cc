@@ -86,7 +86,16 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
   const bool patent = rules_ == RuleSet::Patent;
   const bool three_d = g.dim == 3;
+  const int lateral_dirs = three_d ? 4 : 2;
   const double alpha1 = k_.alpha1, alpha2 = k_.alpha2, alpha3 = k_.alpha3, gamma = k_.gamma;
+  // Friction: a load from above (or the entry load) is sent to every side with `emit` of it; a
+  // friction load travels straight on, passing `carry` of itself to the next agent. The
+  // conserving rule set normalises both splits so that nothing is lost.
+  const double emit = patent ? alpha3 : alpha3 / (alpha2 + lateral_dirs * alpha3);
+  const double carry = patent ? alpha3 : alpha3 / (alpha2 + alpha3);
+  const double keep_above = patent ? 0.0 : alpha2 / (alpha2 + lateral_dirs * alpha3);
+  const double keep_side = patent ? 0.0 : alpha2 / (alpha2 + alpha3);
+  const double decay = k_.poisson_decay;
   // Locals, not members, in the hot loops: the compiler cannot keep members in registers
   // across the stores into the face array.
   Diagnostics d;
@@ -109,110 +118,110 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       current = gen;
     }
   };
+  reach(load.cell, 0);
 
-  // The conserving split of an agent's load by its number of outward sides.
-  std::array<double, 5> down_share{}, side_share{};
-  for (int n = 1; n <= 4; ++n) {
-    const double split = k_.alpha2 + n * k_.alpha3;
-    down_share[n] = k_.alpha2 / split;
-    side_share[n] = k_.alpha3 / split;
-  }
-
-  fresh_[eu + std::size_t(n0) * ev] = load.force;
+  const std::size_t entry_buf = eu + std::size_t(n0) * ev;
+  double entry_load = load.force;  // only in the first layer
   Box box{eu, eu, ev, ev};
   int layer = entry[a];
-  for (int depth = 0;; ++depth, layer += step) {
+  for (;; layer += step) {
     const std::size_t layer_base = std::size_t(layer) * sa;
     const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
-    Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
     double* const down_buf = down_.data();
     double* const next_down_buf = next_down_.data();
+    Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    Box ext = box;  // grows with friction chains and Poisson pushes
 
-    // Pass a transfer across an outer face: rigid returns it, free lets it out.
-    auto leave = [&](double* f, int face, std::size_t cell, double t) {
-      if (g.boundary(face, g.coords(cell)) == Boundary::Rigid) {
-        f[face] += t;
-        d.rigid_reaction += t;
-      } else {
-        d.passed_out += t;
+    // Friction chains along one lateral axis, both ways, for the lines of the box.
+    auto friction = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
+                        std::size_t first_buf, int lo, int hi, int& ext_lo, int& ext_hi) {
+      for (int dir = 0; dir < 2; ++dir) {
+        const bool up = dir == 0;
+        const int sgn = up ? 1 : -1;
+        double carried = 0;
+        for (int w = up ? lo : hi; w >= 0 && w < n; w += sgn) {
+          const bool inside = w >= lo && w <= hi;
+          if (!inside && carried == 0) break;
+          const std::size_t b = first_buf + w * buf_stride;
+          fresh_buf[b] += carried;
+          double out = carry * carried;
+          if (inside) {
+            const double from_above = down_buf[b] + (b == entry_buf ? entry_load : 0.0);
+            out += emit * from_above;
+          }
+          carried = 0;
+          if (out == 0) continue;
+          if (!(out > gamma)) {
+            d.dropped += out;
+            continue;
+          }
+          const std::size_t cell = first_cell + w * cell_stride;
+          const int target = w + sgn;
+          if (target < 0 || target >= n) {
+            if (g.boundary(direction(lateral, up), g.coords(cell)) == Boundary::Rigid) d.rigid_reaction += out;
+            else d.passed_out += out;
+            continue;
+          }
+          carried = out;
+          reach(cell + sgn * cell_stride, generation[cell] + 1);
+          ext_lo = std::min(ext_lo, target);
+          ext_hi = std::max(ext_hi, target);
+        }
       }
     };
+    for (int v = box.v_lo; v <= box.v_hi; ++v)
+      friction(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, ext.u_lo, ext.u_hi);
+    if (three_d)
+      for (int u = box.u_lo; u <= box.u_hi; ++u)
+        friction(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, ext.v_lo, ext.v_hi);
 
-    auto process = [&](int u, int v) {
-      const std::size_t b = u + std::size_t(n0) * v;
-      const double fresh = fresh_buf[b], down = down_buf[b];
-      if (fresh == 0 && down == 0) return;
-      fresh_buf[b] = down_buf[b] = 0;
-      ++d.agent_updates;
-      const std::size_t cell = layer_base + u * s0 + v * s1;
-      reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
-      double* f = faces + cell * nd;
-      const double input = fresh + down;
-      // Entering force: fresh loads (the entry, friction) enter with alpha1 in the patent reading.
-      const double top = patent ? alpha1 * fresh + down : input;
-      f[enter_face] += top;
-      top_buf[b] = top;
-
-      // Friction spreads outwards, away from the load line, never back.
-      const bool u_plus = u >= eu, u_minus = u <= eu;
-      const bool v_plus = three_d && v >= ev, v_minus = three_d && v <= ev;
-      const int n_out = int(u_plus) + int(u_minus) + int(v_plus) + int(v_minus);
-      const double down_t = patent ? alpha2 * top : top * down_share[n_out];
-      const double side_t = patent ? alpha3 * input : top * side_share[n_out];
-
-      if (down_t > gamma) {
-        if (!last_layer) {
+    // Each loaded agent: its entering force, and what it passes on in the load direction.
+    for (int v = ext.v_lo; v <= ext.v_hi; ++v)
+      for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
+        const std::size_t b = u + std::size_t(n0) * v;
+        const double entry_here = b == entry_buf ? entry_load : 0.0;
+        const double from_above = down_buf[b], from_side = fresh_buf[b];
+        if (from_above == 0 && from_side == 0 && entry_here == 0) continue;
+        down_buf[b] = fresh_buf[b] = 0;
+        ++d.agent_updates;
+        const std::size_t cell = layer_base + u * s0 + v * s1;
+        double* f = faces + cell * nd;
+        // Fresh loads (the entry, friction) enter with alpha1 in the patent reading.
+        double top, down_t;
+        if (patent) {
+          top = alpha1 * (from_side + entry_here) + from_above;
+          down_t = alpha2 * top;
+        } else {
+          top = from_above + entry_here + from_side;
+          down_t = (from_above + entry_here) * keep_above + from_side * keep_side;
+        }
+        f[enter_face] += top;
+        top_buf[b] = top;
+        if (!(down_t > gamma)) {
+          d.dropped += down_t;
+        } else if (!last_layer) {
           next_down_buf[b] += down_t;
           f[exit_face] += down_t;
+          reach(cell + step * long(sa), generation[cell] + 1);
           next.u_lo = std::min(next.u_lo, u);
           next.u_hi = std::max(next.u_hi, u);
           next.v_lo = std::min(next.v_lo, v);
           next.v_hi = std::max(next.v_hi, v);
+        } else if (g.boundary(exit_face, g.coords(cell)) == Boundary::Rigid) {
+          f[exit_face] += down_t;
+          d.rigid_reaction += down_t;
         } else {
-          leave(f, exit_face, cell, down_t);
+          d.passed_out += down_t;
         }
-      } else {
-        d.dropped += down_t;
       }
-
-      if (side_t > gamma) {
-        auto side = [&](bool active, int coord, int n, int axis, long offset, int& bound, bool up) {
-          if (!active) return;
-          const int target = coord + (up ? 1 : -1);
-          if (target < 0 || target >= n) {
-            const int face = direction(axis, up);
-            if (g.boundary(face, g.coords(cell)) == Boundary::Rigid) d.rigid_reaction += side_t;
-            else d.passed_out += side_t;
-            return;
-          }
-          fresh_buf[b + offset] += side_t;
-          bound = up ? std::max(bound, target) : std::min(bound, target);
-        };
-        side(u_plus, u, n0, l0, 1, box.u_hi, true);
-        side(u_minus, u, n0, l0, -1, box.u_lo, false);
-        if (three_d) {
-          side(v_plus, v, n1, l1, n0, box.v_hi, true);
-          side(v_minus, v, n1, l1, -long(n0), box.v_lo, false);
-        }
-      } else {
-        d.dropped += n_out * side_t;
-      }
-    };
-
-    auto column = [&](int u) {
-      for (int v = ev; v <= box.v_hi; ++v) process(u, v);
-      for (int v = ev - 1; v >= box.v_lo; --v) process(u, v);
-    };
-    for (int u = eu; u <= box.u_hi; ++u) column(u);
-    for (int u = eu - 1; u >= box.u_lo; --u) column(u);
+    entry_load = 0;
 
     // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
     // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
-    Box touched = box;
-    auto scan_line = [&](int lateral, int n, long offset_cells, long offset_buf, std::size_t first_cell,
+    Box touched = ext;
+    auto push_line = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
                          std::size_t first_buf, int lo, int hi, int& reach_lo, int& reach_hi) {
       const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
-      const double decay = k_.poisson_decay;
       for (int dir = 0; dir < 2; ++dir) {
         const bool up = dir == 0;
         const int face_out = direction(lateral, up), face_in = opposite(face_out);
@@ -221,21 +230,19 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         for (int w = up ? lo : hi; w >= 0 && w < n; w += sgn) {
           const bool inside = w >= lo && w <= hi;
           if (!inside && carried == 0) break;
-          const std::size_t cell = first_cell + w * offset_cells;
-          const double own = inside ? push * top_buf[first_buf + w * offset_buf] : 0.0;
+          const double own = inside ? push * top_buf[first_buf + w * buf_stride] : 0.0;
           const double t = own + decay * carried;
           carried = 0;
           if (t == 0) continue;
-          ++d.agent_updates;
           if (!(t > gamma)) {
             d.lateral_dropped += t;
             continue;
           }
+          const std::size_t cell = first_cell + w * cell_stride;
           double* f = faces + cell * nd;
           const int target = w + sgn;
           if (target < 0 || target >= n) {
-            std::array<int, 3> c = g.coords(cell);
-            if (g.boundary(face_out, c) == Boundary::Rigid) {
+            if (g.boundary(face_out, g.coords(cell)) == Boundary::Rigid) {
               f[face_out] += t;
               d.lateral_reaction += t;
             } else {
@@ -243,9 +250,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
             }
             continue;
           }
-          const std::size_t next_cell = cell + sgn * offset_cells;
+          const std::size_t next_cell = cell + sgn * cell_stride;
           f[face_out] += t;
           faces[next_cell * nd + face_in] += t;
+          if (generation[next_cell] < 0) ++d.agent_updates;
           reach(next_cell, generation[cell] + 1);
           carried = t;
           reach_lo = std::min(reach_lo, target);
@@ -254,14 +262,14 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       }
     };
     if (k_.beta < 1 && material_.poisson != 0) {
-      for (int v = box.v_lo; v <= box.v_hi; ++v)
-        scan_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, touched.u_lo,
+      for (int v = ext.v_lo; v <= ext.v_hi; ++v)
+        push_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, ext.u_lo, ext.u_hi, touched.u_lo,
                   touched.u_hi);
       if (three_d)
-        for (int u = box.u_lo; u <= box.u_hi; ++u)
-          scan_line(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, touched.v_lo, touched.v_hi);
+        for (int u = ext.u_lo; u <= ext.u_hi; ++u)
+          push_line(l1, n1, long(s1), n0, layer_base + u * s0, u, ext.v_lo, ext.v_hi, touched.v_lo, touched.v_hi);
     }
-    for (int v = box.v_lo; v <= box.v_hi; ++v) std::fill_n(top_buf + box.u_lo + std::size_t(n0) * v, box.u_hi - box.u_lo + 1, 0.0);
+    for (int v = ext.v_lo; v <= ext.v_hi; ++v) std::fill_n(top_buf + ext.u_lo + std::size_t(n0) * v, ext.u_hi - ext.u_lo + 1, 0.0);
     touched_.push_back({a, layer, touched});
 
     if (next.empty()) break;

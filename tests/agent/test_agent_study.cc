@@ -102,6 +102,8 @@ TEST(AgentStudy, BadCasesNameTheFileAndTheKey) {
             std::string::npos);
   EXPECT_NE(study_error(plate_case("rigid = [\"base\"]", "-z")).find("load[0].direction: -z is not an axis of a 2D mesh"),
             std::string::npos);
+  EXPECT_NE(study_error(plate_case("rigid = [\"base\"]\nrollers = [\"free\"]")).find("boundary.rollers: the agent method"),
+            std::string::npos);
   EXPECT_NE(study_error(plate_case() + "[mesh.extra]\n").find("unknown key"), std::string::npos);
   EXPECT_NE(study_error(plate_case() + "[output]\n").find("unknown key 'output'"), std::string::npos);
 }

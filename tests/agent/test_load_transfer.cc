@@ -78,6 +78,23 @@ TEST(AgentRules, FrictionPassesAlpha3OfTheInputAndReentersWithAlpha1) {
   EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, 0.0);
 }
 
+TEST(AgentRules, LoadFromAboveSendsFrictionBothWaysFrictionTravelsStraightOn) {
+  const Grid g = plate(5, 4);
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Patent);
+  m.solve(top_centre(g));
+  // Row 3 (entry): tops 0.03125, 0.125, 0.5, 0.125, 0.03125, so row 2 gets from above
+  // b = 0.015625, 0.0625, 0.25, 0.0625, 0.015625. Each agent of row 2 sends alpha3 b to both
+  // sides; a friction load travels on with alpha3 of itself.
+  const double b0 = 0.015625, b1 = 0.0625, b2 = 0.25, a3 = 0.25;
+  const double right_at_1 = a3 * b0, right_at_2 = a3 * right_at_1 + a3 * b1, right_at_3 = a3 * right_at_2 + a3 * b2,
+               right_at_4 = a3 * right_at_3 + a3 * b1;
+  const double left_at_3 = a3 * b0;  // (4,2)'s friction to the left
+  EXPECT_DOUBLE_EQ(face(m, 2, 2, kPlusY), b2 + 0.5 * 2 * right_at_2);
+  EXPECT_DOUBLE_EQ(face(m, 3, 2, kPlusY), b1 + 0.5 * (right_at_3 + left_at_3));
+  EXPECT_DOUBLE_EQ(face(m, 4, 2, kPlusY), b0 + 0.5 * right_at_4);
+  EXPECT_DOUBLE_EQ(face(m, 2, 2, kPlusY), 0.2666015625);  // the same, as a number
+}
+
 TEST(AgentRules, PoissonPushIsOneMinusBetaNuEpsAEAndDecaysAlongThePush) {
   const Grid g = plate(5, 4);
   LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 1e-3), RuleSet::Patent);
@@ -156,8 +173,9 @@ TEST(AgentRules, CubesPassFrictionAndPoissonToFourSideNeighbours) {
     const auto& f = m.face_forces();
     for (auto [i, k] : {std::pair{1, 2}, {3, 2}, {2, 1}, {2, 3}})
       EXPECT_DOUBLE_EQ(f[g.index(i, 3, k) * 6 + kPlusY], 0.125) << i << "," << k;
-    // A diagonal agent gets friction from both of its inner neighbours: 2 alpha3^2 P0, times alpha1.
-    EXPECT_DOUBLE_EQ(f[g.index(3, 3, 3) * 6 + kPlusY], 0.5 * 2 * 0.0625);
+    // Friction travels straight: the diagonal agent of the entry layer gets nothing.
+    EXPECT_DOUBLE_EQ(f[g.index(3, 3, 3) * 6 + kPlusY], 0.0);
+    EXPECT_DOUBLE_EQ(f[g.index(4, 3, 2) * 6 + kPlusY], 0.5 * 0.25 * 0.25);
   }
   {
     LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 1e-3), RuleSet::Patent);

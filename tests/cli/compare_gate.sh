@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The gated comparison study (cases/gate_plate.toml) as CI would run it: it passes with exit 0 and
+# a JUnit report; tightening a limit makes it exit 1 naming the metric; a gate on a metric that
+# does not exist is bad input (exit 2). Usage: compare_gate.sh WORKBENCH_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failures=0
+check() {  # check NAME CONDITION_EXIT_STATUS MESSAGE
+  if [ "$2" -eq 0 ]; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL $1: $3"; fi
+}
+
+"$bin" compare "$src/cases/gate_plate.toml" -o "$work/pass" --junit "$work/junit.xml" 2>"$work/log"
+rc=$?
+check pass_exit $((rc != 0)) "exit $rc: $(tail -3 "$work/log")"
+grep -q 'tests="5" failures="0"' "$work/junit.xml" 2>/dev/null
+check pass_junit $? "junit: $(cat "$work/junit.xml" 2>/dev/null)"
+for f in compare.vtu cells.csv lines.csv nodes.csv steps.csv summary.json summary.txt agent/agent.pvd fem/fem_cells.csv; do
+  [ -s "$work/pass/$f" ]
+  check "output_$f" $? "missing $f"
+done
+# 40 x 40 agents: the vertical line and three horizontal lines of 40 samples, for both models.
+lines=$(($(wc -l <"$work/pass/lines.csv") - 1))
+check line_samples $((lines != 2 * 4 * 40)) "lines.csv has $lines samples"
+grep -q "gate: 5 passed, 0 failed" "$work/log"
+check pass_message $? "$(tail -1 "$work/log")"
+
+sed 's/^"vertical.sigma_y.rel_l2" = .*/"vertical.sigma_y.rel_l2" = 0.1/' "$src/cases/gate_plate.toml" >"$work/tight.toml"
+sed -i "s#\.\./meshes#$src/meshes#" "$work/tight.toml"
+"$bin" compare "$work/tight.toml" -o "$work/tight" 2>"$work/log"
+rc=$?
+check tight_exit $((rc != 1)) "exit $rc"
+grep -q "gate: vertical.sigma_y.rel_l2 = .* exceeds 0.1 by" "$work/log"
+check tight_message $? "$(grep gate "$work/log")"
+grep -q '<failure message="vertical.sigma_y.rel_l2 = ' "$work/tight/junit.xml"
+check tight_junit $? "no failure element"
+
+sed 's/^"fem.equilibrium_dev"/"fem.equilibrium"/' "$work/tight.toml" >"$work/unknown.toml"
+"$bin" compare "$work/unknown.toml" -o "$work/unknown" 2>"$work/log"
+rc=$?
+check unknown_exit $((rc != 2)) "exit $rc"
+grep -q "unknown.toml: compare.gate.fem.equilibrium: unknown metric" "$work/log"
+check unknown_message $? "$(cat "$work/log")"
+[ ! -e "$work/unknown" ]
+check unknown_no_output $? "output written"
+
+echo "compare gate: $passed passed, $failures failed"
+[ "$failures" -eq 0 ]

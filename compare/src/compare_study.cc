@@ -1,4 +1,5 @@
 #include <compare/compare_study.h>
+#include <compare/reference.h>
 
 #include <agent_study.h>
 #include <fem_reference/fem.h>
@@ -68,6 +69,50 @@ std::string xml_escape(const std::string& s) {
 
 }  // namespace
 
+GridFields fem_on_grid(const agent_study::AgentStudy& study, const fem_reference::FemResult& fem,
+                       const std::string& case_name) {
+  const auto& grid = study.mesh.grid;
+  const int dim = grid.dim;
+  if (fem.cell_count() != study.mesh.cell_of_element.size() || fem.dim != dim)
+    throw Error(case_name + ": the FEM and agent meshes differ (" + std::to_string(fem.cell_count()) + " against " +
+                std::to_string(study.mesh.cell_of_element.size()) + " cells)");
+  GridFields out;
+  out.sigma.assign(grid.count() * 2, 0.0);
+  for (std::size_t e = 0; e < fem.cell_count(); ++e) {
+    const std::size_t cell = study.mesh.cell_of_element[e];
+    const Eigen::Vector3d c = grid.centre(cell);
+    for (int a = 0; a < dim; ++a)
+      if (std::abs(c[a] - fem.cell_centres[3 * e + a]) > 1e-6 * grid.size[a])
+        throw Error(case_name + ": FEM element " + std::to_string(e) + " is not where agent " + std::to_string(cell) +
+                    " is (meshes generated differently)");
+    out.sigma[2 * cell] = fem.sigma_x[e];
+    out.sigma[2 * cell + 1] = fem.sigma_y[e];
+  }
+  out.u.assign(grid.node_count() * dim, 0.0);
+  std::vector<char> found(grid.node_count(), 0);
+  for (std::size_t n = 0; n < fem.node_count(); ++n) {
+    int p[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a) p[a] = int(std::lround((fem.node_points[3 * n + a] - grid.origin[a]) / grid.size[a]));
+    const std::size_t node = grid.node_index(p[0], p[1], p[2]);
+    for (int a = 0; a < dim; ++a) out.u[node * dim + a] = fem.node_displacement[n * dim + a];
+    found[node] = 1;
+  }
+  if (std::count(found.begin(), found.end(), 0) > 0) throw Error(case_name + ": FEM nodes do not cover the agent grid's nodes");
+  return out;
+}
+
+GridFields agent_on_grid(const agent_study::AgentStudy& study, const agent_study::AgentState& state) {
+  const auto& grid = study.mesh.grid;
+  GridFields out;
+  out.sigma.resize(grid.count() * 2);
+  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+    out.sigma[2 * cell] = state.stress[cell * grid.dim];
+    out.sigma[2 * cell + 1] = state.stress[cell * grid.dim + 1];
+  }
+  out.u = state.displacement;
+  return out;
+}
+
 std::vector<std::string> metric_names(const std::vector<double>& depths) {
   std::vector<std::string> scopes{"body", "vertical"};
   for (double d : depths) scopes.push_back(line_name(d));
@@ -116,35 +161,12 @@ CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir,
   const double fem_seconds = seconds_since(t);
   t = std::chrono::steady_clock::now();
 
-  // Line the FEM's per-element values (gmsh element order) up with the agents.
   const std::size_t n_cells = grid.count();
-  if (fem.cell_count() != study.mesh.cell_of_element.size() || fem.dim != dim)
-    throw Error(file.path().string() + ": the FEM and agent meshes differ (" + std::to_string(fem.cell_count()) +
-                " against " + std::to_string(study.mesh.cell_of_element.size()) + " cells)");
-  std::vector<double> fem_sigma(n_cells * 2), agent_sigma(n_cells * 2);
-  for (std::size_t e = 0; e < fem.cell_count(); ++e) {
-    const std::size_t cell = study.mesh.cell_of_element[e];
-    const Eigen::Vector3d c = grid.centre(cell);
-    for (int a = 0; a < dim; ++a)
-      if (std::abs(c[a] - fem.cell_centres[3 * e + a]) > 1e-6 * grid.size[a])
-        throw Error(file.path().string() + ": FEM element " + std::to_string(e) + " is not where agent " +
-                    std::to_string(cell) + " is (meshes generated differently)");
-    fem_sigma[2 * cell] = fem.sigma_x[e];
-    fem_sigma[2 * cell + 1] = fem.sigma_y[e];
-    agent_sigma[2 * cell] = agent.stress[cell * dim];
-    agent_sigma[2 * cell + 1] = agent.stress[cell * dim + 1];
-  }
-  std::vector<double> fem_u(grid.node_count() * dim, 0.0);
-  std::vector<char> found(grid.node_count(), 0);
-  for (std::size_t n = 0; n < fem.node_count(); ++n) {
-    int p[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) p[a] = int(std::lround((fem.node_points[3 * n + a] - grid.origin[a]) / grid.size[a]));
-    const std::size_t node = grid.node_index(p[0], p[1], p[2]);
-    for (int a = 0; a < dim; ++a) fem_u[node * dim + a] = fem.node_displacement[n * dim + a];
-    found[node] = 1;
-  }
-  if (std::count(found.begin(), found.end(), 0) > 0)
-    throw Error(file.path().string() + ": FEM nodes do not cover the agent grid's nodes");
+  const auto fem_fields = fem_on_grid(study, fem, file.path().string());
+  const auto agent_fields = agent_on_grid(study, agent);
+  const auto& fem_sigma = fem_fields.sigma;
+  const auto& agent_sigma = agent_fields.sigma;
+  const auto& fem_u = fem_fields.u;
 
   CompareOutcome outcome;
   auto add = [&](const std::string& name, double value, const std::string& meaning) {
@@ -172,7 +194,7 @@ CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir,
     }
   };
   add_scope("body", component(agent_sigma, 2, 0), component(fem_sigma, 2, 0), component(agent_sigma, 2, 1),
-            component(fem_sigma, 2, 1), agent.displacement, fem_u);
+            component(fem_sigma, 2, 1), agent_fields.u, fem_u);
 
   // Sample lines.
   Eigen::Vector3d load_centre = Eigen::Vector3d::Zero();

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 
 namespace pbd {
 
@@ -63,9 +64,31 @@ std::vector<std::size_t> colour_blocks(std::size_t count, std::size_t particles,
   order.reserve(count);
   out.block_begin.assign(1, 0);
   out.colour_begin.assign(colours + 1, 0);
+  // Inside a block, constraints are ordered by a local greedy colouring too: consecutive
+  // projections then touch different particles, so the processor overlaps them (a chain of
+  // dependent projections is latency-bound, ~2x slower), and the block stays in L1.
+  std::vector<int> local(block_size);
+  std::vector<std::size_t> in_block;
+  std::unordered_map<int, std::vector<int>> local_used;
   for (std::size_t b : block_order) {
     const std::size_t lo = b * block_size, hi = std::min(count, lo + block_size);
-    for (std::size_t c = lo; c < hi; ++c) order.push_back(c);
+    local_used.clear();
+    int local_colours = 0;
+    for (std::size_t c = lo; c < hi; ++c) {
+      taken.assign(local_colours + 1, 0);
+      for (int p : nodes(c))
+        for (int u : local_used[p]) taken[u] = 1;
+      int col = 0;
+      while (taken[col]) ++col;
+      local[c - lo] = col;
+      local_colours = std::max(local_colours, col + 1);
+      for (int p : nodes(c)) local_used[p].push_back(col);
+    }
+    in_block.resize(hi - lo);
+    std::iota(in_block.begin(), in_block.end(), lo);
+    std::stable_sort(in_block.begin(), in_block.end(),
+                     [&](std::size_t x, std::size_t y) { return local[x - lo] < local[y - lo]; });
+    order.insert(order.end(), in_block.begin(), in_block.end());
     out.block_begin.push_back(order.size());
     ++out.colour_begin[colour[b] + 1];
   }

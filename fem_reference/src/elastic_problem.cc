@@ -20,6 +20,7 @@
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/tria.h>
@@ -48,10 +49,15 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <Teuchos_ParameterList.hpp>
+#include <p4est_base.h>
+#include <sc.h>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -79,25 +85,49 @@ bool mpi_running() {
   return init && !fin;
 }
 
-/// MPI (and p4est's sc library) initialised once per process and finalised at exit, unless the
-/// program did it itself.
+/// MPI (and p4est's sc library) initialised once per process unless the program did it, finalised
+/// at exit. Not through a static Utilities::MPI::MPI_InitFinalize: its destructor would release
+/// deal.II's vector pools after they were destroyed (they are statics created later).
+void finalize_mpi() {
+  int fin = 0;
+  MPI_Finalized(&fin);
+  if (!fin) MPI_Finalize();
+}
+
 void ensure_mpi() {
   deal_II_exceptions::disable_abort_on_exception();
   deal_II_exceptions::suppress_stacktrace_in_exceptions();
   int init = 0;
   MPI_Initialized(&init);
   if (init) return;
-  static int argc = 1;
-  static char program[] = "workbench";
-  static char* args[] = {program, nullptr};
-  static char** argv = args;
-  static std::unique_ptr<Utilities::MPI::MPI_InitFinalize> session =
-      std::make_unique<Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
+  sc_init(MPI_COMM_WORLD, 0, 0, nullptr, SC_LP_SILENT);
+  p4est_init(nullptr, SC_LP_SILENT);
+  MultithreadInfo::set_thread_limit(1);
+  std::atexit(finalize_mpi);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+/// Resident memory of this process now [bytes] (Linux /proc/self/statm).
+double resident_bytes() {
+  std::ifstream in("/proc/self/statm");
+  double pages = 0, resident = 0;
+  in >> pages >> resident;
+  return resident * double(::sysconf(_SC_PAGESIZE));
+}
+
+/// Optional phase profile on stderr (WORKBENCH_FEM_PROFILE=1): time and resident memory.
+void profile(const char* what, std::chrono::steady_clock::time_point& t) {
+  static const bool on = std::getenv("WORKBENCH_FEM_PROFILE") != nullptr;
+  if (!on) return;
+  std::fprintf(stderr, "fem-profile: %-28s %8.3f s  rss %8.1f MB\n", what, seconds_since(t), resident_bytes() / 1e6);
+  t = std::chrono::steady_clock::now();
+}
+
 
 /// One line out of a deal.II exception: its "Additional information", else its name.
 std::string one_line(const ExceptionBase& e) {
@@ -298,14 +328,19 @@ void ElasticProblem<dim>::make_grid() {
   } else {
     GridTools::invert_all_negative_measure_cells(vertices, cells);
     GridTools::consistently_order_cells(cells);
-    tria_ = std::make_unique<parallel::distributed::Triangulation<dim>>(comm_);
+    if (Utilities::MPI::n_mpi_processes(comm_) > 1)
+      tria_ = std::make_unique<parallel::distributed::Triangulation<dim>>(comm_);
+    else  // one rank: the serial triangulation refines faster and needs less memory than p4est's
+      tria_ = std::make_unique<Triangulation<dim>>();
     mapping_ = std::make_unique<MappingQ<dim>>(1);
     fe_ = std::make_unique<FESystem<dim>>(FE_Q<dim>(degree_), dim);
     quadrature_ = std::make_unique<QGauss<dim>>(degree_ + 1);
     face_quadrature_ = std::make_unique<QGauss<dim - 1>>(degree_ + 1);
   }
+  auto t = std::chrono::steady_clock::now();
   // The coarse cells keep the order of `cells` (gmsh element order) and the vertices their indices.
   tria_->create_triangulation(vertices, cells, SubCellData());
+  profile("create triangulation", t);
 
   // Boundary ids: one per distinct set of named groups a face belongs to (0: none).
   auto group_index = [&](const std::string& name) {
@@ -346,7 +381,9 @@ void ElasticProblem<dim>::make_grid() {
       throw Error(problem_.name + ": group '" + groups_[g] + "' of " + mesh_.source + " has " +
                   std::to_string(mesh_.face_groups.at(groups_[g]).size() - matched[g]) +
                   " faces inside the body; supports and loads act on outer faces only");
+  profile("boundary ids", t);
   if (problem_.options.refine > 0) tria_->refine_global(problem_.options.refine);
+  profile("refine", t);
 }
 
 template <int dim>
@@ -359,10 +396,12 @@ std::vector<int> ElasticProblem<dim>::constrained_components(const Support& s) c
 
 template <int dim>
 void ElasticProblem<dim>::setup_system() {
+  auto t = std::chrono::steady_clock::now();
   dof_handler_.reinit(*tria_);
   dof_handler_.distribute_dofs(*fe_);
   owned_ = dof_handler_.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
+  profile("distribute dofs", t);
 
   constraints_.clear();
   constraints_.reinit(relevant_);
@@ -381,11 +420,14 @@ void ElasticProblem<dim>::setup_system() {
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, id, *g, constraints_, mask);
   }
   constraints_.close();
+  profile("constraints", t);
 
   DynamicSparsityPattern dsp(relevant_);
   DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
   SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
+  profile("sparsity pattern", t);
   matrix_.reinit(owned_, owned_, dsp, comm_);
+  profile("matrix reinit", t);
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);
@@ -620,6 +662,7 @@ void ElasticProblem<dim>::solve() {
     result_.iterations = 0;
   } else {
     // ML smoothed aggregation with the rigid body modes as near-null space.
+    auto t = std::chrono::steady_clock::now();
     const int n_modes = dim == 2 ? 3 : 6;
     const std::size_t n_local = owned_.n_elements();
     std::vector<double> modes(n_local * n_modes, 0.0);
@@ -657,6 +700,7 @@ void ElasticProblem<dim>::solve() {
         }
       }
     }
+    profile("rigid body modes", t);
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic = true;
     data.higher_order_elements = degree_ > 1;
@@ -672,9 +716,11 @@ void ElasticProblem<dim>::solve() {
     list.set("ML output", 0);
     TrilinosWrappers::PreconditionAMG amg;
     amg.initialize(matrix_, list);
+    profile("AMG setup", t);
     SolverControl control(o.max_iterations, o.tolerance * rhs_norm, false, false);
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
     cg.solve(matrix_, solution_, rhs_, amg);
+    profile("CG", t);
     result_.solver = "cg+amg (ML)";
     result_.iterations = int(control.last_step());
   }
@@ -937,11 +983,17 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   {
     std::ostringstream s;
     s.precision(6);
-    s << "applied (" << applied_[0] << ", " << applied_[1] << (dim == 3 ? ", " + std::to_string(applied_[2]) : "")
-      << ") N;";
-    for (const auto& g : result_.reactions)
-      s << " reaction " << g.group << " (" << g.force[0] << ", " << g.force[1]
-        << (dim == 3 ? ", " + std::to_string(g.force[2]) : "") << ") N;";
+    auto vec = [&](const std::array<double, 3>& f) {
+      s << "(" << f[0] << ", " << f[1];
+      if (dim == 3) s << ", " << f[2];
+      s << ") N";
+    };
+    s << "applied ";
+    vec(applied_);
+    for (const auto& g : result_.reactions) {
+      s << "; reaction " << g.group << " ";
+      vec(g.force);
+    }
     say(s.str());
   }
   struct rusage usage {};

@@ -145,7 +145,12 @@ FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::
   const auto start = std::chrono::steady_clock::now();
   if (problem.supports.empty())
     throw Error(problem.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
-  PlainMesh mesh = problem.box ? box_mesh(*problem.box) : read_gmsh_mesh(problem.mesh_file, problem.mesh_parameters);
+  PlainMesh mesh;
+  try {
+    mesh = problem.box ? box_mesh(*problem.box) : read_gmsh_mesh(problem.mesh_file, problem.mesh_parameters);
+  } catch (const Error& e) {
+    throw Error(problem.name + ": mesh: " + e.what());
+  }
   check_problem(problem, mesh);
   FemProblem p = problem;
   for (auto& f : p.point_forces)

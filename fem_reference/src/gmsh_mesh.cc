@@ -98,6 +98,11 @@ PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, doubl
     throw Error(name + ": " + error);
   }
 
+  // Options a .geo sets (Mesh.ElementOrder, sizes, ...) outlive gmsh::clear(): start the next
+  // import from a fresh gmsh whatever happens below.
+  struct Reset {
+    ~Reset() { workbench::gmsh_reset(); }
+  } reset;
   PlainMesh mesh;
   mesh.source = name;
   const int dim = gmsh::model::getDimension();

@@ -13,5 +13,6 @@ void add_agent_command(CLI::App& app, Action& action);
 void add_pbd_command(CLI::App& app, Action& action);
 void add_fem_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
+void add_calibrate_command(CLI::App& app, Action& action);
 
 }  // namespace cli

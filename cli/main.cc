@@ -3,6 +3,7 @@
 //   workbench agent cases/seed_plate.toml            agent load-transfer study (VTU/PVD/CSV)
 //   workbench fem cases/seed_plate.toml              deal.II FEM reference (mpirun -np N for MPI)
 //   workbench compare cases/seed_plate.toml          both on one mesh: metrics, Figures 8-11, gate
+//   workbench calibrate cases/calibrate_plate.toml   fit alpha1..3, beta (gamma) against FEM
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   cli::add_pbd_command(app, action);
   cli::add_fem_command(app, action);
   cli::add_compare_command(app, action);
+  cli::add_calibrate_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

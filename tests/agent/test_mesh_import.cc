@@ -63,7 +63,7 @@ TEST(MeshImport, RefusesWhatTheMethodCannotUse) {
       << import_error(kData + "l_shape.geo");
   EXPECT_NE(import_error(kData + "graded.geo").find("same size"), std::string::npos) << import_error(kData + "graded.geo");
   EXPECT_NE(import_error(kMeshes + "plate2d.geo", {{"hh", 1.0}}).find("unknown mesh parameter 'hh'"), std::string::npos);
-  EXPECT_NE(import_error(kMeshes + "plate2d.geo", {{"h", 0.003}}).find("multiples of h"), std::string::npos)
+  EXPECT_NE(import_error(kMeshes + "plate2d.geo", {{"h", 0.003}}).find("must be multiples of h"), std::string::npos)
       << import_error(kMeshes + "plate2d.geo", {{"h", 0.003}});
   EXPECT_NE(import_error(kData + "missing.geo").find("no such mesh file"), std::string::npos);
 }

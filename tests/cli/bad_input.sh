@@ -63,7 +63,7 @@ expect no_rigid "no_rigid.toml: boundary.rigid: no rigid faces" "$(with rigid 'r
 expect triangles "triangles.geo: has Triangle 3 elements" "$(with file "file = \"$src/tests/data/triangles.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d' | sed 's/"load"/"load"/')"
 expect hole "l_shape.geo: hole in the tiling" "$(with file "file = \"$src/tests/data/l_shape.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d')"
 expect bad_parameter "plate2d.geo: unknown mesh parameter 'hx'" "$(with 'h =' 'hx = 0.01')"
-expect geo_error "plate2d.geo: plate2d.geo: W, H and lw must be multiples of h" "$(with 'h =' 'h = 0.003')"
+expect geo_error "plate2d.geo: plate2d.geo: W, H, lw and the patch's left end xc - lw/2 must be multiples of h" "$(with 'h =' 'h = 0.003')"
 expect syntax "syntax.toml:2:" "$(base_case | sed '2s/.*/file = = "x"/')"
 expect missing_mesh "nowhere.geo: no such mesh file" "$(with file 'file = "nowhere.geo"')"
 expect no_load "no_load.toml: load: missing" "$(base_case | sed '/^\[\[load\]\]/,/^force/d')"

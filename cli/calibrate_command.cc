@@ -1,0 +1,31 @@
+#include "commands.h"
+
+#include <compare/calibration_study.h>
+#include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+
+#include <iostream>
+#include <memory>
+
+namespace cli {
+
+void add_calibrate_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("calibrate", "Fit the agent transfer coefficients against FEM (docs/calibration.md)");
+  auto case_file = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  cmd->add_option("calibration", *case_file, "calibration file (TOML, see docs/calibration.md)")->required();
+  cmd->add_option("-o,--output", *output, "output folder (default: out/<file name>/calibrate)");
+  cmd->callback([&action, case_file, output] {
+    action = [case_file, output] {
+      workbench::CaseFile file(*case_file);
+      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/calibrate" : *output;
+      workbench::StagedDirectory staged(dir);
+      compare::run_calibration(file, staged.path(), std::cerr);
+      staged.commit();
+      std::cerr << "calibrate: wrote " << staged.target().string() << "\n";
+      return 0;
+    };
+  });
+}
+
+}  // namespace cli

@@ -1,0 +1,83 @@
+#pragma once
+// Calibration of the agent transfer coefficients against FEM (issue 5, docs/calibration.md):
+// bounded derivative-free minimisation (NLopt BOBYQA) from several seeded starts, run in
+// parallel, of a weighted sum of relative errors of the agent fields against a reference.
+#include <compare/reference.h>
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace compare {
+
+/// The coefficients a calibration can fit, in this order.
+constexpr std::array<const char*, 5> kCoefficientNames{"alpha1", "alpha2", "alpha3", "beta", "gamma"};
+
+struct Parameter {
+  std::string name;
+  bool free = true;
+  double start = 0, lo = 0, hi = 1;
+};
+
+/// What the objective measures: sum over cases of weight * (w_sx e(sigma_x) + w_sy e(sigma_y)
+/// + w_u e(u)), e = ||agent - reference||_2 / ||reference||_2 over the body (every agent, every
+/// node) or over the sample lines.
+struct ObjectiveWeights {
+  double sigma_x = 0.0, sigma_y = 1.0, displacement = 1.0;
+  bool lines = false;
+  std::vector<double> depths{0.25, 0.5, 0.75};  ///< the horizontal lines, when `lines`
+};
+
+struct CalibrationCase {
+  std::string name;
+  agent_study::AgentStudy study;
+  GridFields reference;
+  double weight = 1.0;
+};
+
+struct CalibrationOptions {
+  agent::RuleSet rules = agent::RuleSet::Conserving;
+  std::array<Parameter, 5> parameters;  ///< alpha1, alpha2, alpha3, beta, gamma
+  ObjectiveWeights weights;
+  int starts = 8;               ///< the given start, then random points in the bounds
+  std::uint64_t seed = 1;
+  int max_evaluations = 400;    ///< per start
+  double tolerance = 1e-6;      ///< relative change of the objective that ends a start
+  int threads = 0;              ///< 0: every core
+};
+
+struct Score {
+  double objective = 0, sigma_x = 0, sigma_y = 0, displacement = 0;  ///< per case: the errors e
+};
+
+/// The objective for one set of coefficients; `per_case` receives each case's errors.
+double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
+                 const ObjectiveWeights& w, std::vector<Score>* per_case = nullptr);
+
+struct Sensitivity {
+  std::string name;
+  double objective_minus, objective_plus;  ///< objective at the optimum -/+ 10 % of the range
+  double curvature;                        ///< (J(-) - 2 J* + J(+)) / J*, dimensionless
+  bool pinned;                             ///< the data pin it down (curvature > 1 %)
+};
+
+struct CalibrationResult {
+  agent::Coefficients start, best;
+  double objective_start = 0, objective_best = 0;
+  std::vector<Score> before, after;    ///< per case
+  std::vector<double> start_objectives;  ///< best objective reached from each start
+  std::vector<Sensitivity> sensitivity;  ///< per free coefficient
+  long evaluations = 0;
+};
+
+/// Fits the free coefficients. Reproducible: the starts depend on `seed` only, and each start
+/// runs the same sequence of evaluations whatever the thread count.
+CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
+                            std::ostream* progress = nullptr);
+
+/// Coefficients from a parameter vector (alpha1..gamma); poisson_decay follows alpha2.
+agent::Coefficients coefficients_from(const std::array<double, 5>& values);
+
+}  // namespace compare

@@ -1,0 +1,227 @@
+#include <compare/calibration.h>
+#include <compare/metrics.h>
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <functional>
+#include <cmath>
+#include <mutex>
+#include <ostream>
+#include <random>
+#include <thread>
+
+namespace compare {
+
+agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
+  agent::Coefficients k;
+  k.alpha1 = v[0];
+  k.alpha2 = v[1];
+  k.alpha3 = v[2];
+  k.beta = v[3];
+  k.gamma = v[4];
+  k.poisson_decay = v[1];
+  return k;
+}
+
+namespace {
+
+std::array<double, 5> values_of(const agent::Coefficients& k) { return {k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma}; }
+
+double l2_error(const std::vector<double>& model, const std::vector<double>& reference) {
+  return relative_errors(model, reference).rel_l2;
+}
+
+std::vector<double> component(const std::vector<double>& v, int comps, int c) {
+  std::vector<double> out(v.size() / comps);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
+  return out;
+}
+
+Score score_case(const CalibrationCase& c, const GridFields& agent, const ObjectiveWeights& w) {
+  const auto& grid = c.study.mesh.grid;
+  const int dim = grid.dim;
+  Score s;
+  if (!w.lines) {
+    s.sigma_x = l2_error(component(agent.sigma, 2, 0), component(c.reference.sigma, 2, 0));
+    s.sigma_y = l2_error(component(agent.sigma, 2, 1), component(c.reference.sigma, 2, 1));
+    s.displacement = l2_error(agent.u, c.reference.u);
+  } else {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double total = 0;
+    for (const auto& l : c.study.loads) {
+      centre += l.force * grid.centre(l.cell);
+      total += l.force;
+    }
+    centre /= total;
+    std::vector<double> a[3], r[3];
+    for (const auto& line : standard_lines(grid, centre, w.depths))
+      for (int i = 0; i < line.samples; ++i) {
+        const Eigen::Vector3d p = line.point(i);
+        for (int f = 0; f < 2; ++f) {
+          a[f].push_back(sample_cells(grid, agent.sigma, 2, f, p));
+          r[f].push_back(sample_cells(grid, c.reference.sigma, 2, f, p));
+        }
+        for (int comp = 0; comp < dim; ++comp) {
+          a[2].push_back(sample_nodes(grid, agent.u, dim, comp, p));
+          r[2].push_back(sample_nodes(grid, c.reference.u, dim, comp, p));
+        }
+      }
+    s.sigma_x = l2_error(a[0], r[0]);
+    s.sigma_y = l2_error(a[1], r[1]);
+    s.displacement = l2_error(a[2], r[2]);
+  }
+  s.objective = w.sigma_x * s.sigma_x + w.sigma_y * s.sigma_y + w.displacement * s.displacement;
+  return s;
+}
+
+}  // namespace
+
+double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
+                 const ObjectiveWeights& w, std::vector<Score>* per_case) {
+  double total = 0;
+  if (per_case) per_case->clear();
+  for (const auto& c : cases) {
+    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, k, rules);
+    const auto state = agent_study::evaluate(c.study, model, 1.0);
+    Score s = score_case(c, agent_on_grid(c.study, state), w);
+    if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
+    total += c.weight * s.objective;
+    if (per_case) per_case->push_back(s);
+  }
+  return total;
+}
+
+CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& o,
+                            std::ostream* progress) {
+  std::vector<int> free;
+  for (int i = 0; i < 5; ++i)
+    if (o.parameters[i].free) free.push_back(i);
+  std::array<double, 5> start_values{};
+  for (int i = 0; i < 5; ++i) start_values[i] = o.parameters[i].start;
+
+  auto full = [&](const std::vector<double>& x) {
+    std::array<double, 5> v = start_values;
+    for (std::size_t j = 0; j < free.size(); ++j) v[free[j]] = x[j];
+    return v;
+  };
+  auto J = [&](const std::array<double, 5>& v) { return objective(cases, coefficients_from(v), o.rules, o.weights); };
+
+  // The starts: the given point, then uniform random points in the bounds (seeded).
+  std::vector<std::vector<double>> starts;
+  std::mt19937_64 rng(o.seed);
+  for (int s = 0; s < o.starts; ++s) {
+    std::vector<double> x;
+    for (int i : free) {
+      const auto& p = o.parameters[i];
+      x.push_back(s == 0 ? p.start : std::uniform_real_distribution<double>(p.lo, p.hi)(rng));
+    }
+    starts.push_back(x);
+  }
+
+  CalibrationResult result;
+  result.start = coefficients_from(start_values);
+  result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before);
+  std::vector<double> best_f(starts.size(), INFINITY);
+  std::vector<std::vector<double>> best_x = starts;
+  std::vector<long> evaluations(starts.size(), 0);
+  std::atomic<int> next{0}, done{0};
+  std::mutex log_mutex;
+
+  auto run_start = [&](int s) {
+    std::vector<double> x = starts[s];
+    if (free.empty()) {
+      best_f[s] = J(full(x));
+      evaluations[s] = 1;
+      return;
+    }
+    nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(free.size()));
+    std::vector<double> lo, hi;
+    for (int i : free) {
+      lo.push_back(o.parameters[i].lo);
+      hi.push_back(o.parameters[i].hi);
+    }
+    opt.set_lower_bounds(lo);
+    opt.set_upper_bounds(hi);
+    opt.set_maxeval(o.max_evaluations);
+    opt.set_ftol_rel(o.tolerance);
+    std::vector<double> step;
+    for (std::size_t j = 0; j < free.size(); ++j) step.push_back(0.1 * (hi[j] - lo[j]));
+    opt.set_initial_step(step);
+    struct Data {
+      std::function<double(const std::vector<double>&)> f;
+      long* count;
+      double* best_f;
+      std::vector<double>* best_x;
+    } data{[&](const std::vector<double>& y) { return J(full(y)); }, &evaluations[s], &best_f[s], &best_x[s]};
+    opt.set_min_objective(
+        [](const std::vector<double>& x, std::vector<double>&, void* raw) {
+          auto* d = static_cast<Data*>(raw);
+          const double f = d->f(x);
+          ++*d->count;
+          if (f < *d->best_f) {
+            *d->best_f = f;
+            *d->best_x = x;
+          }
+          return f;
+        },
+        &data);
+    double f = 0;
+    try {
+      opt.optimize(x, f);
+    } catch (const nlopt::roundoff_limited&) {
+    } catch (const nlopt::forced_stop&) {
+    }
+    if (progress) {
+      std::lock_guard<std::mutex> lock(log_mutex);
+      *progress << "calibrate: start " << ++done << "/" << starts.size() << " (#" << s + 1 << "): objective "
+                << best_f[s] << " after " << evaluations[s] << " evaluations\n"
+                << std::flush;
+    }
+  };
+
+  const int threads = std::max(1, std::min<int>(o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency()),
+                                                int(starts.size())));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&] {
+      for (int s; (s = next++) < int(starts.size());) run_start(s);
+    });
+  for (auto& th : pool) th.join();
+
+  // The best start (ties to the lowest index, so the thread count cannot change the answer).
+  int best = 0;
+  for (std::size_t s = 1; s < starts.size(); ++s)
+    if (best_f[s] < best_f[best]) best = int(s);
+  result.start_objectives = best_f;
+  for (long e : evaluations) result.evaluations += e;
+  std::array<double, 5> v = full(best_x[best]);
+  // Never worse than the start.
+  if (!(best_f[best] <= result.objective_start)) v = start_values;
+  result.best = coefficients_from(v);
+  result.objective_best = objective(cases, result.best, o.rules, o.weights, &result.after);
+
+  // Sensitivity: the objective 10 % of each free coefficient's range either side of the optimum.
+  for (int i : free) {
+    const auto& p = o.parameters[i];
+    const double h = 0.1 * (p.hi - p.lo);
+    auto at = [&](double value) {
+      std::array<double, 5> w = v;
+      w[i] = std::min(p.hi, std::max(p.lo, value));
+      return J(w);
+    };
+    Sensitivity s;
+    s.name = p.name;
+    s.objective_minus = at(v[i] - h);
+    s.objective_plus = at(v[i] + h);
+    s.curvature = (s.objective_minus - 2 * result.objective_best + s.objective_plus) / std::max(result.objective_best, 1e-300);
+    s.pinned = std::abs(s.curvature) > 0.01 ||
+               std::min(s.objective_minus, s.objective_plus) > result.objective_best * 1.01;
+    result.sensitivity.push_back(s);
+    result.evaluations += 2;
+  }
+  return result;
+}
+
+}  // namespace compare

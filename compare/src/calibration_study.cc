@@ -1,0 +1,243 @@
+#include <compare/calibration_study.h>
+#include <compare/compare_study.h>
+
+#include <fem_reference/fem.h>
+#include <workbench/error.h>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace compare {
+
+namespace fs = std::filesystem;
+using workbench::Error;
+using workbench::Range;
+
+namespace {
+
+struct Plan {
+  CalibrationOptions options;
+  bool cross_validate = true;
+  std::vector<fs::path> case_files;
+  std::vector<double> case_weights;
+};
+
+Plan read_plan(const workbench::CaseFile& file) {
+  const auto root = file.root();
+  root.text("title", "");
+  const auto t = root.table("calibrate");
+  Plan plan;
+  auto& o = plan.options;
+  const std::string rules = t.text("rule_set", "conserving", {"patent", "conserving"});
+  o.rules = rules == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
+  o.starts = t.integer("starts", 8, 1, 1000);
+  o.seed = std::uint64_t(t.integer("seed", 1, 0, 2147483647));
+  o.max_evaluations = t.integer("max_evaluations", 400, 1, 1000000);
+  o.tolerance = t.number("tolerance", 1e-6, Range{0.0, 1.0, true, true});
+  o.threads = t.integer("threads", 0, 0, 1024);
+  plan.cross_validate = t.flag("cross_validate", true);
+  const auto w = t.table("objective");
+  o.weights.sigma_x = w.number("sigma_x", 0.0, Range::non_negative());
+  o.weights.sigma_y = w.number("sigma_y", 1.0, Range::non_negative());
+  o.weights.displacement = w.number("displacement", 1.0, Range::non_negative());
+  if (o.weights.sigma_x + o.weights.sigma_y + o.weights.displacement <= 0)
+    w.fail("sigma_y", "at least one of sigma_x, sigma_y, displacement must have a positive weight");
+  o.weights.lines = w.text("scope", "body", {"body", "lines"}) == "lines";
+  o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
+
+  const auto cases = t.tables("case");
+  if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
+  for (const auto& c : cases) {
+    plan.case_files.push_back(c.path("file", std::nullopt));
+    plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
+  }
+  // Defaults for the coefficients: the seed's values, free except gamma (and alpha1, which the
+  // conserving rule set does not use).
+  const std::array<double, 5> seed_values{0.5, 0.5, 0.25, 0.5, 1e-3};
+  int n_free = 0;
+  for (int i = 0; i < 5; ++i) {
+    const std::string name = kCoefficientNames[i];
+    const auto p = t.table(name);
+    auto& param = o.parameters[i];
+    param.name = name;
+    const bool gamma = name == "gamma";
+    const bool used = !(name == "alpha1" && o.rules == agent::RuleSet::Conserving);
+    param.free = p.flag("free", !gamma && used);
+    param.lo = p.number("min", 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    param.hi = p.number("max", gamma ? 10 * seed_values[4] : 1.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    param.start = p.number("start", seed_values[i], gamma ? Range::non_negative() : Range::closed(0, 1));
+    if (param.free && !(param.lo < param.hi))
+      p.fail("max", "must be greater than min (" + std::to_string(param.lo) + ")");
+    if (param.free && (param.start < param.lo || param.start > param.hi))
+      p.fail("start", "must lie within [min, max]");
+    n_free += param.free;
+  }
+  if (o.rules == agent::RuleSet::Conserving && o.parameters[1].free && o.parameters[2].free && o.parameters[1].lo <= 0 &&
+      o.parameters[2].lo <= 0)
+    t.table("alpha2").fail("min", "alpha2 and alpha3 may not both reach 0 in the conserving rule set (give one a min > 0)");
+  if (n_free == 0) t.fail("alpha2", "no coefficient is free: nothing to fit");
+  return plan;
+}
+
+std::ofstream open_out(const fs::path& file) {
+  std::ofstream out(file);
+  if (!out) throw Error(file.string() + ": cannot open for writing");
+  out.precision(10);
+  return out;
+}
+
+/// The case file again, with the fitted [agent] coefficients and an absolute mesh path.
+void write_calibrated_case(const fs::path& original, const fs::path& target, const agent::Coefficients& k,
+                           agent::RuleSet rules, const std::string& note) {
+  toml::table t = toml::parse_file(original.string());
+  if (auto* mesh = t["mesh"].as_table())
+    if (auto file = (*mesh)["file"].value<std::string>(); file && fs::path(*file).is_relative())
+      mesh->insert_or_assign("file", fs::absolute(original.parent_path() / *file).lexically_normal().string());
+  if (!t["agent"].as_table()) t.insert_or_assign("agent", toml::table{});
+  auto& a = *t["agent"].as_table();
+  a.insert_or_assign("rule_set", rules == agent::RuleSet::Patent ? "patent" : "conserving");
+  a.insert_or_assign("alpha1", k.alpha1);
+  a.insert_or_assign("alpha2", k.alpha2);
+  a.insert_or_assign("alpha3", k.alpha3);
+  a.insert_or_assign("beta", k.beta);
+  a.insert_or_assign("gamma", k.gamma);
+  a.insert_or_assign("poisson_decay", k.poisson_decay);
+  auto out = open_out(target);
+  out << "# " << note << "\n" << t << "\n";
+}
+
+std::string coefficient_row(const agent::Coefficients& k) {
+  std::ostringstream s;
+  s << std::setprecision(4) << "alpha1 " << k.alpha1 << ", alpha2 " << k.alpha2 << ", alpha3 " << k.alpha3 << ", beta "
+    << k.beta << ", gamma " << k.gamma;
+  return s.str();
+}
+
+}  // namespace
+
+CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
+  const auto start_time = std::chrono::steady_clock::now();
+  Plan plan = read_plan(file);
+  file.reject_unknown_keys();
+
+  // Every load case: the agent study, and the FEM reference solved once.
+  std::vector<CalibrationCase> cases;
+  for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
+    workbench::CaseFile case_file(plan.case_files[i]);
+    CalibrationCase c;
+    c.name = plan.case_files[i].stem().string();
+    c.study = agent_study::load_agent_study(case_file);
+    auto problem = fem_reference::problem_from_case(case_file);
+    read_compare_options(case_file.root());
+    case_file.reject_unknown_keys();
+    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving FEM once\n"
+        << std::flush;
+    const auto fem = fem_reference::solve_fem(problem);
+    c.reference = fem_on_grid(c.study, fem, case_file.path().string());
+    c.weight = plan.case_weights[i];
+    cases.push_back(std::move(c));
+  }
+
+  const auto& o = plan.options;
+  log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
+  auto result = calibrate(cases, o, &log);
+
+  // Cross-validation: fit on all cases but one, score the one left out.
+  struct Fold {
+    std::string held_out;
+    double fitted_on_others, fitted_on_all, start;
+    agent::Coefficients k;
+  };
+  std::vector<Fold> folds;
+  if (plan.cross_validate && cases.size() >= 2) {
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      std::vector<CalibrationCase> train;
+      for (std::size_t j = 0; j < cases.size(); ++j)
+        if (j != i) train.push_back(cases[j]);
+      log << "calibrate: cross-validation " << i + 1 << "/" << cases.size() << ": fitting without " << cases[i].name
+          << "\n" << std::flush;
+      const auto fold = calibrate(train, o, nullptr);
+      std::vector<Score> score;
+      objective({cases[i]}, fold.best, o.rules, o.weights, &score);
+      folds.push_back({cases[i].name, score[0].objective, result.after[i].objective, result.before[i].objective, fold.best});
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+
+  // Report.
+  std::ostringstream r;
+  r << std::setprecision(4);
+  r << "Calibration of " << file.path().string() << " (" << (o.rules == agent::RuleSet::Patent ? "patent" : "conserving")
+    << " rule set, " << o.starts << " starts, seed " << o.seed << ", " << result.evaluations << " evaluations, "
+    << seconds << " s)\n\n";
+  r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x) + " << o.weights.sigma_y
+    << " e(sigma_y) + " << o.weights.displacement << " e(u)), e = relative L2 error over the "
+    << (o.weights.lines ? "sample lines" : "body") << "\n\n";
+  r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
+  r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
+  r << std::left << std::setw(28) << "case" << std::right << std::setw(12) << "e(sx) before" << std::setw(12) << "after"
+    << std::setw(14) << "e(sy) before" << std::setw(12) << "after" << std::setw(12) << "e(u) before" << std::setw(12)
+    << "after" << "\n";
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    r << std::left << std::setw(28) << cases[i].name << std::right << std::setw(12) << result.before[i].sigma_x
+      << std::setw(12) << result.after[i].sigma_x << std::setw(14) << result.before[i].sigma_y << std::setw(12)
+      << result.after[i].sigma_y << std::setw(12) << result.before[i].displacement << std::setw(12)
+      << result.after[i].displacement << "\n";
+  r << "\nsensitivity at the optimum (objective with the coefficient moved by 10 % of its range):\n";
+  for (const auto& s : result.sensitivity)
+    r << "  " << std::left << std::setw(8) << s.name << std::right << " -: " << std::setw(10) << s.objective_minus
+      << "  +: " << std::setw(10) << s.objective_plus << "  curvature " << std::setw(10) << s.curvature << "  "
+      << (s.pinned ? "pinned down by the data" : "NOT pinned down: the data hardly constrain it") << "\n";
+  r << "\nobjective reached from each start:";
+  for (double f : result.start_objectives) r << " " << f;
+  r << "\n";
+  if (!folds.empty()) {
+    r << "\ncross-validation (fit on the other cases, score the one left out):\n";
+    for (const auto& f : folds)
+      r << "  " << std::left << std::setw(28) << f.held_out << std::right << " held out: " << std::setw(10)
+        << f.fitted_on_others << "  fitted on all: " << std::setw(10) << f.fitted_on_all << "  start: " << std::setw(10)
+        << f.start << "\n";
+  } else if (plan.cross_validate) {
+    r << "\ncross-validation: needs two or more cases\n";
+  }
+  open_out(dir / "report.txt") << r.str();
+  log << r.str();
+
+  nlohmann::json j;
+  auto coeffs = [](const agent::Coefficients& k) {
+    return nlohmann::json{{"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
+                          {"gamma", k.gamma}, {"poisson_decay", k.poisson_decay}};
+  };
+  j["calibration"] = file.path().string();
+  j["rule_set"] = o.rules == agent::RuleSet::Patent ? "patent" : "conserving";
+  j["start"] = coeffs(result.start);
+  j["fitted"] = coeffs(result.best);
+  j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
+  j["evaluations"] = result.evaluations;
+  j["seconds"] = seconds;
+  j["start_objectives"] = result.start_objectives;
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    j["cases"][cases[i].name] = {
+        {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
+        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}}};
+  for (const auto& s : result.sensitivity)
+    j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
+  for (const auto& f : folds)
+    j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all}, {"start", f.start}};
+  open_out(dir / "report.json") << j.dump(2) << "\n";
+
+  fs::create_directories(dir / "calibrated");
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"), result.best, o.rules,
+                          "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
+                              std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
+  return result;
+}
+
+}  // namespace compare

@@ -14,4 +14,6 @@ bash scripts/build.sh
 echo "== sanitizers: libraries without deal.II (ASan + UBSan)"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DWORKBENCH_WITH_FEM=OFF -DWORKBENCH_SANITIZE=ON >/dev/null
 cmake --build build-sanitize -j "$(nproc)"
-(cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j "$(nproc)" -L sanitize)
+# gmsh 4.8 leaks a few bytes inside libgmsh when a .geo stops at Error(): suppressed, ours are not.
+(cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  LSAN_OPTIONS="suppressions=$PWD/../tests/lsan.supp" ctest --output-on-failure -j "$(nproc)" -L sanitize)

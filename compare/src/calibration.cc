@@ -72,7 +72,10 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
     s.sigma_y = l2_error(a[1], r[1]);
     s.displacement = l2_error(a[2], r[2]);
   }
-  s.objective = w.sigma_x * s.sigma_x + w.sigma_y * s.sigma_y + w.displacement * s.displacement;
+  // Squared errors: smooth at the optimum, which BOBYQA's quadratic models need (a plain norm is
+  // V-shaped there and stalls it).
+  s.objective = w.sigma_x * s.sigma_x * s.sigma_x + w.sigma_y * s.sigma_y * s.sigma_y +
+                w.displacement * s.displacement * s.displacement;
   return s;
 }
 

@@ -69,7 +69,8 @@ Plan read_plan(const workbench::CaseFile& file) {
     const bool gamma = name == "gamma";
     const bool used = !(name == "alpha1" && o.rules == agent::RuleSet::Conserving);
     param.free = p.flag("free", !gamma && used);
-    param.lo = p.number("min", 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    // alpha2 keeps a small floor by default: the conserving split needs alpha2 + alpha3 > 0.
+    param.lo = p.number("min", name == "alpha2" ? 0.01 : 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
     param.hi = p.number("max", gamma ? 10 * seed_values[4] : 1.0, gamma ? Range::non_negative() : Range::closed(0, 1));
     param.start = p.number("start", seed_values[i], gamma ? Range::non_negative() : Range::closed(0, 1));
     if (param.free && !(param.lo < param.hi))
@@ -176,8 +177,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   r << "Calibration of " << file.path().string() << " (" << (o.rules == agent::RuleSet::Patent ? "patent" : "conserving")
     << " rule set, " << o.starts << " starts, seed " << o.seed << ", " << result.evaluations << " evaluations, "
     << seconds << " s)\n\n";
-  r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x) + " << o.weights.sigma_y
-    << " e(sigma_y) + " << o.weights.displacement << " e(u)), e = relative L2 error over the "
+  r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x)^2 + " << o.weights.sigma_y
+    << " e(sigma_y)^2 + " << o.weights.displacement << " e(u)^2), e = relative L2 error over the "
     << (o.weights.lines ? "sample lines" : "body") << "\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";

@@ -21,8 +21,8 @@ struct Parameter {
   double start = 0, lo = 0, hi = 1;
 };
 
-/// What the objective measures: sum over cases of weight * (w_sx e(sigma_x) + w_sy e(sigma_y)
-/// + w_u e(u)), e = ||agent - reference||_2 / ||reference||_2 over the body (every agent, every
+/// What the objective measures: sum over cases of weight * (w_sx e(sigma_x)^2 + w_sy e(sigma_y)^2
+/// + w_u e(u)^2), e = ||agent - reference||_2 / ||reference||_2 over the body (every agent, every
 /// node) or over the sample lines.
 struct ObjectiveWeights {
   double sigma_x = 0.0, sigma_y = 1.0, displacement = 1.0;

@@ -1,0 +1,141 @@
+// Calibration: it finds known coefficients, never ends worse than it started, respects bounds,
+// is reproducible, and refuses bad calibration files.
+#include <compare/calibration.h>
+#include <compare/calibration_study.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace compare;
+
+namespace {
+
+const std::string kSource = WORKBENCH_SOURCE_DIR;
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "workbench_calibration_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+std::string plate_case(const std::string& xc = "0.1") {
+  return "[mesh]\nfile = \"" + kSource + "/meshes/plate2d.geo\"\n[mesh.parameters]\nh = 0.01\nlw = 0.02\nxc = " + xc +
+         "\n[material]\nthickness = 0.002\n[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\nforce = 2.0\n"
+         "[agent]\nrule_set = \"conserving\"\ngamma = 1e-9\n";
+}
+
+/// A load case whose reference is the agent model itself with coefficients `truth`.
+CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth) {
+  workbench::CaseFile file(write("plate_" + xc + ".toml", plate_case(xc)));
+  CalibrationCase c;
+  c.name = "plate_" + xc;
+  c.study = agent_study::load_agent_study(file);
+  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
+                            agent::RuleSet::Conserving);
+  c.reference = agent_on_grid(c.study, agent_study::evaluate(c.study, model, 1.0));
+  return c;
+}
+
+CalibrationOptions options() {
+  CalibrationOptions o;
+  o.rules = agent::RuleSet::Conserving;
+  const std::array<double, 5> start{0.5, 0.5, 0.25, 0.5, 1e-9};
+  for (int i = 0; i < 5; ++i) o.parameters[i] = {kCoefficientNames[i], i >= 1 && i <= 3, start[i], 0.0, 1.0};
+  o.parameters[1].lo = 0.05;
+  o.parameters[4].hi = 1e-8;
+  o.weights.sigma_x = 1.0;
+  o.starts = 4;
+  o.seed = 7;
+  o.max_evaluations = 600;
+  o.tolerance = 1e-12;
+  return o;
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    workbench::CaseFile file(write("calibration.toml", text));
+    compare::run_calibration(file, fs::temp_directory_path() / "workbench_calibration_out", *new std::ostringstream);
+  } catch (const workbench::Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(Calibration, RecoversKnownCoefficientsFromAgentGeneratedTargets) {
+  agent::Coefficients truth = coefficients_from({0.5, 0.3, 0.35, 0.6, 1e-9});
+  const std::vector<CalibrationCase> cases{agent_target("0.1", truth), agent_target("0.05", truth)};
+  const auto r = calibrate(cases, options());
+  EXPECT_GT(r.objective_start, 0.1);
+  EXPECT_LT(r.objective_best, 1e-4);
+  EXPECT_NEAR(r.best.alpha2, 0.3, 2e-3);
+  EXPECT_NEAR(r.best.alpha3, 0.35, 2e-3);
+  EXPECT_NEAR(r.best.beta, 0.6, 2e-3);
+  EXPECT_DOUBLE_EQ(r.best.alpha1, 0.5);  // fixed
+  EXPECT_DOUBLE_EQ(r.best.poisson_decay, r.best.alpha2);
+  EXPECT_LE(r.objective_best, r.objective_start);
+  EXPECT_EQ(r.after.size(), 2u);
+  EXPECT_EQ(r.sensitivity.size(), 3u);
+  for (const auto& s : r.sensitivity) EXPECT_TRUE(s.pinned) << s.name;
+}
+
+TEST(Calibration, RespectsBoundsAndNeverEndsWorseThanItStarted) {
+  agent::Coefficients truth = coefficients_from({0.5, 0.3, 0.35, 0.6, 1e-9});
+  const std::vector<CalibrationCase> cases{agent_target("0.1", truth)};
+  auto o = options();
+  // The truth lies outside these bounds: the fit must stop at them.
+  o.parameters[2].lo = 0.1;
+  o.parameters[2].hi = 0.2;
+  o.parameters[2].start = 0.15;
+  o.parameters[3].lo = 0.0;
+  o.parameters[3].hi = 0.4;
+  o.parameters[3].start = 0.2;
+  const auto r = calibrate(cases, o);
+  EXPECT_GE(r.best.alpha3, 0.1);
+  EXPECT_LE(r.best.alpha3, 0.2);
+  EXPECT_GE(r.best.beta, 0.0);
+  EXPECT_LE(r.best.beta, 0.4);
+  EXPECT_LE(r.objective_best, r.objective_start);
+  EXPECT_LT(r.objective_best, 0.9 * r.objective_start);
+}
+
+TEST(Calibration, IsReproducibleWhateverTheThreadCount) {
+  agent::Coefficients truth = coefficients_from({0.5, 0.4, 0.3, 0.5, 1e-9});
+  const std::vector<CalibrationCase> cases{agent_target("0.1", truth)};
+  auto o = options();
+  o.max_evaluations = 60;
+  o.threads = 1;
+  const auto a = calibrate(cases, o);
+  o.threads = 2;
+  const auto b = calibrate(cases, o);
+  EXPECT_EQ(a.objective_best, b.objective_best);
+  EXPECT_EQ(a.best.alpha3, b.best.alpha3);
+  EXPECT_EQ(a.start_objectives, b.start_objectives);
+}
+
+TEST(Calibration, RefusesBadCalibrationFiles) {
+  const std::string base = "[calibrate]\nrule_set = \"conserving\"\n[[calibrate.case]]\nfile = \"" +
+                           write("case.toml", plate_case()).string() + "\"\n";
+  EXPECT_NE(error_of(base + "[calibrate.alpha3]\nmin = 0.5\nmax = 0.2\n").find("calibrate.alpha3.max: must be greater than min"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "[calibrate.beta]\nstart = 0.9\nmax = 0.5\n").find("calibrate.beta.start: must lie within"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "[calibrate.alpha2]\nfree = false\n[calibrate.alpha3]\nfree = false\n[calibrate.beta]\nfree = false\n")
+                .find("nothing to fit"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "[calibrate.alpha2]\nmin = 0\n").find("calibrate.alpha2.min: alpha2 and alpha3 may not both reach 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "[calibrate.alhpa2]\nmin = 0.1\n").find("unknown key 'calibrate.alhpa2'"), std::string::npos);
+  EXPECT_NE(error_of(base + "starts = 0\n").find("unknown key"), std::string::npos);  // after [[calibrate.case]]
+  EXPECT_NE(error_of("[calibrate]\nstarts = 0\n").find("calibrate.starts: must be in [1, 1000] (got 0)"), std::string::npos);
+  EXPECT_NE(error_of("[calibrate]\n").find("calibrate.case: missing"), std::string::npos);
+  EXPECT_NE(error_of("[[calibrate.case]]\nfile = \"nowhere.toml\"\n").find("nowhere.toml: cannot read the case file"),
+            std::string::npos);
+  EXPECT_NE(error_of(base + "[calibrate.objective]\nsigma_y = 0\ndisplacement = 0\n").find("positive weight"),
+            std::string::npos);
+}

@@ -69,12 +69,14 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
   }
   clear_touched();
   diagnostics_ = Diagnostics{};
-  for (const auto& load : loads) sweep(load);
+  for (const auto& load : loads) grid_.dim == 2 ? sweep<2>(load) : sweep<3>(load);
 }
 
+template <int Dim>
 void LoadTransfer::sweep(const EntryLoad& load) {
+  // The dimension is a template parameter so that face offsets are compile-time constants.
   const Grid& g = grid_;
-  const int nd = 2 * g.dim;
+  constexpr int nd = 2 * Dim;
   const int a = axis_of(load.dir);
   const bool forward = is_positive(load.dir);
   const int step = forward ? 1 : -1;
@@ -85,8 +87,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const int eu = entry[l0], ev = entry[l1];
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
   const bool patent = rules_ == RuleSet::Patent;
-  const bool three_d = g.dim == 3;
-  const int lateral_dirs = three_d ? 4 : 2;
+  constexpr bool three_d = Dim == 3;
+  constexpr int lateral_dirs = three_d ? 4 : 2;
   const double alpha1 = k_.alpha1, alpha2 = k_.alpha2, alpha3 = k_.alpha3, gamma = k_.gamma;
   // Friction: a load from above (or the entry load) is sent to every side with `emit` of it; a
   // friction load travels straight on, passing `carry` of itself to the next agent. The
@@ -109,22 +111,22 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     diagnostics_.dropped += load.force;
     return;
   }
+  // Generation: the number of agent-to-agent steps from the entry agent (the wavefront in which
+  // the sweep reaches it). -1 (unreached) is the largest value as unsigned, so min() keeps the
+  // smallest over superposed entries and the comparison counts newly reached agents.
   auto reach = [&](std::size_t cell, int gen) {
-    auto& current = generation[cell];
-    if (current < 0) {
-      current = gen;
-      ++d.agents_generated;
-    } else if (gen < current) {
-      current = gen;
-    }
+    const auto current = std::uint32_t(generation[cell]);
+    d.agents_generated += current == UINT32_MAX;
+    generation[cell] = std::int32_t(std::min(current, std::uint32_t(gen)));
   };
-  reach(load.cell, 0);
 
+  // The entry load acts like a load from above (it is sent to the sides with `emit`), except that
+  // in the patent reading it enters with alpha1.
   const std::size_t entry_buf = eu + std::size_t(n0) * ev;
-  double entry_load = load.force;  // only in the first layer
+  down_[entry_buf] = load.force;
   Box box{eu, eu, ev, ev};
   int layer = entry[a];
-  for (;; layer += step) {
+  for (int depth = 0;; layer += step, ++depth) {
     const std::size_t layer_base = std::size_t(layer) * sa;
     const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
     double* const down_buf = down_.data();
@@ -132,68 +134,74 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
     Box ext = box;  // grows with friction chains and Poisson pushes
 
-    // Friction chains along one lateral axis, both ways, for the lines of the box.
+    // Friction chains along one lateral axis, both ways, for one line of the box: inside the box
+    // every agent adds `emit` of its load from above; past it a chain runs on until gamma.
     auto friction = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
                         std::size_t first_buf, int lo, int hi, int& ext_lo, int& ext_hi) {
       for (int dir = 0; dir < 2; ++dir) {
         const bool up = dir == 0;
         const int sgn = up ? 1 : -1;
+        const int end = up ? n : -1;
         double carried = 0;
-        for (int w = up ? lo : hi; w >= 0 && w < n; w += sgn) {
-          const bool inside = w >= lo && w <= hi;
-          if (!inside && carried == 0) break;
-          const std::size_t b = first_buf + w * buf_stride;
-          fresh_buf[b] += carried;
-          double out = carry * carried;
-          if (inside) {
-            const double from_above = down_buf[b] + (b == entry_buf ? entry_load : 0.0);
-            out += emit * from_above;
-          }
-          carried = 0;
-          if (out == 0) continue;
+        int w = up ? lo : hi;
+        int last = w;
+        auto pass = [&](int w, double out) {
           if (!(out > gamma)) {
             d.dropped += out;
-            continue;
+            return 0.0;
           }
-          const std::size_t cell = first_cell + w * cell_stride;
-          const int target = w + sgn;
-          if (target < 0 || target >= n) {
+          if (w + sgn == end) {
+            const std::size_t cell = first_cell + w * cell_stride;
             if (g.boundary(direction(lateral, up), g.coords(cell)) == Boundary::Rigid) d.rigid_reaction += out;
             else d.passed_out += out;
-            continue;
+            return 0.0;
           }
-          carried = out;
-          reach(cell + sgn * cell_stride, generation[cell] + 1);
-          ext_lo = std::min(ext_lo, target);
-          ext_hi = std::max(ext_hi, target);
+          last = w + sgn;
+          return out;
+        };
+        for (; up ? w <= hi : w >= lo; w += sgn) {
+          const std::size_t b = first_buf + w * buf_stride;
+          fresh_buf[b] += carried;
+          const double out = carry * carried + emit * down_buf[b];
+          carried = out == 0 ? 0.0 : pass(w, out);
         }
+        for (; carried != 0 && w != end; w += sgn) {
+          fresh_buf[first_buf + w * buf_stride] += carried;
+          carried = pass(w, carry * carried);
+        }
+        ext_lo = std::min(ext_lo, last);
+        ext_hi = std::max(ext_hi, last);
       }
     };
-    for (int v = box.v_lo; v <= box.v_hi; ++v)
-      friction(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, ext.u_lo, ext.u_hi);
-    if (three_d)
-      for (int u = box.u_lo; u <= box.u_hi; ++u)
-        friction(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, ext.v_lo, ext.v_hi);
+    if (alpha3 > 0) {
+      for (int v = box.v_lo; v <= box.v_hi; ++v)
+        friction(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, ext.u_lo, ext.u_hi);
+      if constexpr (three_d)
+        for (int u = box.u_lo; u <= box.u_hi; ++u)
+          friction(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, ext.v_lo, ext.v_hi);
+    }
 
     // Each loaded agent: its entering force, and what it passes on in the load direction.
+    const double entry_load = depth == 0 ? load.force : 0.0;
     for (int v = ext.v_lo; v <= ext.v_hi; ++v)
       for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
         const std::size_t b = u + std::size_t(n0) * v;
-        const double entry_here = b == entry_buf ? entry_load : 0.0;
         const double from_above = down_buf[b], from_side = fresh_buf[b];
-        if (from_above == 0 && from_side == 0 && entry_here == 0) continue;
+        if (from_above == 0 && from_side == 0) continue;
         down_buf[b] = fresh_buf[b] = 0;
         ++d.agent_updates;
         const std::size_t cell = layer_base + u * s0 + v * s1;
+        reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
         double* f = faces + cell * nd;
-        // Fresh loads (the entry, friction) enter with alpha1 in the patent reading.
         double top, down_t;
         if (patent) {
-          top = alpha1 * (from_side + entry_here) + from_above;
+          // Fresh loads (the entry, friction) enter with alpha1.
+          top = alpha1 * from_side + from_above;
+          if (b == entry_buf && depth == 0) top -= (1 - alpha1) * entry_load;
           down_t = alpha2 * top;
         } else {
-          top = from_above + entry_here + from_side;
-          down_t = (from_above + entry_here) * keep_above + from_side * keep_side;
+          top = from_above + from_side;
+          down_t = from_above * keep_above + from_side * keep_side;
         }
         f[enter_face] += top;
         top_buf[b] = top;
@@ -202,7 +210,6 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         } else if (!last_layer) {
           next_down_buf[b] += down_t;
           f[exit_face] += down_t;
-          reach(cell + step * long(sa), generation[cell] + 1);
           next.u_lo = std::min(next.u_lo, u);
           next.u_hi = std::max(next.u_hi, u);
           next.v_lo = std::min(next.v_lo, v);
@@ -214,60 +221,64 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           d.passed_out += down_t;
         }
       }
-    entry_load = 0;
 
     // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
     // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
     Box touched = ext;
     auto push_line = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
-                         std::size_t first_buf, int lo, int hi, int& reach_lo, int& reach_hi) {
+                         std::size_t first_buf, int lo, int hi, int line_distance, int& reach_lo, int& reach_hi) {
       const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
+      const int centre = lateral == l0 ? eu : ev;
       for (int dir = 0; dir < 2; ++dir) {
         const bool up = dir == 0;
         const int face_out = direction(lateral, up), face_in = opposite(face_out);
         const int sgn = up ? 1 : -1;
+        const int end = up ? n : -1;
         double carried = 0;
-        for (int w = up ? lo : hi; w >= 0 && w < n; w += sgn) {
-          const bool inside = w >= lo && w <= hi;
-          if (!inside && carried == 0) break;
-          const double own = inside ? push * top_buf[first_buf + w * buf_stride] : 0.0;
-          const double t = own + decay * carried;
-          carried = 0;
-          if (t == 0) continue;
+        int w = up ? lo : hi;
+        int last = w;
+        auto pass = [&](int w, double t) {
           if (!(t > gamma)) {
             d.lateral_dropped += t;
-            continue;
+            return 0.0;
           }
           const std::size_t cell = first_cell + w * cell_stride;
           double* f = faces + cell * nd;
-          const int target = w + sgn;
-          if (target < 0 || target >= n) {
+          if (w + sgn == end) {  // a rigid face pushes back, a free one lets the push out
             if (g.boundary(face_out, g.coords(cell)) == Boundary::Rigid) {
               f[face_out] += t;
               d.lateral_reaction += t;
             } else {
               d.lateral_passed_out += t;
             }
-            continue;
+            return 0.0;
           }
-          const std::size_t next_cell = cell + sgn * cell_stride;
           f[face_out] += t;
-          faces[next_cell * nd + face_in] += t;
-          if (generation[next_cell] < 0) ++d.agent_updates;
-          reach(next_cell, generation[cell] + 1);
-          carried = t;
-          reach_lo = std::min(reach_lo, target);
-          reach_hi = std::max(reach_hi, target);
+          faces[(cell + sgn * cell_stride) * nd + face_in] += t;
+          last = w + sgn;
+          return t;
+        };
+        for (; up ? w <= hi : w >= lo; w += sgn) {
+          const double t = push * top_buf[first_buf + w * buf_stride] + decay * carried;
+          carried = t == 0 ? 0.0 : pass(w, t);
         }
+        for (; carried != 0 && w != end; w += sgn) {
+          // Past the loaded agents: a push reaching an agent with no load of its own.
+          reach(first_cell + w * cell_stride, depth + line_distance + std::abs(w - centre));
+          carried = pass(w, decay * carried);
+        }
+        reach_lo = std::min(reach_lo, last);
+        reach_hi = std::max(reach_hi, last);
       }
     };
     if (k_.beta < 1 && material_.poisson != 0) {
       for (int v = ext.v_lo; v <= ext.v_hi; ++v)
-        push_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, ext.u_lo, ext.u_hi, touched.u_lo,
-                  touched.u_hi);
-      if (three_d)
+        push_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, ext.u_lo, ext.u_hi, std::abs(v - ev),
+                  touched.u_lo, touched.u_hi);
+      if constexpr (three_d)
         for (int u = ext.u_lo; u <= ext.u_hi; ++u)
-          push_line(l1, n1, long(s1), n0, layer_base + u * s0, u, ext.v_lo, ext.v_hi, touched.v_lo, touched.v_hi);
+          push_line(l1, n1, long(s1), n0, layer_base + u * s0, u, ext.v_lo, ext.v_hi, std::abs(u - eu), touched.v_lo,
+                    touched.v_hi);
     }
     for (int v = ext.v_lo; v <= ext.v_hi; ++v) std::fill_n(top_buf + ext.u_lo + std::size_t(n0) * v, ext.u_hi - ext.u_lo + 1, 0.0);
     touched_.push_back({a, layer, touched});

@@ -68,7 +68,9 @@ TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
       const std::size_t n = g.node_index(i, j, 0), m = g.node_index(20 - i, j, 0);
       EXPECT_NEAR(s.displacement[2 * n], -s.displacement[2 * m], 1e-20);
       EXPECT_NEAR(s.displacement[2 * n + 1], s.displacement[2 * m + 1], 1e-20);
-      if (j == 0) EXPECT_EQ(s.displacement[2 * n + 1], 0.0);
+      if (j == 0) {
+        EXPECT_EQ(s.displacement[2 * n + 1], 0.0);
+      }
       max_uy = std::min(max_uy, s.displacement[2 * n + 1]);
     }
   // The plate is squeezed: the top under the load moves down, by 1e-9 m order for 2 N on steel.

@@ -38,7 +38,9 @@ TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
     const auto datums = choose_datums(g, loads);
     EXPECT_DOUBLE_EQ(datums[1], 0.0);  // the rigid base
     EXPECT_DOUBLE_EQ(datums[0], 2.5);  // the centre of the loaded agent
-    if (dim == 3) EXPECT_DOUBLE_EQ(datums[2], 1.5);
+    if (dim == 3) {
+      EXPECT_DOUBLE_EQ(datums[2], 1.5);
+    }
     const auto u = node_displacements(g, eps, datums);
     const auto nn = g.node_counts();
     for (int k = 0; k < nn[2]; ++k)
@@ -47,7 +49,9 @@ TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
           const std::size_t n = g.node_index(i, j, k);
           EXPECT_NEAR(u[n * dim + 0], 1e-3 * (i - 2.5) * 0.5, 1e-15);
           EXPECT_NEAR(u[n * dim + 1], -2e-3 * j * 0.25, 1e-15);
-          if (dim == 3) EXPECT_NEAR(u[n * dim + 2], 3e-3 * (k - 1.5) * 2.0, 1e-15);
+          if (dim == 3) {
+            EXPECT_NEAR(u[n * dim + 2], 3e-3 * (k - 1.5) * 2.0, 1e-15);
+          }
         }
   }
 }

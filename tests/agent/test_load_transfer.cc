@@ -210,7 +210,9 @@ TEST(AgentRules, LoadSteppingGrowsTheLoadedRegionMonotonically) {
     m.solve(top_centre(g, 0.1 * k));
     const auto& gen = m.generation();
     for (std::size_t c = 0; c < g.count(); ++c)
-      if (previous[c] >= 0) EXPECT_GE(gen[c], 0) << "step " << k << " lost agent " << c;
+      if (previous[c] >= 0) {
+        EXPECT_GE(gen[c], 0) << "step " << k << " lost agent " << c;
+      }
     EXPECT_GE(m.diagnostics().agents_generated, previous_count);
     previous = gen;
     previous_count = m.diagnostics().agents_generated;

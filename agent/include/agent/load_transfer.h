@@ -86,6 +86,7 @@ class LoadTransfer {
     int axis, layer;
     Box box;
   };
+  template <int Dim>
   void sweep(const EntryLoad& load);
   void clear_touched();
 

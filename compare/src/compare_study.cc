@@ -1,6 +1,8 @@
 #include <compare/compare_study.h>
 #include <compare/reference.h>
 
+#include "report.h"
+
 #include <agent_study.h>
 #include <fem_reference/fem.h>
 #include <workbench/error.h>
@@ -25,8 +27,11 @@ using workbench::Error;
 CompareOptions read_compare_options(const workbench::CaseTable& root) {
   const auto t = root.table("compare");
   CompareOptions o;
-  o.depths = t.numbers("depths", o.depths, workbench::Range::open(0.0, 1.0));
-  o.mask = t.number("mask", o.mask, workbench::Range{0.0, 1.0, false, true});
+  o.model = t.text("model", o.model, {"agent", "pbd"});
+  if (o.model == "agent") {  // the PBD comparison has no sample lines nor ratios: its case rejects these keys
+    o.depths = t.numbers("depths", o.depths, workbench::Range::open(0.0, 1.0));
+    o.mask = t.number("mask", o.mask, workbench::Range{0.0, 1.0, false, true});
+  }
   o.gate = t.number_map("gate");
   for (const auto& [name, limit] : o.gate)
     if (!(limit >= 0) || !std::isfinite(limit)) t.fail("gate." + name, "a limit must be a finite number >= 0");
@@ -44,28 +49,8 @@ std::string line_name(double depth) {
   return s.str();
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-std::ofstream open_out(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
-}
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
+using report::open_out;
+using report::seconds_since;
 
 }  // namespace
 
@@ -113,7 +98,9 @@ GridFields agent_on_grid(const agent_study::AgentStudy& study, const agent_study
   return out;
 }
 
-std::vector<std::string> metric_names(const std::vector<double>& depths) {
+namespace {
+
+std::vector<std::string> agent_metric_names(const std::vector<double>& depths) {
   std::vector<std::string> scopes{"body", "vertical"};
   for (double d : depths) scopes.push_back(line_name(d));
   std::vector<std::string> names;
@@ -131,16 +118,21 @@ std::vector<std::string> metric_names(const std::vector<double>& depths) {
   return names;
 }
 
-CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
+}  // namespace
+
+std::vector<std::string> metric_names(const CompareOptions& options) {
+  return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(options.depths);
+}
+
+namespace {
+
+CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
+                                 std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   const auto root = file.root();
   auto study = agent_study::load_agent_study(file);
   auto problem = fem_reference::problem_from_case(file);
-  const auto options = read_compare_options(root);
-  const auto names = metric_names(options.depths);
-  for (const auto& [name, limit] : options.gate)
-    if (std::find(names.begin(), names.end(), name) == names.end())
-      root.table("compare").fail("gate." + name, "unknown metric (docs/compare.md lists them)");
+  report::check_gate_names(options, metric_names(options), root);
   file.reject_unknown_keys();
   const auto& grid = study.mesh.grid;
   const int dim = grid.dim;
@@ -232,21 +224,14 @@ CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir,
     }
     add_scope(line.name, s[0][0], s[1][0], s[0][1], s[1][1], ua, uf);
   }
+  lines_csv.close();  // complete on disk before figures.py reads it
   if (!lines_csv) throw Error((dir / "lines.csv").string() + ": write failed");
 
   // Equilibrium: what each model returns at its supports against what was applied.
   const auto& d = agent.diagnostics;
   add("agent.equilibrium_dev", std::abs(d.rigid_reaction - d.applied) / d.applied,
       "|rigid reaction - applied| / applied (agent)");
-  double fem_reaction[3] = {0, 0, 0};
-  for (const auto& r : fem.reactions)
-    for (int a = 0; a < 3; ++a) fem_reaction[a] += r.force[a];
-  double imbalance = 0, applied = 0;
-  for (int a = 0; a < 3; ++a) {
-    imbalance += std::pow(fem_reaction[a] + fem.applied[a], 2);
-    applied += std::pow(fem.applied[a], 2);
-  }
-  add("fem.equilibrium_dev", std::sqrt(imbalance / applied), "|reactions + applied| / |applied| (FEM)");
+  add("fem.equilibrium_dev", report::fem_equilibrium_dev(fem), "|reactions + applied| / |applied| (FEM)");
   add("agent.reach_fraction", double(d.agents_generated) / double(n_cells), "share of agents the load reaches");
 
   // One VTU with both models, their differences and ratios.
@@ -326,35 +311,18 @@ CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir,
   double figures_seconds = 0;
   if (options.figures) {
     t = std::chrono::steady_clock::now();
-    log << "compare: drawing Figures 8-11 and the load-step animation\n" << std::flush;
-    const std::string command = "/usr/bin/python3 '" WORKBENCH_SOURCE_DIR "/compare/figures.py' '" + dir.string() +
-                                "' --title '" + (study.setup.title.empty() ? file.path().stem().string() : study.setup.title) +
-                                "' >'" + (dir / "figures.log").string() + "' 2>&1";
-    const int rc = std::system(command.c_str());
-    if (rc != 0) {
-      std::ifstream in(dir / "figures.log");
-      std::string last, line;
-      while (std::getline(in, line))
-        if (!line.empty()) last = line;
-      throw Error("compare/figures.py failed: " + last);
-    }
+    report::run_figure_script(WORKBENCH_SOURCE_DIR "/compare/figures.py", dir,
+                              study.setup.title.empty() ? file.path().stem().string() : study.setup.title, log);
     figures_seconds = seconds_since(t);
   }
   add("time.figures_s", figures_seconds, "figures and animation [s]");
   add("time.total_s", seconds_since(start), "the whole study [s]");
 
-  // The gate.
-  for (const auto& m : outcome.metrics) {
-    auto it = options.gate.find(m.name);
-    if (it == options.gate.end()) continue;
-    ++outcome.gated;
-    if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second});
-  }
-
-  // Summary: JSON for programs, a table for people, JUnit XML for CI systems.
+  // The gate, summary.json / summary.txt / junit.xml.
   nlohmann::json json;
   json["case"] = file.path().string();
   json["title"] = study.setup.title;
+  json["model"] = "agent";
   json["agent"] = {{"rule_set", study.rules == agent::RuleSet::Patent ? "patent" : "conserving"},
                    {"alpha1", study.coefficients.alpha1}, {"alpha2", study.coefficients.alpha2},
                    {"alpha3", study.coefficients.alpha3}, {"beta", study.coefficients.beta},
@@ -365,45 +333,15 @@ CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir,
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
   json["mask"] = options.mask;
-  for (const auto& m : outcome.metrics) {
-    nlohmann::json entry{{"value", std::isfinite(m.value) ? nlohmann::json(m.value) : nlohmann::json("inf")},
-                         {"meaning", m.meaning}};
-    if (auto it = options.gate.find(m.name); it != options.gate.end()) {
-      entry["limit"] = it->second;
-      entry["passed"] = m.value <= it->second;
-    }
-    json["metrics"][m.name] = entry;
-  }
-  json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
-  open_out(dir / "summary.json") << json.dump(2) << "\n";
-
-  std::ostringstream table;
-  table << std::left << std::setw(40) << "metric" << std::right << std::setw(14) << "value" << std::setw(12) << "limit"
-        << "\n";
-  for (const auto& m : outcome.metrics) {
-    table << std::left << std::setw(40) << m.name << std::right << std::setw(14) << std::setprecision(5) << m.value;
-    if (auto it = options.gate.find(m.name); it != options.gate.end())
-      table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
-    table << "\n";
-  }
-  open_out(dir / "summary.txt") << table.str();
-  log << table.str();
-
-  auto junit = open_out(dir / "junit.xml");
-  junit << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n  <testsuite name=\"compare."
-        << xml_escape(file.path().stem().string()) << "\" tests=\"" << outcome.gated << "\" failures=\""
-        << outcome.failures.size() << "\">\n";
-  for (const auto& [name, limit] : options.gate) {
-    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(), [&](const Metric& x) { return x.name == name; });
-    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(name) << "\">";
-    if (!(m->value <= limit))
-      junit << "<failure message=\"" << xml_escape(name) << " = " << m->value << " exceeds " << limit << " by "
-            << m->value - limit << "\"/>";
-    junit << "</testcase>\n";
-  }
-  junit << "  </testsuite>\n</testsuites>\n";
-  if (!junit) throw Error((dir / "junit.xml").string() + ": write failed");
+  report::finish(dir, file.path().stem().string(), std::move(json), options.gate, {}, outcome, log);
   return outcome;
+}
+
+}  // namespace
+
+CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
+  const auto options = read_compare_options(file.root());
+  return options.model == "pbd" ? run_pbd_compare(file, options, dir, log) : run_agent_compare(file, options, dir, log);
 }
 
 }  // namespace compare

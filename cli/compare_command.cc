@@ -12,7 +12,9 @@ namespace cli {
 
 void add_compare_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
-      "compare", "Run the agent method and the FEM reference on one case and compare them (exit 1 if the gate fails)");
+      "compare",
+      "Run a fast model ([compare] model: the agent method, or the PBD rod) and the FEM reference on one case and "
+      "compare them (exit 1 if the gate fails)");
   auto case_file = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
   auto junit = std::make_shared<std::string>();

@@ -135,7 +135,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     c.name = plan.case_files[i].stem().string();
     c.study = agent_study::load_agent_study(case_file);
     auto problem = fem_reference::problem_from_case(case_file);
-    read_compare_options(case_file.root());
+    if (read_compare_options(case_file.root()).model != "agent")
+      case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
     case_file.reject_unknown_keys();
     log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving FEM once\n"
         << std::flush;

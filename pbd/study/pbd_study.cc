@@ -155,6 +155,24 @@ std::vector<int> chain_order(const pbd::Mesh& mesh, const std::vector<int>& pinn
   return order;
 }
 
+Centreline centreline(const pbd::Mesh& mesh, const std::vector<int>& pinned) {
+  Centreline c;
+  c.nodes = chain_order(mesh, pinned);
+  const auto& chain = c.nodes;
+  if (chain.empty()) return c;
+  const std::size_t n = mesh.points.size();
+  std::vector<char> is_pinned(n, 0);
+  for (int p : pinned) is_pinned[p] = 1;
+  std::size_t origin = 0;
+  while (origin + 1 < chain.size() && is_pinned[chain[origin]] && is_pinned[chain[origin + 1]]) ++origin;
+  std::vector<double> arc(chain.size(), 0.0);
+  for (std::size_t k = 1; k < chain.size(); ++k)
+    arc[k] = arc[k - 1] + (mesh.points[chain[k]] - mesh.points[chain[k - 1]]).norm();
+  c.s.resize(chain.size());
+  for (std::size_t k = 0; k < chain.size(); ++k) c.s[k] = arc[k] - arc[origin];
+  return c;
+}
+
 void write_render_cells(const fs::path& dir, const workbench::OutputMesh& mesh) {
   auto out = open_csv(dir / "cells.csv");
   out << "type,nodes\n";
@@ -282,23 +300,14 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
           << int(pinned_field[i]) << '\n';
     }
   }
-  const auto chain = chain_order(mesh, study.pinned);
+  const auto line = centreline(mesh, study.pinned);
+  const auto& chain = line.nodes;
   if (!chain.empty()) {
     auto out = open_csv(dir / "centreline.csv");
     out << "s,x0,y0,z0,x,y,z,u_x,u_y,u_z\n";
-    // s = 0 at the clamp face: the last node of the pinned run the chain starts with (negative
-    // inside the clamp, e.g. the ghost node), else at the chain's first node.
-    std::vector<char> is_pinned(n, 0);
-    for (int p : study.pinned) is_pinned[p] = 1;
-    std::size_t origin = 0;
-    while (origin + 1 < chain.size() && is_pinned[chain[origin]] && is_pinned[chain[origin + 1]]) ++origin;
-    std::vector<double> arc(chain.size(), 0.0);
-    for (std::size_t k = 1; k < chain.size(); ++k)
-      arc[k] = arc[k - 1] + (mesh.points[chain[k]] - mesh.points[chain[k - 1]]).norm();
     for (std::size_t k = 0; k < chain.size(); ++k) {
-      const double s = arc[k] - arc[origin];
       const Vec3 &p = mesh.points[chain[k]], &q = x[chain[k]];
-      out << s << ',' << p[0] << ',' << p[1] << ',' << p[2] << ',' << q[0] << ',' << q[1] << ',' << q[2] << ','
+      out << line.s[k] << ',' << p[0] << ',' << p[1] << ',' << p[2] << ',' << q[0] << ',' << q[1] << ',' << q[2] << ','
           << q[0] - p[0] << ',' << q[1] - p[1] << ',' << q[2] - p[2] << '\n';
     }
     log << "pbd: centreline.csv: " << chain.size() << " nodes, end displacement ("

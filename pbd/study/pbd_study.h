@@ -58,6 +58,17 @@ workbench::OutputMesh output_mesh(const pbd::Mesh& mesh, const std::vector<pbd::
 /// smaller end; empty when the mesh is not such a chain.
 std::vector<int> chain_order(const pbd::Mesh& mesh, const std::vector<int>& pinned);
 
+/// The centreline of a rod mesh (one open chain of lines): its nodes in chain order from the
+/// pinned end and their rest arc length s, with s = 0 at the clamp face (the last node of the
+/// pinned run the chain starts with; negative inside the clamp, e.g. the ghost node), else at the
+/// chain's first node. Empty when the mesh is not such a chain.
+struct Centreline {
+  std::vector<int> nodes;
+  std::vector<double> s;
+  bool empty() const { return nodes.empty(); }
+};
+Centreline centreline(const pbd::Mesh& mesh, const std::vector<int>& pinned);
+
 /// Writes the generic animation frame format read by scripts/render_frames.py: `cells.csv`
 /// ("type,nodes..." per cell, VTK type numbers) once, and `frame_NNNNN.csv` ("x,y,z,<field>").
 void write_render_cells(const std::filesystem::path& dir, const workbench::OutputMesh& mesh);

@@ -1,6 +1,9 @@
 #pragma once
-// One study, two models: the agent method and the FEM reference on the identical gmsh mesh,
-// compared cell by cell and along sample lines (issue 4, docs/compare.md).
+// One study, two models: a fast model and the FEM reference from one case file (docs/compare.md).
+// [compare] model = "agent" (default): the agent method and FEM on the identical gmsh mesh,
+// compared cell by cell and along sample lines (issue 4). model = "pbd": the PBD angle bending rod
+// ([pbd]) against the FEM strip (the shared sections), compared along the centreline and with
+// Euler-Bernoulli (issue 6).
 #include <compare/metrics.h>
 #include <workbench/case_file.h>
 
@@ -14,12 +17,15 @@ namespace compare {
 
 /// The [compare] table of a case file.
 struct CompareOptions {
-  std::vector<double> depths{0.25, 0.5, 0.75};  ///< horizontal lines, fractions of the height below the top
-  double mask = 0.01;                           ///< ratio masked where |FEM| < mask * max |FEM|
+  std::string model = "agent";                  ///< the fast model: "agent" or "pbd"
+  std::vector<double> depths{0.25, 0.5, 0.75};  ///< agent: horizontal lines, fractions of the height below the top
+  double mask = 0.01;                           ///< agent: ratio masked where |FEM| < mask * max |FEM|
   std::map<std::string, double> gate;           ///< metric name -> largest value allowed
   bool figures = true;                          ///< Figures 8-11 and the animation (Python)
 };
 
+/// Reads [compare]: model, then the keys that model uses (depths and mask for the agent model
+/// only), figures, gate.
 CompareOptions read_compare_options(const workbench::CaseTable& root);
 
 /// A named number of the summary (errors, ratios, equilibrium, timings).
@@ -29,8 +35,9 @@ struct Metric {
   std::string meaning;
 };
 
-/// The names of the metrics a study with these lines produces (for checking the gate's keys).
-std::vector<std::string> metric_names(const std::vector<double>& depths);
+/// The names of the metrics a study with these options produces (for checking the gate's keys):
+/// the agent model's for its sample lines, or the PBD comparison's.
+std::vector<std::string> metric_names(const CompareOptions& options);
 
 struct GateFailure {
   std::string metric;
@@ -43,9 +50,14 @@ struct CompareOutcome {
   std::size_t gated = 0;              ///< metrics the gate checks
 };
 
-/// Runs both models from the case file, compares them and writes everything into `dir`
-/// (agent/, fem/, compare.vtu, cells.csv, lines.csv, nodes.csv, steps.csv, summary.json,
-/// summary.txt, junit.xml, figures/). Rejects unknown keys before running anything.
+/// Runs both models from the case file, compares them and writes everything into `dir`. Agent:
+/// agent/, fem/, compare.vtu, cells.csv, lines.csv, nodes.csv, steps.csv; PBD: pbd/, fem/,
+/// centreline.csv; both: summary.json, summary.txt, junit.xml, figures/. Rejects unknown keys (and
+/// gate keys naming no metric of the chosen model) before running anything.
 CompareOutcome run_compare(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);
+
+/// The PBD comparison (model = "pbd"); run_compare calls it after reading `options`.
+CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options,
+                               const std::filesystem::path& dir, std::ostream& log);
 
 }  // namespace compare

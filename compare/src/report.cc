@@ -1,0 +1,141 @@
+#include "report.h"
+
+#include <workbench/error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace compare::report {
+
+namespace fs = std::filesystem;
+using workbench::Error;
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::ofstream open_out(const fs::path& file) {
+  std::ofstream out(file);
+  if (!out) throw Error(file.string() + ": cannot open for writing");
+  out.precision(12);
+  return out;
+}
+
+namespace {
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
+}  // namespace
+
+void check_gate_names(const CompareOptions& options, const std::vector<std::string>& names,
+                      const workbench::CaseTable& root) {
+  for (const auto& [name, limit] : options.gate)
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      root.table("compare").fail("gate." + name, "unknown metric for model \"" + options.model +
+                                                     "\" (docs/compare.md lists them)");
+}
+
+double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
+  double reaction[3] = {0, 0, 0};
+  for (const auto& r : fem.reactions)
+    for (int a = 0; a < 3; ++a) reaction[a] += r.force[a];
+  double imbalance = 0, applied = 0;
+  for (int a = 0; a < 3; ++a) {
+    imbalance += std::pow(reaction[a] + fem.applied[a], 2);
+    applied += std::pow(fem.applied[a], 2);
+  }
+  return std::sqrt(imbalance / applied);
+}
+
+void finish(const fs::path& dir, const std::string& case_name, nlohmann::json json,
+            const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
+            std::ostream& log) {
+  // The gate.
+  outcome.gated = 0;
+  outcome.failures.clear();
+  for (const auto& m : outcome.metrics) {
+    auto it = gate.find(m.name);
+    if (it == gate.end()) continue;
+    ++outcome.gated;
+    if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second});
+  }
+
+  // Summary: JSON for programs, a table for people, JUnit XML for CI systems.
+  for (const auto& m : outcome.metrics) {
+    nlohmann::json entry{{"value", std::isfinite(m.value) ? nlohmann::json(m.value) : nlohmann::json("inf")},
+                         {"meaning", m.meaning}};
+    if (auto it = gate.find(m.name); it != gate.end()) {
+      entry["limit"] = it->second;
+      entry["passed"] = m.value <= it->second;
+    }
+    json["metrics"][m.name] = entry;
+  }
+  json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
+  open_out(dir / "summary.json") << json.dump(2) << "\n";
+
+  std::ostringstream table;
+  for (const auto& n : notes) table << n << "\n";
+  if (!notes.empty()) table << "\n";
+  table << std::left << std::setw(40) << "metric" << std::right << std::setw(14) << "value" << std::setw(12) << "limit"
+        << "\n";
+  for (const auto& m : outcome.metrics) {
+    table << std::left << std::setw(40) << m.name << std::right << std::setw(14) << std::setprecision(5) << m.value;
+    if (auto it = gate.find(m.name); it != gate.end())
+      table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
+    table << "\n";
+  }
+  open_out(dir / "summary.txt") << table.str();
+  log << table.str();
+
+  auto junit = open_out(dir / "junit.xml");
+  junit << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n  <testsuite name=\"compare."
+        << xml_escape(case_name) << "\" tests=\"" << outcome.gated << "\" failures=\"" << outcome.failures.size()
+        << "\">\n";
+  for (const auto& [name, limit] : gate) {
+    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(), [&](const Metric& x) { return x.name == name; });
+    if (m == outcome.metrics.end()) throw Error("compare: gated metric " + name + " was not computed");
+    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(name) << "\">";
+    if (!(m->value <= limit))
+      junit << "<failure message=\"" << xml_escape(name) << " = " << m->value << " exceeds " << limit << " by "
+            << m->value - limit << "\"/>";
+    junit << "</testcase>\n";
+  }
+  junit << "  </testsuite>\n</testsuites>\n";
+  if (!junit) throw Error((dir / "junit.xml").string() + ": write failed");
+}
+
+void run_figure_script(const std::string& script, const fs::path& dir, const std::string& title, std::ostream& log) {
+  log << "compare: drawing figures (" << fs::path(script).filename().string() << ")\n" << std::flush;
+  const std::string command = "/usr/bin/python3 " + shell_quote(script) + " " + shell_quote(dir.string()) +
+                              " --title " + shell_quote(title) + " >" + shell_quote((dir / "figures.log").string()) +
+                              " 2>&1";
+  if (std::system(command.c_str()) != 0) {
+    std::ifstream in(dir / "figures.log");
+    std::string last, line;
+    while (std::getline(in, line))
+      if (!line.empty()) last = line;
+    throw Error(fs::path(script).filename().string() + " failed: " + last);
+  }
+}
+
+}  // namespace compare::report

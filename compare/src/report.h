@@ -1,0 +1,52 @@
+#pragma once
+// What every comparison (agent against FEM, PBD against FEM) shares: checking the gate's metric
+// names, the gate itself, summary.json / summary.txt / junit.xml, the figure script, timing and
+// FEM equilibrium. Private to the compare library.
+#include <compare/compare_study.h>
+#include <fem_reference/fem.h>
+#include <workbench/case_file.h>
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace compare {
+
+/// The metrics of the PBD comparison (pbd_compare.cc), for metric_names.
+std::vector<std::string> pbd_metric_names();
+
+}  // namespace compare
+
+namespace compare::report {
+
+double seconds_since(std::chrono::steady_clock::time_point t);
+
+/// An output file with 12 significant digits; throws workbench::Error if it cannot be opened.
+std::ofstream open_out(const std::filesystem::path& file);
+
+/// Rejects (case-file error naming compare.gate.<name>) a gate key that is not in `names`.
+void check_gate_names(const CompareOptions& options, const std::vector<std::string>& names,
+                      const workbench::CaseTable& root);
+
+/// |sum of reactions + applied| / |applied| of a FEM solution.
+double fem_equilibrium_dev(const fem_reference::FemResult& fem);
+
+/// Applies the gate to `outcome.metrics` (fills failures and gated) and writes summary.json
+/// (`header` plus every metric with meaning, limit and verdict, and the gate's counts),
+/// summary.txt (`notes`, then the metric table, also on `log`) and junit.xml (one test case per
+/// gated metric, a <failure> for each one over its limit) into `dir`.
+void finish(const std::filesystem::path& dir, const std::string& case_name, nlohmann::json header,
+            const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
+            std::ostream& log);
+
+/// Runs `/usr/bin/python3 <script> <dir> --title <title>` (a script of compare/), output into
+/// dir/figures.log; throws workbench::Error with its last line when it fails.
+void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
+                       std::ostream& log);
+
+}  // namespace compare::report

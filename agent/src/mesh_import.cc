@@ -20,12 +20,6 @@ struct MeshError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string last_gmsh_error() {
-  std::string error;
-  gmsh::logger::getLastError(error);
-  return error.empty() ? "gmsh failed" : error;
-}
-
 std::string point_text(const Eigen::Vector3d& x, int dim) {
   std::ostringstream s;
   s << "(" << x[0] << ", " << x[1];
@@ -38,47 +32,11 @@ std::string point_text(const Eigen::Vector3d& x, int dim) {
 
 ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
-  if (!fs::is_regular_file(file)) throw MeshError(name + ": no such mesh file");
-  const std::string ext = file.extension().string();
-  if (ext != ".geo" && ext != ".msh") throw MeshError(name + ": a mesh must be a gmsh .geo or .msh file");
-  if (ext == ".msh" && !parameters.empty()) throw MeshError(name + ": mesh parameters apply to .geo files only");
-
   ImportedMesh out;
   try {
-    if (ext == ".geo") {
-      // The names the .geo declares (DefineConstant), read before any is set from outside.
-      workbench::gmsh_begin();
-      gmsh::open(name);
-      std::vector<std::string> names;
-      gmsh::onelab::getNames(names);
-      for (const auto& n : names)
-        if (n.find('/') == std::string::npos) out.parameters.push_back(n);
-      for (const auto& [key, value] : parameters)
-        if (std::find(out.parameters.begin(), out.parameters.end(), key) == out.parameters.end())
-          throw MeshError(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
-    }
-    workbench::gmsh_begin();
-    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
-    gmsh::logger::stop();
-    gmsh::logger::start();
-    gmsh::open(name);
-    // Error() in a .geo is logged, not thrown: report the first one.
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    for (const auto& line : log)
-      if (line.rfind("Error", 0) == 0) {
-        const auto colon = line.find(':');
-        throw MeshError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
-      }
-    if (ext == ".geo") gmsh::model::mesh::generate(gmsh::model::getDimension());
-    gmsh::logger::stop();
-  } catch (const MeshError&) {
-    workbench::gmsh_reset();
-    throw;
-  } catch (...) {
-    std::string error = last_gmsh_error();
-    workbench::gmsh_reset();
-    throw MeshError(name + ": " + error);
+    out.parameters = workbench::gmsh_load(file, parameters);
+  } catch (const std::runtime_error& e) {
+    throw MeshError(e.what());
   }
 
   const int dim = gmsh::model::getDimension();

@@ -2,27 +2,82 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace workbench {
 
 namespace {
-bool initialised = false;
-}
 
-void gmsh_begin() {
-  if (!initialised) {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    initialised = true;
+bool initialised = false;
+
+/// A fresh gmsh: options a previous .geo set (Mesh.ElementOrder, ...) and the parsing state gmsh
+/// 4.8 keeps after an Error() survive gmsh::clear() and go only with finalize(); the .geo
+/// parser's variables survive finalize() and go only with clear().
+void fresh_gmsh() {
+  if (initialised) {
+    gmsh::logger::stop();
+    gmsh::finalize();
   }
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", 0);
   gmsh::clear();
   gmsh::onelab::clear();
+  initialised = true;
 }
 
-void gmsh_reset() {
-  if (!initialised) return;
-  gmsh::logger::stop();  // drops the logged messages, errors included
-  gmsh::finalize();
-  initialised = false;
+std::string last_error() {
+  std::string error;
+  gmsh::logger::getLastError(error);
+  return error.empty() ? "gmsh failed" : error;
+}
+
+struct LoadError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace
+
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+  const std::string name = file.string();
+  if (!std::filesystem::is_regular_file(file)) throw std::runtime_error(name + ": no such mesh file");
+  const std::string ext = file.extension().string();
+  if (ext != ".geo" && ext != ".msh") throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file");
+  if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters apply to .geo files only");
+  std::vector<std::string> declared;
+  try {
+    if (ext == ".geo") {
+      // The names the .geo declares, read before any is set from outside.
+      fresh_gmsh();
+      gmsh::open(name);
+      std::vector<std::string> names;
+      gmsh::onelab::getNames(names);
+      for (const auto& n : names)
+        if (n.find('/') == std::string::npos) declared.push_back(n);
+      for (const auto& [key, value] : parameters)
+        if (std::find(declared.begin(), declared.end(), key) == declared.end())
+          throw LoadError(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
+    }
+    fresh_gmsh();
+    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
+    gmsh::logger::start();
+    gmsh::open(name);
+    // Error() in a .geo is logged, not always thrown: report the first one.
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    for (const auto& line : log)
+      if (line.rfind("Error", 0) == 0) {
+        const auto colon = line.find(':');
+        throw LoadError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
+      }
+    if (ext == ".geo") gmsh::model::mesh::generate(gmsh::model::getDimension());
+    gmsh::logger::stop();
+  } catch (const LoadError&) {
+    throw;
+  } catch (...) {
+    throw std::runtime_error(name + ": " + last_error());
+  }
+  return declared;
 }
 
 }  // namespace workbench

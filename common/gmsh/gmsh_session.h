@@ -1,13 +1,19 @@
 #pragma once
-// gmsh keeps global state (models, ONELAB parameters, parser variables, error counters), shared
-// by every module that meshes in this process. All of them go through these two functions.
+// gmsh keeps global state (models, options a .geo sets, ONELAB parameters, parser variables,
+// error counters), shared by every module that meshes in this process. All of them load meshes
+// through gmsh_load(), which starts every load from a freshly initialised gmsh.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
 namespace workbench {
 
-/// Initialises gmsh quietly if needed and starts from an empty model and no ONELAB parameters.
-void gmsh_begin();
-
-/// After gmsh reported an error: finalises it, so that the next gmsh_begin() starts afresh
-/// (gmsh 4.8 keeps parsing state after an error in a .geo, which breaks later imports).
-void gmsh_reset();
+/// Opens a gmsh .geo (and meshes it in its own dimension) or .msh file into gmsh's current model.
+/// `parameters` override the .geo's DefineConstant values (ONELAB numbers); a name the .geo does
+/// not declare is an error, and so are parameters for a .msh. Returns the names the .geo declares.
+/// Errors (no such file, a .geo's Error(), gmsh failures) are std::runtime_error with a one-line
+/// message starting with the file name. The model stays loaded until the next gmsh_load().
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
 
 }  // namespace workbench

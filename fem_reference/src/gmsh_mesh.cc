@@ -18,12 +18,6 @@ using workbench::Error;
 
 namespace {
 
-std::string last_gmsh_error() {
-  std::string error;
-  gmsh::logger::getLastError(error);
-  return error.empty() ? "gmsh failed" : error;
-}
-
 struct TypeInfo {
   int dim;
   bool simplex;
@@ -55,54 +49,13 @@ std::string type_name(int type) {
 
 PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
-  if (!fs::is_regular_file(file)) throw Error(name + ": no such mesh file");
-  const std::string ext = file.extension().string();
-  if (ext != ".geo" && ext != ".msh") throw Error(name + ": a mesh must be a gmsh .geo or .msh file");
-  if (ext == ".msh" && !parameters.empty()) throw Error(name + ": mesh parameters apply to .geo files only");
-
-  // The one gmsh session of the process (common/gmsh), shared with the agent's mesh import.
+  // The one gmsh loader of the process (common/gmsh), shared with the agent and PBD readers.
   try {
-    if (ext == ".geo") {
-      // The names the .geo declares (DefineConstant), read before any is set from outside.
-      workbench::gmsh_begin();
-      gmsh::open(name);
-      std::vector<std::string> names, declared;
-      gmsh::onelab::getNames(names);
-      for (const auto& n : names)
-        if (n.find('/') == std::string::npos) declared.push_back(n);
-      for (const auto& [key, value] : parameters)
-        if (std::find(declared.begin(), declared.end(), key) == declared.end())
-          throw Error(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
-    }
-    workbench::gmsh_begin();
-    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
-    gmsh::logger::stop();
-    gmsh::logger::start();
-    gmsh::open(name);
-    // Error() in a .geo is logged, not thrown: report the first one.
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    for (const auto& line : log)
-      if (line.rfind("Error", 0) == 0) {
-        const auto colon = line.find(':');
-        throw Error(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
-      }
-    if (ext == ".geo") gmsh::model::mesh::generate(gmsh::model::getDimension());
-    gmsh::logger::stop();
-  } catch (const Error&) {
-    workbench::gmsh_reset();
-    throw;
-  } catch (...) {
-    std::string error = last_gmsh_error();
-    workbench::gmsh_reset();
-    throw Error(name + ": " + error);
+    workbench::gmsh_load(file, parameters);
+  } catch (const std::runtime_error& e) {
+    throw Error(e.what());
   }
 
-  // Options a .geo sets (Mesh.ElementOrder, sizes, ...) outlive gmsh::clear(): start the next
-  // import from a fresh gmsh whatever happens below.
-  struct Reset {
-    ~Reset() { workbench::gmsh_reset(); }
-  } reset;
   PlainMesh mesh;
   mesh.source = name;
   const int dim = gmsh::model::getDimension();

@@ -27,42 +27,11 @@ namespace {
 [[noreturn]] void fail(const fs::path& file, const std::string& what) { throw Error(file.string() + ": " + what); }
 
 LoadedMesh read_gmsh(const fs::path& file, const std::map<std::string, double>& parameters) {
-  const std::string name = file.string();
-  const bool geo = file.extension() == ".geo";
   LoadedMesh out;
   try {
-    if (geo && !parameters.empty()) {
-      // The names the .geo declares (DefineConstant), read before any is set from outside.
-      workbench::gmsh_begin();
-      gmsh::open(name);
-      std::vector<std::string> names;
-      gmsh::onelab::getNames(names);
-      for (const auto& [key, value] : parameters)
-        if (std::find(names.begin(), names.end(), key) == names.end())
-          throw Error(name + ": unknown mesh parameter '" + key + "' (the .geo declares none of that name)");
-    }
-    workbench::gmsh_begin();
-    for (const auto& [key, value] : parameters) gmsh::onelab::setNumber(key, {value});
-    gmsh::logger::stop();
-    gmsh::logger::start();
-    gmsh::open(name);
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    for (const auto& line : log)
-      if (line.rfind("Error", 0) == 0) {
-        const auto colon = line.find(':');
-        throw Error(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
-      }
-    if (geo) gmsh::model::mesh::generate(gmsh::model::getDimension());
-    gmsh::logger::stop();
-  } catch (const Error&) {
-    workbench::gmsh_reset();
-    throw;
-  } catch (...) {
-    std::string error;
-    gmsh::logger::getLastError(error);
-    workbench::gmsh_reset();
-    fail(file, error.empty() ? "gmsh could not read it" : error);
+    workbench::gmsh_load(file, parameters);
+  } catch (const std::runtime_error& e) {
+    throw Error(e.what());
   }
 
   const int dim = gmsh::model::getDimension();

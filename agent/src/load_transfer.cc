@@ -51,12 +51,20 @@ void LoadTransfer::clear_touched() {
   for (const auto& t : touched_) {
     const int l0 = t.axis == 0 ? 1 : 0, l1 = t.axis == 2 ? 1 : 2;
     const std::size_t base = std::size_t(t.layer) * grid_.stride(t.axis);
-    for (int v = t.box.v_lo; v <= t.box.v_hi; ++v)
-      for (int u = t.box.u_lo; u <= t.box.u_hi; ++u) {
-        const std::size_t cell = base + u * grid_.stride(l0) + v * grid_.stride(l1);
-        std::fill_n(&faces_[cell * nd], nd, 0.0);
-        generation_[cell] = -1;
+    const std::size_t s0 = grid_.stride(l0), s1 = grid_.stride(l1);
+    const int width = t.box.u_hi - t.box.u_lo + 1;
+    for (int v = t.box.v_lo; v <= t.box.v_hi; ++v) {
+      const std::size_t first = base + t.box.u_lo * s0 + v * s1;
+      if (s0 == 1) {  // a contiguous row: one fill each
+        std::fill_n(faces_.begin() + first * nd, std::size_t(width) * nd, 0.0);
+        std::fill_n(generation_.begin() + first, width, -1);
+        continue;
       }
+      for (int u = 0; u < width; ++u) {
+        std::fill_n(faces_.begin() + (first + u * s0) * nd, nd, 0.0);
+        generation_[first + u * s0] = -1;
+      }
+    }
   }
   touched_.clear();
 }

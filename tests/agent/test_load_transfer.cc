@@ -187,6 +187,28 @@ TEST(AgentRules, CubesPassFrictionAndPoissonToFourSideNeighbours) {
   }
 }
 
+TEST(AgentRules, ALoadAlongAnyAxisFollowsTheSameRules) {
+  // The seed's case (down, -y, onto a rigid base) and the same turned a quarter: a load moving +x
+  // from the left face onto a rigid right side. Cell (x, y) of the first is cell (6 - y, x) of
+  // the second; its faces +y, -y, -x, +x are the second's -x, +x, -y, +y.
+  Grid down = plate(7, 7);
+  Grid across = Grid::box(2, {7, 7, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
+  for (auto& b : across.sides[kPlusX]) b = Boundary::Rigid;
+  const Coefficients k = coefficients(0.5, 0.5, 0.25, 0.5, 1e-4);
+  for (auto rules : {RuleSet::Patent, RuleSet::Conserving}) {
+    LoadTransfer a(down, kMaterial, k, rules), b(across, kMaterial, k, rules);
+    a.solve({{down.index(3, 6, 0), direction(1, false), 1.0}});
+    b.solve({{across.index(0, 3, 0), direction(0, true), 1.0}});
+    ASSERT_GT(a.diagnostics().agents_generated, 10u);
+    const int to[4] = {kMinusY, kPlusY, kPlusX, kMinusX};  // the second's face for -x, +x, -y, +y
+    for (int y = 0; y < 7; ++y)
+      for (int x = 0; x < 7; ++x)
+        for (int f = 0; f < 4; ++f)
+          EXPECT_DOUBLE_EQ(face(a, x, y, f), face(b, 6 - y, x, to[f])) << x << "," << y << " face " << f;
+    EXPECT_DOUBLE_EQ(a.diagnostics().rigid_reaction, b.diagnostics().rigid_reaction);
+  }
+}
+
 TEST(AgentRules, LoadsFarApartSuperpose) {
   const Grid g = plate(61, 20);
   const Coefficients k = coefficients(0.5, 0.5, 0.25, 0.5, 1e-3);

@@ -11,7 +11,10 @@
 // Meshes with quadrilaterals/hexahedra live on a parallel::distributed::Triangulation (p4est, also on
 // one rank), triangles/tetrahedra on a serial Triangulation with FE_SimplexP. Linear algebra:
 // Trilinos (Epetra) matrices; CG with ML smoothed-aggregation AMG given the rigid body modes as
-// near-null space, or Amesos KLU as the direct solver.
+// near-null space, or Amesos KLU as the direct solver. On quadrilaterals/hexahedra, fem.solver = "mg"
+// (and "auto" above direct_limit) is CG with matrix-free geometric multigrid (mg_solver.cc): no
+// global matrix is assembled.
+#include "mg_solver.h"
 #include "plain_mesh.h"
 
 #include <workbench/error.h>
@@ -124,7 +127,13 @@ double resident_bytes() {
 void profile(const char* what, std::chrono::steady_clock::time_point& t) {
   static const bool on = std::getenv("WORKBENCH_FEM_PROFILE") != nullptr;
   if (!on) return;
-  std::fprintf(stderr, "fem-profile: %-28s %8.3f s  rss %8.1f MB\n", what, seconds_since(t), resident_bytes() / 1e6);
+  static double cpu_before = 0;
+  struct rusage u {};
+  getrusage(RUSAGE_SELF, &u);
+  const double cpu = double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  std::fprintf(stderr, "fem-profile: %-28s %8.3f s (cpu %7.3f s)  rss %8.1f MB\n", what, seconds_since(t),
+               cpu - cpu_before, resident_bytes() / 1e6);
+  cpu_before = cpu;
   t = std::chrono::steady_clock::now();
 }
 
@@ -261,7 +270,13 @@ class ElasticProblem {
 
   /// Element matrix and load vector of one cell (body force and tractions).
   void cell_system(const typename DoFHandler<dim>::active_cell_iterator& cell, FEValues<dim>& fe_values,
-                   FEFaceValues<dim>& fe_face_values, FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs);
+                   FEFaceValues<dim>& fe_face_values, FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs,
+                   bool with_matrix = true);
+  /// The solver may be matrix-free geometric multigrid (decided in make_grid: p4est needs to know).
+  bool may_use_mg() const {
+    return !mesh_.simplex && degree_ <= 2 &&
+           (problem_.options.solver == SolverKind::Mg || problem_.options.solver == SolverKind::Auto);
+  }
   std::vector<int> constrained_components(const Support& s) const;
   void say(const std::string& line) const {
     if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) *log_ << "fem: " << line << std::endl;
@@ -272,6 +287,7 @@ class ElasticProblem {
   const PlainMesh& mesh_;
   std::ostream* log_;
   const int degree_;
+  bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
   double lambda_ = 0, mu_ = 0, lambda_solid_ = 0;  // lambda_ is lambda* in plane stress
   double thickness_ = 1;                          // 2D: force = thickness * per-unit-thickness force
 
@@ -329,7 +345,10 @@ void ElasticProblem<dim>::make_grid() {
     GridTools::invert_all_negative_measure_cells(vertices, cells);
     GridTools::consistently_order_cells(cells);
     if (Utilities::MPI::n_mpi_processes(comm_) > 1)
-      tria_ = std::make_unique<parallel::distributed::Triangulation<dim>>(comm_);
+      tria_ = std::make_unique<parallel::distributed::Triangulation<dim>>(
+          comm_, Triangulation<dim>::none,
+          may_use_mg() ? parallel::distributed::Triangulation<dim>::construct_multigrid_hierarchy
+                       : parallel::distributed::Triangulation<dim>::default_setting);
     else  // one rank: the serial triangulation refines faster and needs less memory than p4est's
       tria_ = std::make_unique<Triangulation<dim>>();
     mapping_ = std::make_unique<MappingQ<dim>>(1);
@@ -422,15 +441,18 @@ void ElasticProblem<dim>::setup_system() {
   constraints_.close();
   profile("constraints", t);
 
+  const auto& o = problem_.options;
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || dof_handler_.n_dofs() > std::size_t(o.direct_limit));
+  rhs_.reinit(owned_, comm_);
+  solution_.reinit(owned_, comm_);
+  ghosted_.reinit(owned_, relevant_, comm_);
+  if (use_mg_) return;  // matrix-free: no sparsity pattern, no matrix
   DynamicSparsityPattern dsp(relevant_);
   DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
   SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
   profile("sparsity pattern", t);
   matrix_.reinit(owned_, owned_, dsp, comm_);
   profile("matrix reinit", t);
-  rhs_.reinit(owned_, comm_);
-  solution_.reinit(owned_, comm_);
-  ghosted_.reinit(owned_, relevant_, comm_);
 }
 
 /// The supports must hold every rigid body motion: translations and rotations, evaluated at the
@@ -499,7 +521,8 @@ void ElasticProblem<dim>::check_rigid_motion() const {
 template <int dim>
 void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cell_iterator& cell,
                                       FEValues<dim>& fe_values, FEFaceValues<dim>& fe_face_values,
-                                      FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs) {
+                                      FullMatrix<double>& cell_matrix, Vector<double>& cell_rhs,
+                                      bool with_matrix) {
   const unsigned n = fe_->n_dofs_per_cell(), nq = fe_values.n_quadrature_points;
   cell_matrix = 0;
   cell_rhs = 0;
@@ -511,8 +534,8 @@ void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cel
                     problem_.body_force[2] != 0;
   for (unsigned q = 0; q < nq; ++q) {
     const double JxW = fe_values.JxW(q);
-    for (unsigned i = 0; i < n; ++i) grads[i] = fe_values.shape_grad(i, q);
-    for (unsigned i = 0; i < n; ++i) {
+    for (unsigned i = 0; i < n && with_matrix; ++i) grads[i] = fe_values.shape_grad(i, q);
+    for (unsigned i = 0; i < n && with_matrix; ++i) {
       const unsigned ci = comp[i];
       const Tensor<1, dim>& gi = grads[i];
       for (unsigned j = 0; j <= i; ++j) {
@@ -597,12 +620,23 @@ void ElasticProblem<dim>::assemble_system() {
   Vector<double> cell_rhs(n);
   std::vector<types::global_dof_index> dofs(n);
   std::array<double, 3> applied{};
+  const bool body = problem_.body_force_function || problem_.body_force[0] != 0 || problem_.body_force[1] != 0 ||
+                    problem_.body_force[2] != 0;
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
-    cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
-    for (unsigned i = 0; i < n; ++i) applied[fe_->system_to_component_index(i).first] += cell_rhs(i);
     cell->get_dof_indices(dofs);
-    constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, matrix_, rhs_);
+    if (!use_mg_) {
+      cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
+      constraints_.distribute_local_to_global(cell_matrix, cell_rhs, dofs, matrix_, rhs_);
+    } else {
+      // Right-hand side only; the element matrix where it moves inhomogeneous constraints over.
+      bool inhomogeneous = false;
+      for (auto d : dofs) inhomogeneous = inhomogeneous || constraints_.is_inhomogeneously_constrained(d);
+      if (!inhomogeneous && !body && (!cell->at_boundary() || traction_group_.empty())) continue;
+      cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs, inhomogeneous);
+      constraints_.distribute_local_to_global(cell_rhs, dofs, rhs_, cell_matrix);
+    }
+    for (unsigned i = 0; i < n; ++i) applied[fe_->system_to_component_index(i).first] += cell_rhs(i);
   }
 
   // Point forces at the nearest vertex: every rank proposes its nearest vertex, all agree on the
@@ -639,7 +673,7 @@ void ElasticProblem<dim>::assemble_system() {
           }
         }
   }
-  matrix_.compress(VectorOperation::add);
+  if (!use_mg_) matrix_.compress(VectorOperation::add);
   rhs_.compress(VectorOperation::add);
   for (int a = 0; a < 3; ++a) applied_[a] = Utilities::MPI::sum(applied[a], comm_) * thickness_;
 }
@@ -653,6 +687,32 @@ void ElasticProblem<dim>::solve() {
   if (rhs_norm == 0) {
     solution_ = 0;
     result_.solver = "none (no load)";
+  } else if (use_mg_) {
+    auto t = std::chrono::steady_clock::now();
+    MgSettings s;
+    s.lambda = lambda_;
+    s.mu = mu_;
+    s.tolerance = o.tolerance;
+    s.max_iterations = o.max_iterations;
+    s.direct_limit = o.direct_limit;
+    if (const char* d = std::getenv("WORKBENCH_FEM_MG_DEGREE")) s.smoother_degree = std::atoi(d);
+    MgBoundaries boundaries;
+    for (std::size_t k = 0; k < problem_.supports.size(); ++k) {
+      ComponentMask mask(dim, false);
+      for (int c : constrained_components(problem_.supports[k])) mask.set(c, true);
+      std::set<types::boundary_id> ids;
+      for (types::boundary_id id = 1; id < groups_of_id_.size(); ++id)
+        if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[k]))) ids.insert(id);
+      if (!ids.empty()) boundaries.emplace_back(ids, mask);
+    }
+    const auto outcome = solve_mg(*mapping_, dof_handler_, constraints_, boundaries, rhs_, solution_, s,
+                                  [&](const char* what) { profile(what, t); });
+    result_.solver = outcome.solver;
+    result_.iterations = outcome.iterations;
+    constraints_.distribute(solution_);
+    result_.residual = outcome.residual;
+    ghosted_ = solution_;
+    return;
   } else if (direct) {
     SolverControl control(1, 0);
     TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");

@@ -22,8 +22,11 @@ FemOptions read_fem_options(const workbench::CaseTable& root) {
   o.degree = t.integer("degree", 1, 1, 2);
   const std::string model = t.text("model", "plane_stress", {"plane_stress", "plane_strain"});
   o.model = model == "plane_stress" ? Model::PlaneStress : Model::PlaneStrain;
-  const std::string solver = t.text("solver", "auto", {"auto", "direct", "amg"});
-  o.solver = solver == "auto" ? SolverKind::Auto : solver == "direct" ? SolverKind::Direct : SolverKind::Amg;
+  const std::string solver = t.text("solver", "auto", {"auto", "direct", "amg", "mg"});
+  o.solver = solver == "auto"     ? SolverKind::Auto
+             : solver == "direct" ? SolverKind::Direct
+             : solver == "mg"     ? SolverKind::Mg
+                                  : SolverKind::Amg;
   o.direct_limit = t.integer("direct_limit", 50000, 0, 2000000000);
   o.tolerance = t.number("tolerance", 1e-10, Range{0.0, 1e-2, true, false});
   o.max_iterations = t.integer("max_iterations", 2000, 1, 1000000);

@@ -386,6 +386,105 @@ TEST(FemEquilibrium, TrianglesP2Serial) {
 }
 
 // ------------------------------------------------------------------------------------------------
+// Matrix-free geometric multigrid (solver = "mg") gives the direct solution.
+// ------------------------------------------------------------------------------------------------
+
+/// Largest nodal displacement difference relative to the largest displacement; also checks the
+/// reactions and every cell stress to the same relative accuracy.
+double relative_difference(const FemResult& a, const FemResult& b) {
+  EXPECT_EQ(a.n_dofs, b.n_dofs);
+  double umax = 0, diff = 0;
+  for (std::size_t i = 0; i < a.node_displacement.size(); ++i) {
+    umax = std::max(umax, std::abs(a.node_displacement[i]));
+    diff = std::max(diff, std::abs(a.node_displacement[i] - b.node_displacement[i]));
+  }
+  EXPECT_GT(umax, 0.0);
+  double smax = 0, sdiff = 0;
+  for (std::size_t e = 0; e < a.cell_count(); ++e) {
+    smax = std::max(smax, std::abs(a.von_mises[e]));
+    sdiff = std::max(sdiff, std::abs(a.sigma_x[e] - b.sigma_x[e]) + std::abs(a.sigma_y[e] - b.sigma_y[e]) +
+                                std::abs(a.tau_xy[e] - b.tau_xy[e]));
+  }
+  double fmax = 0, fdiff = 0;
+  for (std::size_t g = 0; g < a.reactions.size(); ++g)
+    for (int k = 0; k < 3; ++k) {
+      fmax = std::max(fmax, std::abs(a.reactions[g].force[k]));
+      fdiff = std::max(fdiff, std::abs(a.reactions[g].force[k] - b.reactions[g].force[k]));
+    }
+  return std::max({diff / umax, sdiff / smax, fmax > 0 ? fdiff / fmax : 0.0});
+}
+
+void expect_mg_matches_direct(const std::string& name, const std::string& boundary, const std::string& fem,
+                              const std::string& mesh = "/meshes/plate2d.geo",
+                              const std::string& parameters = "h = 0.01\nlw = 0.02\n") {
+  const auto direct = run_case(write_case(name + "_direct.toml", plate_case(boundary, fem + "\nsolver = \"direct\"", mesh, parameters)));
+  const auto mg = run_case(
+      write_case(name + "_mg.toml", plate_case(boundary, fem + "\nsolver = \"mg\"\ntolerance = 1e-12", mesh, parameters)));
+  EXPECT_EQ(direct.solver, "direct (Amesos_Klu)");
+  EXPECT_EQ(mg.solver.rfind("cg+gmg (matrix-free", 0), 0u) << mg.solver;
+  EXPECT_GT(mg.iterations, 0);
+  EXPECT_LT(mg.iterations, 25) << name;  // flat: 6-12 on these meshes
+  EXPECT_LT(mg.residual, 1e-12);
+  EXPECT_LT(relative_difference(direct, mg), 1e-9) << name;
+  expect_balance(mg, 2.0);
+}
+
+TEST(FemMultigrid, Q1PlaneStressMatchesDirect) {
+  expect_mg_matches_direct("mg_q1", "rigid = [\"base\"]", "refine = 2");
+}
+
+TEST(FemMultigrid, Q2PointLoadMatchesDirect) {
+  expect_mg_matches_direct("mg_q2", "rigid = [\"base\"]", "degree = 2\nrefine = 1\nload = \"point\"");
+}
+
+TEST(FemMultigrid, RollersAndClampMatchDirect) {
+  // One component held on the rollers: the level boundary conditions follow the component mask.
+  expect_mg_matches_direct("mg_rollers", "rigid = [\"free\"]\nrollers = [\"base\"]",
+                           "refine = 2\nmodel = \"plane_strain\"");
+}
+
+TEST(FemMultigrid, Block3DWithBodyForceMatchesDirect) {
+  const std::string body =
+      "[mesh]\nfile = \"" + kSource +
+      "/meshes/block3d.geo\"\n[mesh.parameters]\nh = 0.008\nlw = 0.008\n[material]\nyoung = 206e9\npoisson = 0.3\n"
+      "[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\ndirection = \"-y\"\nforce = 5.0\n"
+      "[fem]\nbody_force = [0, -77000, 0]\nrefine = 1\n";
+  const auto direct = run_case(write_case("mg_block_direct.toml", body + "solver = \"direct\"\n"));
+  const auto mg = run_case(write_case("mg_block_mg.toml", body + "solver = \"mg\"\ntolerance = 1e-12\n"));
+  EXPECT_EQ(mg.dim, 3);
+  EXPECT_LT(mg.iterations, 25);
+  EXPECT_LT(mg.residual, 1e-12);
+  EXPECT_LT(relative_difference(direct, mg), 1e-9);
+  const double weight = 77000 * 0.04 * 0.04 * 0.04;
+  expect_balance(mg, 5.0 + weight);
+}
+
+TEST(FemMultigrid, InhomogeneousDisplacementsMatchDirect) {
+  // The manufactured problem: every side prescribed (u = g != 0), body force; Q1 and Q2.
+  for (int degree : {1, 2}) {
+    Manufactured m{2};
+    auto p = m.problem(4, degree);
+    p.options.refine = degree == 1 ? 3 : 2;
+    p.options.solver = SolverKind::Direct;
+    const auto direct = solve_fem(p);
+    p.options.solver = SolverKind::Mg;
+    const auto mg = solve_fem(p);
+    EXPECT_EQ(mg.solver.rfind("cg+gmg (matrix-free", 0), 0u) << mg.solver;
+    EXPECT_LT(mg.iterations, 25);
+    EXPECT_LT(mg.residual, 1e-12);
+    EXPECT_LT(relative_difference(direct, mg), 1e-9) << "Q" << degree;
+    EXPECT_NEAR(mg.l2_error, direct.l2_error, 1e-9 * direct.l2_error);
+    EXPECT_NEAR(mg.h1_error, direct.h1_error, 1e-9 * direct.h1_error);
+  }
+}
+
+TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
+  const auto r = run_case(write_case("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
+  EXPECT_EQ(r.solver.rfind("cg+gmg (matrix-free", 0), 0u) << r.solver;
+  EXPECT_LT(r.residual, 1e-10);  // the default tolerance
+}
+
+// ------------------------------------------------------------------------------------------------
 // Bad input: one clear line each.
 // ------------------------------------------------------------------------------------------------
 

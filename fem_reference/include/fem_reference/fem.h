@@ -27,7 +27,7 @@
 namespace fem_reference {
 
 enum class Model { PlaneStress, PlaneStrain };   ///< 2D only; 3D meshes are solved as solids
-enum class SolverKind { Auto, Direct, Amg };
+enum class SolverKind { Auto, Direct, Amg, Mg };  ///< Mg: matrix-free geometric multigrid (quads/hexes)
 enum class LoadKind { Traction, Point };
 
 /// The [fem] table of a case file (docs/case-file.md lists each key with unit and default).
@@ -35,7 +35,8 @@ struct FemOptions {
   int degree = 1;                       ///< polynomial degree 1 or 2
   Model model = Model::PlaneStress;
   SolverKind solver = SolverKind::Auto;
-  long direct_limit = 50000;            ///< Auto: direct solver up to this many DoFs, else CG + AMG
+  long direct_limit = 50000;            ///< Auto: direct solver up to this many DoFs, else CG + multigrid
+                                        ///< (geometric on quads/hexes, ML AMG on triangles/tetrahedra)
   double tolerance = 1e-10;             ///< CG: stop at ||K u - f|| <= tolerance * ||f||
   int max_iterations = 2000;
   int refine = 0;                       ///< global refinements of the gmsh mesh

@@ -12,6 +12,7 @@ bash scripts/build.sh
 (cd build && ctest --output-on-failure -j "$(nproc)")
 
 echo "== sanitizers: libraries without deal.II (ASan + UBSan)"
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DWORKBENCH_WITH_FEM=OFF -DWORKBENCH_SANITIZE=ON >/dev/null
 cmake --build build-sanitize -j "$(nproc)"
 # gmsh 4.8 leaks a few bytes inside libgmsh when a .geo stops at Error(): suppressed, ours are not.

@@ -1,6 +1,8 @@
 // FEM reference speed: setup, assembly and solve time against DoFs for the 2D plate (plane stress,
-// Q1, CG + ML AMG to 1e-8 relative residual), from 1.6e4 to 4e6 DoFs; AMG iterations and memory.
-//   build-fem/bench/fem/fem_bench --benchmark_filter=Plate        (results: docs/performance.md)
+// to 1e-8 relative residual), from 1.6e4 to 4e6 DoFs; iterations and peak memory per DoF.
+// PlateQ1Mg / PlateQ2Mg: CG + matrix-free geometric multigrid (the default above direct_limit);
+// PlateQ1 / PlateQ2: CG + ML AMG.
+//   build-femperf/bench/fem/fem_bench --benchmark_filter=PlateQ1   (results: docs/performance.md)
 // The 1 vs 2 MPI ranks comparison is bench/fem/mpi_ranks.sh.
 #include <fem_reference/fem.h>
 
@@ -10,7 +12,7 @@ namespace {
 
 /// The seed plate's geometry scaled to 88 x 88 coarse cells (W = H = 0.176 m, h = 2 mm, load patch
 /// 16 mm), refined `refine` times: 2 * (88 * 2^r + 1)^2 DoFs.
-fem_reference::FemProblem plate(int refine, int degree) {
+fem_reference::FemProblem plate(int refine, int degree, fem_reference::SolverKind solver) {
   fem_reference::FemProblem p;
   p.name = "bench plate";
   p.mesh_file = WORKBENCH_SOURCE_DIR "/meshes/plate2d.geo";
@@ -22,13 +24,13 @@ fem_reference::FemProblem plate(int refine, int degree) {
   p.tractions.push_back({"load", {0.0, -2.0, 0.0}, {}});
   p.options.degree = degree;
   p.options.refine = refine;
-  p.options.solver = fem_reference::SolverKind::Amg;
+  p.options.solver = solver;
   p.options.tolerance = 1e-8;
   return p;
 }
 
-void run(benchmark::State& state, int degree) {
-  const auto problem = plate(int(state.range(0)), degree);
+void run(benchmark::State& state, int degree, fem_reference::SolverKind solver) {
+  const auto problem = plate(int(state.range(0)), degree, solver);
   fem_reference::FemResult r;
   for (auto _ : state) r = fem_reference::solve_fem(problem);
   state.counters["dofs"] = double(r.n_dofs);
@@ -40,11 +42,15 @@ void run(benchmark::State& state, int degree) {
   state.counters["peak_bytes_per_dof"] = r.peak_memory_bytes / double(r.n_dofs);
 }
 
-void BM_PlateQ1(benchmark::State& state) { run(state, 1); }
-void BM_PlateQ2(benchmark::State& state) { run(state, 2); }
+void BM_PlateQ1(benchmark::State& state) { run(state, 1, fem_reference::SolverKind::Amg); }
+void BM_PlateQ2(benchmark::State& state) { run(state, 2, fem_reference::SolverKind::Amg); }
+void BM_PlateQ1Mg(benchmark::State& state) { run(state, 1, fem_reference::SolverKind::Mg); }
+void BM_PlateQ2Mg(benchmark::State& state) { run(state, 2, fem_reference::SolverKind::Mg); }
 
 }  // namespace
 
 BENCHMARK(BM_PlateQ1)->DenseRange(0, 4)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_PlateQ2)->DenseRange(0, 3)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_PlateQ1Mg)->DenseRange(0, 4)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_PlateQ2Mg)->DenseRange(0, 3)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_MAIN();

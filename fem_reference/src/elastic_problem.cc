@@ -695,7 +695,6 @@ void ElasticProblem<dim>::solve() {
     s.tolerance = o.tolerance;
     s.max_iterations = o.max_iterations;
     s.direct_limit = o.direct_limit;
-    if (const char* d = std::getenv("WORKBENCH_FEM_MG_DEGREE")) s.smoother_degree = std::atoi(d);
     MgBoundaries boundaries;
     for (std::size_t k = 0; k < problem_.supports.size(); ++k) {
       ComponentMask mask(dim, false);
@@ -1081,7 +1080,8 @@ FemResult solve_on_mesh(const FemProblem& problem, const PlainMesh& mesh, const 
     throw;
   } catch (const SolverControl::NoConvergence& e) {
     std::ostringstream s;
-    s << problem.name << ": CG with AMG did not reach the relative residual " << problem.options.tolerance << " in "
+    s << problem.name << ": CG with " << (problem.options.solver == SolverKind::Amg ? "AMG" : "multigrid")
+      << " did not reach the relative residual " << problem.options.tolerance << " in "
       << e.last_step << " iterations (residual " << e.last_residual
       << "); raise fem.max_iterations or use fem.solver = \"direct\"";
     throw Error(s.str());

@@ -34,6 +34,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 
@@ -129,9 +131,15 @@ class CellMatrixOperator : public Subscriptor {
     for (const auto& cell : dof.mg_cell_iterators_on_level(level)) {
       if (!cell->is_locally_owned_on_level()) continue;
       cell->get_mg_dof_indices(dofs);
+      // Shape to about 1e-7 of the cell size (rounding noise of the mesh coordinates removed).
       key.clear();
+      double scale = 0;
       for (unsigned v = 1; v < cell->n_vertices(); ++v)
-        for (int a = 0; a < dim; ++a) key.push_back(float(cell->vertex(v)[a] - cell->vertex(0)[a]));
+        for (int a = 0; a < dim; ++a) scale = std::max(scale, std::abs(cell->vertex(v)[a] - cell->vertex(0)[a]));
+      key.push_back(float(scale));
+      for (unsigned v = 1; v < cell->n_vertices(); ++v)
+        for (int a = 0; a < dim; ++a)
+          key.push_back(float(std::round((cell->vertex(v)[a] - cell->vertex(0)[a]) / scale * 4194304.0)));
       for (unsigned i = 0; i < n_; ++i) key.push_back(boundary.is_element(dofs[i]) ? 1.f : 0.f);
       for (auto d : dofs) cell_dofs_.push_back(partitioner_->global_to_local(d));
       auto [it, added] = shapes.emplace(key, unsigned(shapes.size()));
@@ -191,18 +199,12 @@ class CellMatrixOperator : public Subscriptor {
     const bool ghosted = src.has_ghost_elements();
     if (!ghosted) src.update_ghost_values();
     if (dst.has_ghost_elements()) dst.zero_out_ghost_values();
-    float x[128], y[128];
-    const unsigned n = n_;
-    for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
-      const unsigned* dofs = &cell_dofs_[c * n];
-      const float* m = &matrices_[std::size_t(cell_matrix_[c]) * n * n];
-      for (unsigned i = 0; i < n; ++i) x[i] = src.local_element(dofs[i]);
-      for (unsigned i = 0; i < n; ++i) {
-        float sum = 0;
-        for (unsigned j = 0; j < n; ++j) sum += m[i * n + j] * x[j];
-        y[i] = sum;
-      }
-      for (unsigned i = 0; i < n; ++i) dst.local_element(dofs[i]) += y[i];
+    switch (n_) {  // fixed sizes unrolled: Q1/Q2 in 2D and 3D
+      case 8: apply_cells<8>(dst, src); break;
+      case 18: apply_cells<18>(dst, src); break;
+      case 24: apply_cells<24>(dst, src); break;
+      case 81: apply_cells<81>(dst, src); break;
+      default: apply_cells<0>(dst, src);
     }
     dst.compress(VectorOperation::add);
     for (auto i : constrained_) dst.local_element(i) += src.local_element(i);
@@ -210,6 +212,25 @@ class CellMatrixOperator : public Subscriptor {
   }
 
  private:
+  template <unsigned N>
+  void apply_cells(VectorType& dst, const VectorType& src) const {
+    const unsigned n = N > 0 ? N : n_;
+    float x[128], y[128];
+    float* out = dst.begin();
+    const float* in = src.begin();
+    for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
+      const unsigned* dofs = &cell_dofs_[c * n];
+      const float* m = &matrices_[std::size_t(cell_matrix_[c]) * n * n];
+      for (unsigned i = 0; i < n; ++i) x[i] = in[dofs[i]];
+      for (unsigned i = 0; i < n; ++i) {
+        float sum = 0;
+        for (unsigned j = 0; j < n; ++j) sum += m[i * n + j] * x[j];
+        y[i] = sum;
+      }
+      for (unsigned i = 0; i < n; ++i) out[dofs[i]] += y[i];
+    }
+  }
+
   unsigned n_ = 0;
   std::shared_ptr<const Utilities::MPI::Partitioner> partitioner_;
   std::vector<unsigned> cell_dofs_, cell_matrix_, constrained_;
@@ -326,11 +347,6 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     mf->reinit(mapping, dof, homogeneous, QGauss<1>(degree + 1), data);
     system.initialize(mf);
     system.set_coefficients(s.lambda, s.mu);
-    if (std::getenv("WORKBENCH_FEM_MG_DEBUG")) {
-      unsigned count[4] = {0, 0, 0, 0};
-      for (unsigned c = 0; c < mf->n_cell_batches(); ++c) ++count[std::min(3u, unsigned(mf->get_mapping_info().get_cell_type(c)))];
-      std::fprintf(stderr, "mg: cell types cartesian %u affine %u flat %u general %u\n", count[0], count[1], count[2], count[3]);
-    }
   }
   profile("matrix-free operator");
 
@@ -342,15 +358,17 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   const unsigned n_levels = dof.get_triangulation().n_global_levels();
   MGLevelObject<LevelOperator> levels(0, n_levels - 1);
   std::vector<std::shared_ptr<const Utilities::MPI::Partitioner>> partitioners(n_levels);
-  std::size_t n_shapes = 0;
   for (unsigned level = 0; level < n_levels; ++level) {
     levels[level].build(mapping, dof, mg_constrained, level, s.lambda, s.mu);
     partitioners[level] = levels[level].partitioner();
-    n_shapes += levels[level].shapes();
   }
   MGTransferMatrixFree<dim, float> transfer(mg_constrained);
   transfer.build(dof, partitioners);
-  if (std::getenv("WORKBENCH_FEM_MG_DEBUG")) std::fprintf(stderr, "mg: %zu element matrices stored\n", n_shapes);
+  if (std::getenv("WORKBENCH_FEM_PROFILE")) {
+    std::fprintf(stderr, "fem-profile: element matrices stored per level:");
+    for (unsigned level = 0; level < n_levels; ++level) std::fprintf(stderr, " %zu", levels[level].shapes());
+    std::fprintf(stderr, "\n");
+  }
   profile("multigrid levels");
 
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;

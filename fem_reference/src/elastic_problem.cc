@@ -442,7 +442,11 @@ void ElasticProblem<dim>::setup_system() {
   profile("constraints", t);
 
   const auto& o = problem_.options;
-  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || dof_handler_.n_dofs() > std::size_t(o.direct_limit));
+  // auto: multigrid when the coarse mesh (about n_dofs / 2^(dim refine) DoFs) is solved directly;
+  // a larger coarse mesh is better served by ML on the whole problem.
+  const double coarse_dofs = double(dof_handler_.n_dofs()) / std::pow(2.0, dim * o.refine);
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || (dof_handler_.n_dofs() > std::size_t(o.direct_limit) &&
+                                                            coarse_dofs <= double(o.direct_limit)));
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);

@@ -283,13 +283,61 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
       direct_->initialize(matrix_);
       name = "KLU";
     } else {
-      TrilinosWrappers::PreconditionAMG::AdditionalData amg;
-      amg.elliptic = true;
-      amg.higher_order_elements = degree > 1;
-      amg.smoother_sweeps = 2;
-      amg.aggregation_threshold = 0.02;
+      // ML with the rigid body modes of the coarse mesh as near-null space (as the "amg" solver).
+      const IndexSet& owned0 = dof.locally_owned_mg_dofs(0);
+      const int n_modes = dim == 2 ? 3 : 6;
+      const std::size_t n_local = owned0.n_elements();
+      modes_.assign(n_local * n_modes, 0.0);
+      Point<dim> lo, hi;
+      for (int a = 0; a < dim; ++a) lo[a] = 1e308, hi[a] = -1e308;
+      for (const auto& cell : dof.get_triangulation().cell_iterators_on_level(0))
+        for (unsigned v = 0; v < cell->n_vertices(); ++v)
+          for (int a = 0; a < dim; ++a) {
+            lo[a] = std::min(lo[a], cell->vertex(v)[a]);
+            hi[a] = std::max(hi[a], cell->vertex(v)[a]);
+          }
+      double size = 0;
+      for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
+      const auto& fe = dof.get_fe();
+      Quadrature<dim> support(fe.get_unit_support_points());
+      FEValues<dim> fe_values(mapping, fe, support, update_quadrature_points);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto& cell : dof.mg_cell_iterators_on_level(0)) {
+        if (!cell->is_locally_owned_on_level()) continue;
+        fe_values.reinit(cell);
+        cell->get_mg_dof_indices(dofs);
+        for (unsigned i = 0; i < dofs.size(); ++i) {
+          if (!owned0.is_element(dofs[i])) continue;
+          const std::size_t row = owned0.index_within_set(dofs[i]);
+          const unsigned c = fe.system_to_component_index(i).first;
+          double x[3] = {0, 0, 0};
+          for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
+          modes_[c * n_local + row] = 1;
+          if (dim == 2) {
+            modes_[2 * n_local + row] = c == 0 ? -x[1] : x[0];
+          } else {
+            const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
+            modes_[3 * n_local + row] = rx[c];
+            modes_[4 * n_local + row] = ry[c];
+            modes_[5 * n_local + row] = rz[c];
+          }
+        }
+      }
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic = true;
+      data.higher_order_elements = degree > 1;
+      data.smoother_sweeps = 2;
+      data.aggregation_threshold = 0.02;
+      Teuchos::ParameterList list;
+      std::unique_ptr<Epetra_MultiVector> constant_modes;
+      data.set_parameters(list, constant_modes, matrix_);
+      list.set("PDE equations", dim);
+      list.set("null space: type", "pre-computed");
+      list.set("null space: dimension", n_modes);
+      list.set("null space: vectors", modes_.data());
+      list.set("ML output", 0);
       amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-      amg_->initialize(matrix_, amg);
+      amg_->initialize(matrix_, list);
       name = "ML AMG cycle";
     }
   }
@@ -313,6 +361,7 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
   std::unique_ptr<TrilinosWrappers::SolverDirect> direct_;
   std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
   IndexSet boundary_;
+  std::vector<double> modes_;  // ML keeps a pointer
   mutable LinearAlgebra::distributed::Vector<double> b_, x_;
 };
 

@@ -478,10 +478,20 @@ TEST(FemMultigrid, InhomogeneousDisplacementsMatchDirect) {
   }
 }
 
+TEST(FemMultigrid, CoarseMlCycleMatchesDirect) {
+  // A coarse mesh above direct_limit (882 DoFs > 500): one ML cycle (rigid body modes) as coarse solve.
+  expect_mg_matches_direct("mg_ml_coarse", "rigid = [\"base\"]", "refine = 2\ndirect_limit = 500");
+}
+
 TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
+  // 13 122 DoFs > direct_limit, coarse mesh 882 DoFs <= direct_limit: geometric multigrid.
   const auto r = run_case(write_case("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
   EXPECT_EQ(r.solver.rfind("cg+gmg (matrix-free", 0), 0u) << r.solver;
   EXPECT_LT(r.residual, 1e-10);  // the default tolerance
+  // Coarse mesh above direct_limit: ML on the whole problem instead.
+  const auto ml = run_case(write_case("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 500")));
+  EXPECT_EQ(ml.solver, "cg+amg (ML)");
+  EXPECT_LT(relative_difference(r, ml), 1e-8);
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -137,7 +137,7 @@ struct FemResult {
   std::vector<GroupReaction> reactions;  ///< one per support, in the order of the supports
   std::array<double, 3> applied{};       ///< total applied force (tractions, points, body) [N]
 
-  std::string solver;                    ///< "direct (Amesos_Klu)", "cg+amg (ML)"
+  std::string solver;                    ///< "direct (Amesos_Klu)", "cg+amg (ML)", "cg+gmg (matrix-free, ...)"
   int iterations = 0;                    ///< CG iterations (0 for the direct solver)
   double residual = 0;                   ///< final ||K u - f|| / ||f||
   double l2_error = std::numeric_limits<double>::quiet_NaN();  ///< ||u - u_exact||_L2

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace agent {
 
@@ -146,9 +147,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     // every agent adds `emit` of its load from above; past it a chain runs on until gamma.
     auto friction = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
                         std::size_t first_buf, int lo, int hi, int& ext_lo, int& ext_hi) {
-      for (int dir = 0; dir < 2; ++dir) {
-        const bool up = dir == 0;
-        const int sgn = up ? 1 : -1;
+      // Each way with its direction known at compile time (a generic lambda per way).
+      auto run = [&](auto way) {
+        constexpr bool up = decltype(way)::value;
+        constexpr int sgn = up ? 1 : -1;
         const int end = up ? n : -1;
         double carried = 0;
         int w = up ? lo : hi;
@@ -179,7 +181,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         }
         ext_lo = std::min(ext_lo, last);
         ext_hi = std::max(ext_hi, last);
-      }
+      };
+      run(std::true_type{});
+      run(std::false_type{});
     };
     if (alpha3 > 0) {
       for (int v = box.v_lo; v <= box.v_hi; ++v)
@@ -237,10 +241,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
                          std::size_t first_buf, int lo, int hi, int line_distance, int& reach_lo, int& reach_hi) {
       const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
       const int centre = lateral == l0 ? eu : ev;
-      for (int dir = 0; dir < 2; ++dir) {
-        const bool up = dir == 0;
+      auto run = [&](auto way) {
+        constexpr bool up = decltype(way)::value;
+        constexpr int sgn = up ? 1 : -1;
         const int face_out = direction(lateral, up), face_in = opposite(face_out);
-        const int sgn = up ? 1 : -1;
         const int end = up ? n : -1;
         double carried = 0;
         int w = up ? lo : hi;
@@ -277,7 +281,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         }
         reach_lo = std::min(reach_lo, last);
         reach_hi = std::max(reach_hi, last);
-      }
+      };
+      run(std::true_type{});
+      run(std::false_type{});
     };
     if (k_.beta < 1 && material_.poisson != 0) {
       for (int v = ext.v_lo; v <= ext.v_hi; ++v)

@@ -43,6 +43,8 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
   for (const auto& [name, faces] : study.mesh.face_groups) groups.push_back(name);
   workbench::check_groups_exist(file, study.setup, groups);
 
+  if (study.setup.loads.empty())
+    root.fail("load", "missing (the agent method needs at least one [[load]] table with group, direction and force)");
   if (!study.setup.roller_groups.empty())
     root.table("boundary").fail("rollers", "the agent method knows rigid and free faces only (rollers are FEM-only)");
   auto& grid = study.mesh.grid;

@@ -20,7 +20,6 @@ StudySetup read_study_setup(const CaseTable& root) {
   s.rigid_groups = boundary.texts("rigid", std::nullopt);
   s.roller_groups = boundary.texts("rollers", std::vector<std::string>{});
   const auto loads = root.tables("load");
-  if (loads.empty()) root.fail("load", "missing (at least one [[load]] table with group, direction and force)");
   for (const auto& l : loads) {
     LoadSpec spec;
     spec.group = l.text("group", std::nullopt);

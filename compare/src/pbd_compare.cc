@@ -25,7 +25,6 @@ namespace fs = std::filesystem;
 using report::open_out;
 using report::seconds_since;
 using workbench::Error;
-using workbench::Range;
 
 namespace {
 
@@ -52,39 +51,6 @@ const std::pair<const char*, const char*> kMetrics[] = {
     {"time.figures_s", "figure [s]"},
     {"time.total_s", "the whole study [s]"},
 };
-
-/// The FEM strip from the shared sections and [fem]. With a [[load]] this is
-/// fem_reference::problem_from_case. Without one (the strip under its weight, fem.body_force,
-/// alone) the shared sections are read here with FemProblem's defaults, because
-/// workbench::read_study_setup requires at least one [[load]].
-fem_reference::FemProblem strip_problem(const workbench::CaseFile& file) {
-  const auto root = file.root();
-  if (!root.tables("load").empty()) return fem_reference::problem_from_case(file);
-  fem_reference::FemProblem p;
-  p.name = file.path().string();
-  const auto mesh = root.table("mesh");
-  p.mesh_file = mesh.path("file", std::nullopt);
-  p.mesh_parameters = mesh.number_map("parameters");
-  const auto material = root.table("material");
-  p.young = material.number("young", p.young, Range::positive());
-  p.poisson = material.number("poisson", p.poisson, Range::open(-1.0, 0.5));
-  p.thickness = material.number("thickness", p.thickness, Range::positive());
-  const auto boundary = root.table("boundary");
-  for (const auto& g : boundary.texts("rigid", std::nullopt))
-    p.supports.push_back({g, fem_reference::SupportKind::Clamped, {}});
-  for (const auto& g : boundary.texts("rollers", std::vector<std::string>{}))
-    p.supports.push_back({g, fem_reference::SupportKind::Roller, {}});
-  if (p.supports.empty()) boundary.fail("rigid", "no supports: the strip needs its clamped end here");
-  p.options = fem_reference::read_fem_options(root);
-  const auto fem = root.table("fem");
-  const auto body = fem.numbers("body_force", std::vector<double>{});
-  if (!body.empty() && body.size() != 2 && body.size() != 3)
-    fem.fail("body_force", "must have 2 (2D) or 3 (3D) components [N/m^3]");
-  for (std::size_t a = 0; a < body.size(); ++a) p.body_force[a] = body[a];
-  if (p.body_force[0] == 0 && p.body_force[1] == 0 && p.body_force[2] == 0)
-    fem.fail("body_force", "the strip has no load: give its weight (rho g, e.g. [0, -77000]) or a [[load]]");
-  return p;
-}
 
 /// The FEM displacement (u_x, u_y) at points of the strip: linear in x along the row of mesh nodes
 /// at the point's height, or between the two rows around it (a structured strip: rows of nodes at
@@ -153,7 +119,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   const auto start = std::chrono::steady_clock::now();
   const auto root = file.root();
   auto study = pbd_study::load_pbd_study(file);  // title and [pbd]
-  auto problem = strip_problem(file);             // [mesh], [material], [boundary], [[load]], [fem]
+  auto problem = fem_reference::problem_from_case(file);             // [mesh], [material], [boundary], [[load]], [fem]
   report::check_gate_names(options, pbd_metric_names(), root);
   file.reject_unknown_keys();
   const std::string case_name = file.path().string();

@@ -65,6 +65,8 @@ FemProblem problem_from_case(const workbench::CaseFile& file) {
   if (p.supports.empty())
     root.table("boundary").fail("rigid", "no supports (rigid and rollers are both empty): the body could move "
                                          "freely, the FEM problem has no unique solution");
+  if (setup.loads.empty() && p.body_force == std::array<double, 3>{})
+    root.fail("load", "missing: nothing loads the body (give a [[load]] table or fem.body_force)");
   return p;
 }
 

@@ -92,7 +92,7 @@ bad unknown 's/^"tip.deflection.rel_error"/"tip.deflection.rel_err"/' \
 bad agent_metric 's/^"pbd.load_dev"/"body.sigma_y.rel_l2"/' 'compare.gate.body.sigma_y.rel_l2: unknown metric'
 bad agent_key 's/^model = "pbd"/model = "pbd"\ndepths = [0.5]/' "agent_key.toml: unknown key 'compare.depths'"
 bad misspelt 's/^damping = /dampin = /' "misspelt.toml: unknown key 'pbd.dampin'"
-bad no_load 's/^body_force = .*//' 'no_load.toml: fem.body_force: the strip has no load'
+bad no_load 's/^body_force = .*//' 'no_load.toml: load: missing: nothing loads the body'
 
 echo "compare pbd gate: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -30,7 +30,7 @@ struct StudySetup {
   double thickness = 1.0;                          ///< [m], 2D only
   std::vector<std::string> rigid_groups;           ///< clamped faces (the seed's rigid base)
   std::vector<std::string> roller_groups;          ///< [boundary] rollers: normal displacement zero (FEM)
-  std::vector<LoadSpec> loads;
+  std::vector<LoadSpec> loads;                     ///< may be empty (a body under its weight, FEM)
   int steps = 1;                                   ///< load steps: k/steps of the loads, k = 1..steps
 };
 

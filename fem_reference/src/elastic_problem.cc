@@ -51,7 +51,6 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <Teuchos_ParameterList.hpp>
 #include <p4est_base.h>
 #include <sc.h>
 
@@ -751,34 +750,13 @@ void ElasticProblem<dim>::solve() {
           const unsigned c = fe_->system_to_component_index(i).first;
           double x[3] = {0, 0, 0};
           for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
-          modes[c * n_local + row] = 1;
-          if (dim == 2) {
-            modes[2 * n_local + row] = c == 0 ? -x[1] : x[0];
-          } else {
-            const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
-            modes[3 * n_local + row] = rx[c];
-            modes[4 * n_local + row] = ry[c];
-            modes[5 * n_local + row] = rz[c];
-          }
+          set_rigid_body_modes(dim, x, c, row, n_local, modes);
         }
       }
     }
     profile("rigid body modes", t);
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    data.elliptic = true;
-    data.higher_order_elements = degree_ > 1;
-    data.smoother_sweeps = 2;
-    data.aggregation_threshold = 0.02;
-    Teuchos::ParameterList list;
-    std::unique_ptr<Epetra_MultiVector> constant_modes;
-    data.set_parameters(list, constant_modes, matrix_);
-    list.set("PDE equations", dim);
-    list.set("null space: type", "pre-computed");
-    list.set("null space: dimension", n_modes);
-    list.set("null space: vectors", modes.data());
-    list.set("ML output", 0);
     TrilinosWrappers::PreconditionAMG amg;
-    amg.initialize(matrix_, list);
+    initialize_elasticity_ml(amg, matrix_, dim, degree_, modes);
     profile("AMG setup", t);
     SolverControl control(o.max_iterations, o.tolerance * rhs_norm, false, false);
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);

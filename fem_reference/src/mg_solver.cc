@@ -312,32 +312,11 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
           const unsigned c = fe.system_to_component_index(i).first;
           double x[3] = {0, 0, 0};
           for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
-          modes_[c * n_local + row] = 1;
-          if (dim == 2) {
-            modes_[2 * n_local + row] = c == 0 ? -x[1] : x[0];
-          } else {
-            const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
-            modes_[3 * n_local + row] = rx[c];
-            modes_[4 * n_local + row] = ry[c];
-            modes_[5 * n_local + row] = rz[c];
-          }
+          set_rigid_body_modes(dim, x, c, row, n_local, modes_);
         }
       }
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.elliptic = true;
-      data.higher_order_elements = degree > 1;
-      data.smoother_sweeps = 2;
-      data.aggregation_threshold = 0.02;
-      Teuchos::ParameterList list;
-      std::unique_ptr<Epetra_MultiVector> constant_modes;
-      data.set_parameters(list, constant_modes, matrix_);
-      list.set("PDE equations", dim);
-      list.set("null space: type", "pre-computed");
-      list.set("null space: dimension", n_modes);
-      list.set("null space: vectors", modes_.data());
-      list.set("ML output", 0);
       amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-      amg_->initialize(matrix_, list);
+      initialize_elasticity_ml(*amg_, matrix_, dim, degree, modes_);
       name = "ML AMG cycle";
     }
   }
@@ -483,5 +462,36 @@ template MgOutcome solve_mg<2>(const Mapping<2>&, DoFHandler<2>&, const AffineCo
 template MgOutcome solve_mg<3>(const Mapping<3>&, DoFHandler<3>&, const AffineConstraints<double>&, const MgBoundaries&,
                                const TrilinosWrappers::MPI::Vector&, TrilinosWrappers::MPI::Vector&, const MgSettings&,
                                const std::function<void(const char*)>&);
+
+void set_rigid_body_modes(int dim, const double* x, unsigned component, std::size_t row, std::size_t n_local,
+                          std::vector<double>& modes) {
+  modes[component * n_local + row] = 1;  // translations
+  if (dim == 2) {
+    modes[2 * n_local + row] = component == 0 ? -x[1] : x[0];
+  } else {
+    const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
+    modes[3 * n_local + row] = rx[component];
+    modes[4 * n_local + row] = ry[component];
+    modes[5 * n_local + row] = rz[component];
+  }
+}
+
+void initialize_elasticity_ml(TrilinosWrappers::PreconditionAMG& amg, const TrilinosWrappers::SparseMatrix& matrix,
+                              int dim, int degree, std::vector<double>& modes) {
+  TrilinosWrappers::PreconditionAMG::AdditionalData data;
+  data.elliptic = true;
+  data.higher_order_elements = degree > 1;
+  data.smoother_sweeps = 2;
+  data.aggregation_threshold = 0.02;
+  Teuchos::ParameterList list;
+  std::unique_ptr<Epetra_MultiVector> constant_modes;
+  data.set_parameters(list, constant_modes, matrix);
+  list.set("PDE equations", dim);
+  list.set("null space: type", "pre-computed");
+  list.set("null space: dimension", dim == 2 ? 3 : 6);
+  list.set("null space: vectors", modes.data());
+  list.set("ML output", 0);
+  amg.initialize(matrix, list);
+}
 
 }  // namespace fem_reference

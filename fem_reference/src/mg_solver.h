@@ -11,6 +11,8 @@
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <functional>
@@ -47,5 +49,14 @@ MgOutcome solve_mg(const dealii::Mapping<dim>& mapping, dealii::DoFHandler<dim>&
                    const dealii::AffineConstraints<double>& constraints, const MgBoundaries& boundaries,
                    const dealii::TrilinosWrappers::MPI::Vector& rhs, dealii::TrilinosWrappers::MPI::Vector& solution,
                    const MgSettings& settings, const std::function<void(const char*)>& profile);
+
+/// ML smoothed aggregation for elasticity, shared by CG + ML and the multigrid's coarse ML cycle:
+/// `modes` holds the rigid body modes (3 columns in 2D, 6 in 3D, of n_local rows each), filled by
+/// set_rigid_body_modes for each owned DoF; ML keeps a pointer to them, so they must outlive `amg`.
+void set_rigid_body_modes(int dim, const double* x, unsigned component, std::size_t row, std::size_t n_local,
+                          std::vector<double>& modes);
+void initialize_elasticity_ml(dealii::TrilinosWrappers::PreconditionAMG& amg,
+                              const dealii::TrilinosWrappers::SparseMatrix& matrix, int dim, int degree,
+                              std::vector<double>& modes);
 
 }  // namespace fem_reference

@@ -9,23 +9,12 @@ and Euler-Bernoulli; (b) PBD - FEM and EB - FEM relative to the largest FEM defl
 Uses Debian's python3-matplotlib and python3-numpy only; call it with /usr/bin/python3.
 """
 import argparse
-import csv
 import os
-import sys
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        sys.exit(f"{path}: no rows")
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+from figures import read_csv  # compare/figures.py: the same CSV reader (and the Agg backend)
 
 
 def main():
@@ -33,7 +22,7 @@ def main():
     parser.add_argument("dir")
     parser.add_argument("--title", default="")
     args = parser.parse_args()
-    c = read_csv(os.path.join(args.dir, "centreline.csv"))
+    c = {k: v.astype(float) for k, v in read_csv(os.path.join(args.dir, "centreline.csv")).items()}
     out = os.path.join(args.dir, "figures")
     os.makedirs(out, exist_ok=True)
 

@@ -146,11 +146,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   const double agent_seconds = seconds_since(t);
 
   // The FEM reference on the same mesh.
-  t = std::chrono::steady_clock::now();
-  fs::create_directories(dir / "fem");
-  const auto fem = fem_reference::solve_fem(problem, dir / "fem", &log);
-  fem_reference::write_fem_csv(fem, dir / "fem");
-  const double fem_seconds = seconds_since(t);
+  double fem_seconds = 0;
+  const auto fem = report::run_fem(problem, dir, log, fem_seconds);
   t = std::chrono::steady_clock::now();
 
   const std::size_t n_cells = grid.count();

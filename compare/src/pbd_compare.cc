@@ -157,11 +157,8 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   const double max_stretch = pbd::Solver(study.model).residuals().distance;
 
   // FEM once.
-  t = std::chrono::steady_clock::now();
-  fs::create_directories(dir / "fem");
-  const auto fem = fem_reference::solve_fem(problem, dir / "fem", &log);
-  fem_reference::write_fem_csv(fem, dir / "fem");
-  const double fem_seconds = seconds_since(t);
+  double fem_seconds = 0;
+  const auto fem = report::run_fem(problem, dir, log, fem_seconds);
   t = std::chrono::steady_clock::now();
   if (fem.dim != 2) throw Error(case_name + ": model = \"pbd\" compares with a 2D FEM strip (plane stress), got a 3D mesh");
 

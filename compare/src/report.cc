@@ -55,6 +55,16 @@ void check_gate_names(const CompareOptions& options, const std::vector<std::stri
                                                      "\" (docs/compare.md lists them)");
 }
 
+fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const std::filesystem::path& dir,
+                                 std::ostream& log, double& seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(dir / "fem");
+  auto fem = fem_reference::solve_fem(problem, dir / "fem", &log);
+  fem_reference::write_fem_csv(fem, dir / "fem");
+  seconds = seconds_since(start);
+  return fem;
+}
+
 double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
   double reaction[3] = {0, 0, 0};
   for (const auto& r : fem.reactions)

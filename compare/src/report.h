@@ -33,6 +33,10 @@ std::ofstream open_out(const std::filesystem::path& file);
 void check_gate_names(const CompareOptions& options, const std::vector<std::string>& names,
                       const workbench::CaseTable& root);
 
+/// Solves the FEM reference with its VTU and CSV output in dir/fem; `seconds` gets the time.
+fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const std::filesystem::path& dir,
+                                 std::ostream& log, double& seconds);
+
 /// |sum of reactions + applied| / |applied| of a FEM solution.
 double fem_equilibrium_dev(const fem_reference::FemResult& fem);
 

@@ -19,7 +19,7 @@ void add_agent_command(CLI::App& app, Action& action) {
     action = [case_file, output] {
       workbench::CaseFile file(*case_file);
       const auto study = agent_study::load_agent_study(file);
-      file.reject_unknown_keys();
+      check_every_section(file);
       const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/agent" : *output;
       workbench::StagedDirectory staged(dir);
       agent_study::write_agent_outputs(study, staged.path(), std::cerr);

@@ -1,6 +1,5 @@
 #include "commands.h"
 
-#include <agent_study.h>
 #include <fem_reference/fem.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
@@ -22,12 +21,7 @@ void add_fem_command(CLI::App& app, Action& action) {
     action = [case_file, output] {
       workbench::CaseFile file(*case_file);
       const auto problem = fem_reference::problem_from_case(file);
-      {  // a case file serves every model: check the other models' sections too before rejecting the rest
-        agent::Coefficients k;
-        agent::RuleSet rules;
-        agent_study::read_agent_section(file.root(), k, rules);
-      }
-      file.reject_unknown_keys();
+      check_every_section(file);
       const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/fem" : *output;
       // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
       const bool root = fem_reference::mpi_rank() == 0;

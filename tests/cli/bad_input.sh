@@ -66,6 +66,7 @@ expect bad_parameter "plate2d.geo: unknown mesh parameter 'hx'" "$(with 'h =' 'h
 expect geo_error "plate2d.geo: plate2d.geo: W, H, lw and the patch's left end xc - lw/2 must be multiples of h" "$(with 'h =' 'h = 0.003')"
 expect syntax "syntax.toml:2:" "$(base_case | sed '2s/.*/file = = "x"/')"
 expect missing_mesh "nowhere.geo: no such mesh file" "$(with file 'file = "nowhere.geo"')"
+expect other_section "other_section.toml: unknown key 'fem.degre'" "$(base_case; printf '[fem]\ndegre = 2\n')"
 expect no_load "no_load.toml: load: missing" "$(base_case | sed '/^\[\[load\]\]/,/^force/d')"
 
 # A case file that does not exist.
@@ -86,6 +87,15 @@ if [ "$(cat "$work/out_keep/marker" 2>/dev/null)" != old ]; then
   failures=$((failures + 1))
 else
   passed=$((passed + 1))
+fi
+
+# A case file with every model's sections ([fem], [compare]) runs under `workbench agent` too.
+sed "s#\.\./meshes#$src/meshes#" "$src/cases/gate_plate.toml" >"$work/shared.toml"
+if "$bin" agent "$work/shared.toml" -o "$work/out_shared" 2>"$work/stderr" && [ -s "$work/out_shared/agent.pvd" ]; then
+  passed=$((passed + 1))
+else
+  echo "FAIL shared: $(tail -1 "$work/stderr")"
+  failures=$((failures + 1))
 fi
 
 echo "cli bad input: $passed passed, $failures failed"

@@ -28,9 +28,12 @@ void add_compare_command(CLI::App& app, Action& action) {
       workbench::StagedDirectory staged(dir);
       const auto outcome = compare::run_compare(file, staged.path(), std::cerr);
       staged.commit();
-      if (!junit->empty())
+      if (!junit->empty()) {
+        const auto parent = std::filesystem::path(*junit).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent);
         std::filesystem::copy_file(staged.target() / "junit.xml", *junit,
                                    std::filesystem::copy_options::overwrite_existing);
+      }
       std::cerr << "compare: wrote " << staged.target().string() << "\n";
       for (const auto& f : outcome.failures)
         std::cerr << "compare: gate: " << f.metric << " = " << f.value << " exceeds " << f.limit << " by "

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libgmsh-dev gmsh libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
-  libvtk9-dev libdeal.ii-dev libnlopt-cxx-dev
+  libvtk9-dev libdeal.ii-dev openmpi-bin libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-matplotlib python3-numpy jupyter-core jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
   ffmpeg

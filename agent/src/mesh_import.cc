@@ -154,54 +154,38 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
                       "; the agents must fill a box");
 
   // Physical groups of dimension dim-1: outer faces.
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, dim - 1);
-  for (const auto& [gdim, gtag] : groups) {
-    std::string group;
-    gmsh::model::getPhysicalName(gdim, gtag, group);
-    if (group.empty()) group = std::to_string(gtag);
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
+  const auto nc = grid.node_counts();
+  for (const auto& [group, elements] : workbench::gmsh_physical_groups(dim - 1)) {
     auto& faces = out.face_groups[group];
-    for (int entity : entities) {
-      std::vector<int> ftypes;
-      std::vector<std::vector<std::size_t>> ftags, fnodes;
-      gmsh::model::mesh::getElements(ftypes, ftags, fnodes, gdim, entity);
-      for (std::size_t t = 0; t < ftypes.size(); ++t) {
-        const int fcorners = dim == 2 ? 2 : 4;
-        if (ftypes[t] != (dim == 2 ? 1 : 3))
-          throw MeshError(name + ": physical group '" + group + "' holds elements that are not " +
-                          (dim == 2 ? "2-node lines" : "4-node quadrangles"));
-        for (std::size_t f = 0; f < ftags[t].size(); ++f) {
-          std::array<int, 3> lo{1 << 30, 1 << 30, 1 << 30}, hi{-1, -1, -1};
-          for (int k = 0; k < fcorners; ++k) {
-            const std::size_t tag = fnodes[t][f * fcorners + k];
-            auto it = grid_node_of_tag.find(tag);
-            if (it == grid_node_of_tag.end())
-              throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
-            const std::size_t node = it->second;
-            const auto nc = grid.node_counts();
-            const std::array<int, 3> p{int(node % nc[0]), int((node / nc[0]) % nc[1]), int(node / (std::size_t(nc[0]) * nc[1]))};
-            for (int a = 0; a < 3; ++a) {
-              lo[a] = std::min(lo[a], p[a]);
-              hi[a] = std::max(hi[a], p[a]);
-            }
-          }
-          int side = -1;
-          for (int a = 0; a < dim; ++a)
-            if (lo[a] == hi[a]) {
-              if (lo[a] == 0) side = direction(a, false);
-              else if (lo[a] == grid.cells[a]) side = direction(a, true);
-            }
-          if (side < 0)
-            throw MeshError(name + ": physical group '" + group +
-                            "' has a face inside the body; loads and supports act on outer faces only");
-          std::array<int, 3> c = lo;
-          if (is_positive(side)) c[axis_of(side)] -= 1;
-          if (dim == 2) c[2] = 0;
-          faces.push_back({grid.index(c[0], c[1], c[2]), side});
+    for (const auto& element : elements) {
+      if (element.type != (dim == 2 ? 1 : 3))
+        throw MeshError(name + ": physical group '" + group + "' holds elements that are not " +
+                        (dim == 2 ? "2-node lines" : "4-node quadrangles"));
+      std::array<int, 3> lo{1 << 30, 1 << 30, 1 << 30}, hi{-1, -1, -1};
+      for (std::size_t tag : element.nodes) {
+        auto it = grid_node_of_tag.find(tag);
+        if (it == grid_node_of_tag.end())
+          throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
+        const std::size_t node = it->second;
+        const std::array<int, 3> p{int(node % nc[0]), int((node / nc[0]) % nc[1]), int(node / (std::size_t(nc[0]) * nc[1]))};
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], p[a]);
+          hi[a] = std::max(hi[a], p[a]);
         }
       }
+      int side = -1;
+      for (int a = 0; a < dim; ++a)
+        if (lo[a] == hi[a]) {
+          if (lo[a] == 0) side = direction(a, false);
+          else if (lo[a] == grid.cells[a]) side = direction(a, true);
+        }
+      if (side < 0)
+        throw MeshError(name + ": physical group '" + group +
+                        "' has a face inside the body; loads and supports act on outer faces only");
+      std::array<int, 3> c = lo;
+      if (is_positive(side)) c[axis_of(side)] -= 1;
+      if (dim == 2) c[2] = 0;
+      faces.push_back({grid.index(c[0], c[1], c[2]), side});
     }
   }
   out.grid = std::move(grid);

@@ -80,4 +80,29 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
   return declared;
 }
 
+std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim) {
+  std::map<std::string, std::vector<GroupElement>> out;
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim);
+  for (const auto& [gdim, gtag] : groups) {
+    std::string name;
+    gmsh::model::getPhysicalName(gdim, gtag, name);
+    if (name.empty()) name = std::to_string(gtag);
+    auto& elements = out[name];
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
+    for (int entity : entities) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> tags, nodes;
+      gmsh::model::mesh::getElements(types, tags, nodes, gdim, entity);
+      for (std::size_t t = 0; t < types.size(); ++t) {
+        const std::size_t n = nodes[t].size() / tags[t].size();
+        for (std::size_t e = 0; e < tags[t].size(); ++e)
+          elements.push_back({types[t], std::vector<std::size_t>(nodes[t].begin() + e * n, nodes[t].begin() + (e + 1) * n)});
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace workbench

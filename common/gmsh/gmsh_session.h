@@ -16,4 +16,14 @@ namespace workbench {
 /// message starting with the file name. The model stays loaded until the next gmsh_load().
 std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
 
+/// An element of a physical group: its gmsh element type and its node tags.
+struct GroupElement {
+  int type;
+  std::vector<std::size_t> nodes;
+};
+
+/// The physical groups of dimension `dim` of the loaded model, by name (an unnamed group by its
+/// number), with their elements.
+std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim);
+
 }  // namespace workbench

@@ -110,35 +110,20 @@ PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, doubl
       mesh.cells[e * info.corners + k] = index_of_tag.at(element_nodes[0][e * info.corners + info.to_deal[k]]);
 
   // Physical groups of dimension dim-1.
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, dim - 1);
-  for (const auto& [gdim, gtag] : groups) {
-    std::string group;
-    gmsh::model::getPhysicalName(gdim, gtag, group);
-    if (group.empty()) group = std::to_string(gtag);
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(gdim, gtag, entities);
+  for (const auto& [group, elements] : workbench::gmsh_physical_groups(dim - 1)) {
     auto& faces = mesh.face_groups[group];
-    for (int entity : entities) {
-      std::vector<int> ftypes;
-      std::vector<std::vector<std::size_t>> ftags, fnodes;
-      gmsh::model::mesh::getElements(ftypes, ftags, fnodes, gdim, entity);
-      for (std::size_t t = 0; t < ftypes.size(); ++t) {
-        const int n = ftypes[t] == 1 ? 2 : ftypes[t] == 2 ? 3 : ftypes[t] == 3 ? 4 : 0;
-        if (n == 0)
-          throw Error(name + ": physical group '" + group + "' holds " + type_name(ftypes[t]) +
-                      " elements, which the FEM reference cannot read");
-        for (std::size_t f = 0; f < ftags[t].size(); ++f) {
-          std::vector<unsigned> face;
-          for (int k = 0; k < n; ++k) {
-            auto it = index_of_tag.find(fnodes[t][f * n + k]);
-            if (it == index_of_tag.end())
-              throw Error(name + ": physical group '" + group + "' has a face whose nodes belong to no element");
-            face.push_back(it->second);
-          }
-          faces.push_back(std::move(face));
-        }
+    for (const auto& element : elements) {
+      if (element.type != 1 && element.type != 2 && element.type != 3)
+        throw Error(name + ": physical group '" + group + "' holds " + type_name(element.type) +
+                    " elements, which the FEM reference cannot read");
+      std::vector<unsigned> face;
+      for (std::size_t tag : element.nodes) {
+        auto it = index_of_tag.find(tag);
+        if (it == index_of_tag.end())
+          throw Error(name + ": physical group '" + group + "' has a face whose nodes belong to no element");
+        face.push_back(it->second);
       }
+      faces.push_back(std::move(face));
     }
   }
   return mesh;

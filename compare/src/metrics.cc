@@ -23,44 +23,40 @@ void bracket(double x, double origin, double h, double offset, int n, int& i0, d
   i0 = int(std::floor(f));
   t = f - i0;
 }
-}  // namespace
 
-double sample_cells(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
-                    const Eigen::Vector3d& p) {
+/// Multilinear interpolation on the lattice of cell centres (`nodes` false) or of nodes (true).
+double sample_lattice(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
+                      const Eigen::Vector3d& p, bool nodes) {
   int i[3] = {0, 0, 0};
   double t[3] = {0, 0, 0};
-  for (int a = 0; a < g.dim; ++a) bracket(p[a], g.origin[a], g.size[a], 0.5, g.cells[a], i[a], t[a]);
+  for (int a = 0; a < g.dim; ++a)
+    bracket(p[a], g.origin[a], g.size[a], nodes ? 0.0 : 0.5, g.cells[a] + (nodes ? 1 : 0), i[a], t[a]);
   double sum = 0;
   for (int c = 0; c < (1 << g.dim); ++c) {
     int idx[3] = {0, 0, 0};
     double w = 1;
     for (int a = 0; a < g.dim; ++a) {
       const int bit = (c >> a) & 1;
-      idx[a] = std::min(i[a] + bit, g.cells[a] - 1);
+      idx[a] = std::min(i[a] + bit, g.cells[a] - (nodes ? 0 : 1));
       w *= bit ? t[a] : 1 - t[a];
     }
-    if (w != 0) sum += w * values[g.index(idx[0], idx[1], idx[2]) * comps + comp];
+    if (w == 0) continue;
+    const std::size_t at = nodes ? g.node_index(idx[0], idx[1], idx[2]) : g.index(idx[0], idx[1], idx[2]);
+    sum += w * values[at * comps + comp];
   }
   return sum;
 }
 
+}  // namespace
+
+double sample_cells(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
+                    const Eigen::Vector3d& p) {
+  return sample_lattice(g, values, comps, comp, p, false);
+}
+
 double sample_nodes(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p) {
-  int i[3] = {0, 0, 0};
-  double t[3] = {0, 0, 0};
-  for (int a = 0; a < g.dim; ++a) bracket(p[a], g.origin[a], g.size[a], 0.0, g.cells[a] + 1, i[a], t[a]);
-  double sum = 0;
-  for (int c = 0; c < (1 << g.dim); ++c) {
-    int idx[3] = {0, 0, 0};
-    double w = 1;
-    for (int a = 0; a < g.dim; ++a) {
-      const int bit = (c >> a) & 1;
-      idx[a] = std::min(i[a] + bit, g.cells[a]);
-      w *= bit ? t[a] : 1 - t[a];
-    }
-    if (w != 0) sum += w * values[g.node_index(idx[0], idx[1], idx[2]) * comps + comp];
-  }
-  return sum;
+  return sample_lattice(g, values, comps, comp, p, true);
 }
 
 std::vector<Line> standard_lines(const agent::Grid& g, const Eigen::Vector3d& centre, const std::vector<double>& depths) {

@@ -260,6 +260,8 @@ class ElasticProblem {
   void make_grid();
   void setup_system();
   void check_rigid_motion() const;
+  /// A point in the frame of the rigid body modes (x has 3 entries, 0 beyond dim).
+  void to_mode_frame(const Point<dim>& p, double* x) const;
   void assemble_system();
   void solve();
   void compute_reactions();
@@ -284,6 +286,9 @@ class ElasticProblem {
   MPI_Comm comm_ = MPI_COMM_WORLD;
   const FemProblem& problem_;
   const PlainMesh& mesh_;
+  // The rigid body modes are evaluated centred on the mesh and scaled by its size (well conditioned).
+  std::array<double, 3> mode_centre_{};
+  double mode_size_ = 1;
   std::ostream* log_;
   const int degree_;
   bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
@@ -324,6 +329,23 @@ ElasticProblem<dim>::ElasticProblem(const FemProblem& problem, const PlainMesh& 
     thickness_ = problem.thickness;
     if (problem.options.model == Model::PlaneStress) lambda_ = 2 * lambda_solid_ * mu_ / (lambda_solid_ + 2 * mu_);
   }
+  std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+  for (std::size_t i = 0; i < mesh_.node_count(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], mesh_.nodes[3 * i + a]);
+      hi[a] = std::max(hi[a], mesh_.nodes[3 * i + a]);
+    }
+  mode_size_ = 0;
+  for (int a = 0; a < dim; ++a) {
+    mode_centre_[a] = 0.5 * (lo[a] + hi[a]);
+    mode_size_ = std::max(mode_size_, hi[a] - lo[a]);
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::to_mode_frame(const Point<dim>& p, double* x) const {
+  x[0] = x[1] = x[2] = 0;
+  for (int a = 0; a < dim; ++a) x[a] = (p[a] - mode_centre_[a]) / mode_size_;
 }
 
 template <int dim>
@@ -463,14 +485,6 @@ void ElasticProblem<dim>::setup_system() {
 template <int dim>
 void ElasticProblem<dim>::check_rigid_motion() const {
   const int n_modes = dim == 2 ? 3 : 6;
-  std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
-  for (std::size_t i = 0; i < mesh_.node_count(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], mesh_.nodes[3 * i + a]);
-      hi[a] = std::max(hi[a], mesh_.nodes[3 * i + a]);
-    }
-  double size = 0;
-  for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
   std::vector<double> gram(n_modes * n_modes, 0.0);
   for (const auto& cell : tria_->active_cell_iterators()) {
     if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
@@ -481,20 +495,11 @@ void ElasticProblem<dim>::check_rigid_motion() const {
       for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
         if (!std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s]))) continue;
         for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) {
-          double x[3] = {0, 0, 0};
-          for (int a = 0; a < dim; ++a) x[a] = (cell->face(f)->vertex(v)[a] - 0.5 * (lo[a] + hi[a])) / size;
+          double x[3];
+          to_mode_frame(cell->face(f)->vertex(v), x);
           for (int c : constrained_components(problem_.supports[s])) {
             std::vector<double> row(n_modes, 0.0);
-            row[c] = 1;  // translations
-            if (dim == 2) {
-              row[2] = c == 0 ? -x[1] : x[0];
-            } else {
-              // rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0)
-              const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
-              row[3] = rx[c];
-              row[4] = ry[c];
-              row[5] = rz[c];
-            }
+            set_rigid_body_modes(dim, x, unsigned(c), 0, 1, row);
             for (int i = 0; i < n_modes; ++i)
               for (int j = 0; j < n_modes; ++j) gram[i * n_modes + j] += row[i] * row[j];
           }
@@ -729,14 +734,6 @@ void ElasticProblem<dim>::solve() {
     const std::size_t n_local = owned_.n_elements();
     std::vector<double> modes(n_local * n_modes, 0.0);
     {
-      std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
-      for (std::size_t i = 0; i < mesh_.node_count(); ++i)
-        for (int a = 0; a < 3; ++a) {
-          lo[a] = std::min(lo[a], mesh_.nodes[3 * i + a]);
-          hi[a] = std::max(hi[a], mesh_.nodes[3 * i + a]);
-        }
-      double size = 0;
-      for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
       Quadrature<dim> support_points(fe_->get_unit_support_points());
       FEValues<dim> fe_values(*mapping_, *fe_, support_points, update_quadrature_points);
       std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
@@ -748,8 +745,8 @@ void ElasticProblem<dim>::solve() {
           if (!owned_.is_element(dofs[i])) continue;
           const std::size_t row = owned_.index_within_set(dofs[i]);
           const unsigned c = fe_->system_to_component_index(i).first;
-          double x[3] = {0, 0, 0};
-          for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
+          double x[3];
+          to_mode_frame(fe_values.quadrature_point(i), x);
           set_rigid_body_modes(dim, x, c, row, n_local, modes);
         }
       }

@@ -1,6 +1,7 @@
 // Cook's membrane: the tapered panel (0,0), (48,44), (48,60), (0,44), clamped on the left edge and
 // sheared on the right edge (the standard plane-stress benchmark: E = 1, nu = 1/3, total shear 1;
-// top-right corner vertical displacement 23.96). Structured n x n quadrilaterals.
+// the published 23.96 is the vertical displacement of the right edge's mid-point (48, 52), see
+// docs/fem-reference.md). Structured n x n quadrilaterals; n even puts a node at (48, 52).
 DefineConstant[
   n = {8, Name "n"}    // elements per edge
 ];

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 
@@ -142,8 +143,11 @@ TEST(FemManufactured, Q2Solid3DRates) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Cook's membrane: plane stress, E = 1, nu = 1/3, clamped left edge, total shear 1 on the right edge;
-// the top-right corner's vertical displacement tends to 23.96.
+// Cook's membrane: plane stress, E = 1, nu = 1/3, clamped left edge, total shear 1 on the right edge.
+// The published 23.96 is the vertical displacement of the loaded edge's mid-point (48, 52): the
+// literature's standard-Q4 column is reproduced there to four digits (docs/fem-reference.md). The
+// top-right corner (48, 60) converges to about 25.19, and in plane strain to what CalculiX,
+// Code_Aster and Elmer report for that corner.
 // ------------------------------------------------------------------------------------------------
 
 FemResult cook(int n, int degree, Model model = Model::PlaneStress) {
@@ -161,39 +165,56 @@ FemResult cook(int n, int degree, Model model = Model::PlaneStress) {
   return solve_fem(p);
 }
 
-TEST(FemCook, Q2CornerDisplacementConverges) {
-  // Successive Q2 refinements: v increases with shrinking increments (Cauchy sequence); the load
-  // is balanced by the clamp on every mesh.
-  std::vector<double> v;
+const std::array<double, 3> kCookMidEdge{48, 52, 0};
+const std::array<double, 3> kCookCorner{48, 60, 0};
+
+TEST(FemCook, Q2MidEdgeApproachesPublished2396) {
+  // Successive Q2 refinements: v increases with increments shrinking by more than 40 % each (a
+  // Cauchy sequence), and approaches 23.96 from below; the clamp balances the load on every mesh.
+  std::vector<double> mid, corner;
   for (int n : {4, 8, 16, 32}) {
     const auto r = cook(n, 2);
-    v.push_back(r.displacement_at({48, 60, 0})[1]);
-    std::printf("  Cook plane stress Q2 n=%2d: v = %.4f\n", n, v.back());
+    mid.push_back(r.displacement_at(kCookMidEdge)[1]);
+    corner.push_back(r.displacement_at(kCookCorner)[1]);
+    std::printf("  Cook plane stress Q2 n=%2d: v(48,52) = %.4f, v(48,60) = %.4f\n", n, mid.back(),
+                corner.back());
     EXPECT_NEAR(r.reactions[0].force[1], -1.0, 1e-8);
   }
-  for (std::size_t i = 1; i < v.size(); ++i) EXPECT_GT(v[i], v[i - 1]);
-  for (std::size_t i = 2; i < v.size(); ++i) EXPECT_LT(v[i] - v[i - 1], 0.6 * (v[i - 1] - v[i - 2]));
-  // The published 23.96 is NOT reproduced: this plane-stress solution converges to about 25.2
-  // (docs/fem-reference.md, "Cook's membrane"). Pin the value so that a change is noticed.
-  EXPECT_NEAR(v.back(), 25.137, 0.01);
+  for (const auto& v : {mid, corner}) {
+    for (std::size_t i = 1; i < v.size(); ++i) EXPECT_GT(v[i], v[i - 1]);
+    for (std::size_t i = 2; i < v.size(); ++i) EXPECT_LT(v[i] - v[i - 1], 0.6 * (v[i - 1] - v[i - 2]));
+  }
+  EXPECT_LT(mid.back(), 23.965);
+  EXPECT_NEAR(mid.back(), 23.96, 0.005);
+  // Aitken's extrapolation of the last three values (about 23.971) lies within 0.01 of 23.965.
+  const double d1 = mid[2] - mid[1], d2 = mid[3] - mid[2];
+  EXPECT_NEAR(mid[3] + d2 * d2 / (d1 - d2), 23.965, 0.01);
+  // The corner is 5 % higher; pinned so that a change is noticed (Aitken: about 25.19).
+  EXPECT_NEAR(corner.back(), 25.137, 0.01);
 }
 
-TEST(FemCook, PlaneStrainMatchesThirdPartyCodes) {
-  // CoFEA's very fine quadratic meshes (CalculiX 32.27, Code_Aster 32.20, Elmer 32.28 mm for
-  // E = 70, traction 6.25 over the 16 mm edge, i.e. F/E = 100/70) scale to 22.54..22.60.
-  const double v = cook(32, 2, Model::PlaneStrain).displacement_at({48, 60, 0})[1];
-  std::printf("  Cook plane strain Q2 n=32: v = %.4f (third-party 22.54..22.60)\n", v);
+TEST(FemCook, Q1ReproducesThePublishedQ4Column) {
+  // Standard bilinear quadrilaterals on the n x n mesh, mid-point of the loaded edge: the values
+  // the benchmark's literature lists for the plain Q4 element, to their last digit.
+  const std::vector<std::pair<int, double>> published{
+      {2, 11.85}, {4, 18.30}, {8, 22.08}, {16, 23.43}, {64, 23.92}};
+  double previous = 0.0;
+  for (const auto& [n, v_published] : published) {
+    const double v = cook(n, 1).displacement_at(kCookMidEdge)[1];
+    std::printf("  Cook Q1 n=%2d: v(48,52) = %.4f (published %.2f)\n", n, v, v_published);
+    EXPECT_NEAR(v, v_published, 0.005);
+    EXPECT_GT(v, previous);  // Q1 is too stiff and approaches from below
+    previous = v;
+  }
+}
+
+TEST(FemCook, PlaneStrainCornerMatchesThirdPartyCodes) {
+  // CoFEA's very fine quadratic meshes (CalculiX 32.27, Code_Aster 32.20, Elmer 32.28 mm for the
+  // top-right corner, E = 70, traction 6.25 over the 16 mm edge, i.e. F/E = 100/70) scale to
+  // 22.54..22.60.
+  const double v = cook(32, 2, Model::PlaneStrain).displacement_at(kCookCorner)[1];
+  std::printf("  Cook plane strain Q2 n=32: v(48,60) = %.4f (third-party 22.54..22.60)\n", v);
   EXPECT_NEAR(v, 22.57, 0.04);
-}
-
-TEST(FemCook, Q1StiffButConverging) {
-  const double v8 = cook(8, 1).displacement_at({48, 60, 0})[1];
-  const double v32 = cook(32, 1).displacement_at({48, 60, 0})[1];
-  const double q2 = cook(32, 2).displacement_at({48, 60, 0})[1];
-  std::printf("  Cook Q1: n=8 %.4f, n=32 %.4f (Q2 n=32 %.4f)\n", v8, v32, q2);
-  EXPECT_LT(v8, v32);  // Q1 is too stiff and approaches from below
-  EXPECT_LT(v32, q2);
-  EXPECT_GT(v32, 0.98 * q2);
 }
 
 // ------------------------------------------------------------------------------------------------

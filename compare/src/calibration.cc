@@ -27,8 +27,6 @@ agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
 
 namespace {
 
-std::array<double, 5> values_of(const agent::Coefficients& k) { return {k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma}; }
-
 double l2_error(const std::vector<double>& model, const std::vector<double>& reference) {
   return relative_errors(model, reference).rel_l2;
 }

@@ -328,6 +328,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
                    {"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                    {"dropped", d.dropped}, {"agents_generated", d.agents_generated}};
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
+                 {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
   json["mask"] = options.mask;
   report::finish(dir, file.path().stem().string(), std::move(json), options.gate, {}, outcome, log);

@@ -287,6 +287,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
                  {"bending_stiffness", EI_pbd}, {"transverse_load", W_pbd},
                  {"tip_u_x", particles.x[line.nodes.back()][0] - mesh.points[line.nodes.back()][0]}};
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
+                 {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}, {"cells", fem.n_active_cells},
                  {"transverse_load", W_fem}};
   std::ostringstream n1, n2, n3;

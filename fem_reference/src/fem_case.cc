@@ -247,7 +247,9 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
     out << "key,value\n"
         << "dim," << r.dim << "\ndegree," << r.degree << "\nmodel," << r.model << "\ncells," << r.cells
         << "\nranks," << r.ranks << "\ndofs," << r.n_dofs << "\nactive_cells," << r.n_active_cells << "\nsolver,"
-        << r.solver << "\niterations," << r.iterations << "\nresidual," << r.residual << "\nmesh_seconds,"
+        << r.solver << "\niterations," << r.iterations << "\nresidual," << r.residual;
+    if (r.backward_error) out << "\nbackward_error," << *r.backward_error;
+    out << "\nmesh_seconds,"
         << r.mesh_seconds << "\nsetup_seconds," << r.setup_seconds << "\nassemble_seconds," << r.assemble_seconds
         << "\nsolve_seconds," << r.solve_seconds << "\noutput_seconds," << r.output_seconds
         << "\npeak_memory_bytes," << r.peak_memory_bytes << "\n";

@@ -140,6 +140,9 @@ struct FemResult {
   std::string solver;                    ///< "direct (Amesos_Klu)", "cg+amg (ML)", "cg+gmg (matrix-free, ...)"
   int iterations = 0;                    ///< CG iterations (0 for the direct solver)
   double residual = 0;                   ///< final ||K u - f|| / ||f||
+  /// Only when residual > options.tolerance: max_i |f - K u|_i / (|K| |u| + |f|)_i (at most 1e-12,
+  /// else solve_fem throws): the rounding floor of an ill-conditioned system, docs/fem-reference.md.
+  std::optional<double> backward_error;
   double l2_error = std::numeric_limits<double>::quiet_NaN();  ///< ||u - u_exact||_L2
   double h1_error = std::numeric_limits<double>::quiet_NaN();  ///< |u - u_exact|_H1 (seminorm)
   double mesh_seconds = 0, setup_seconds = 0, assemble_seconds = 0, solve_seconds = 0, output_seconds = 0;

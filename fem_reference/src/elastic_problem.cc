@@ -57,6 +57,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -277,6 +278,7 @@ class ElasticProblem {
   void to_mode_frame(const Point<dim>& p, double* x) const;
   void assemble_system();
   void solve();
+  void element_residual(TrilinosWrappers::MPI::Vector& residual, TrilinosWrappers::MPI::Vector* bound);
   /// Componentwise backward error of the solution (see the definition).
   double backward_error();
   void compute_reactions();
@@ -794,14 +796,12 @@ void ElasticProblem<dim>::solve() {
   ghosted_ = solution_;
 }
 
-/// max_i |f - K u|_i / (|K| |u| + |f|)_i over the unconstrained DoFs, with |K| |u| summed element
-/// by element (an upper bound of the assembled product). Near 1e-16, u solves K u = f to within
-/// rounding of K's entries, as a direct solve does. Then a relative residual ||K u - f|| / ||f||
-/// above the tolerance is the rounding floor of an ill-conditioned system (a thin bending strip:
-/// K u cancels terms of E t |u| to leave loads many orders smaller), not an unconverged or failed
-/// solve; the solution is then as accurate as the conditioning allows in double precision.
+/// r = K u - f assembled element by element without constraints. With `bound`, over every cell,
+/// and bound = sum over the elements of |K_e| |u_e| + |f_e|; without, only over the cells touching
+/// a constrained DoF (enough for the reactions).
 template <int dim>
-double ElasticProblem<dim>::backward_error() {
+void ElasticProblem<dim>::element_residual(TrilinosWrappers::MPI::Vector& residual,
+                                           TrilinosWrappers::MPI::Vector* bound) {
   FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_,
                           update_values | update_gradients | update_quadrature_points | update_JxW_values);
   FEFaceValues<dim> fe_face_values(*mapping_, *fe_, *face_quadrature_,
@@ -810,27 +810,43 @@ double ElasticProblem<dim>::backward_error() {
   FullMatrix<double> cell_matrix(n, n);
   Vector<double> cell_rhs(n), u(n), r(n), scale(n);
   std::vector<types::global_dof_index> dofs(n);
-  TrilinosWrappers::MPI::Vector residual(owned_, comm_), bound(owned_, comm_);
+  residual.reinit(owned_, comm_);
+  if (bound) bound->reinit(owned_, comm_);
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     cell->get_dof_indices(dofs);
+    if (!bound && std::none_of(dofs.begin(), dofs.end(), [&](auto d) { return constraints_.is_constrained(d); }))
+      continue;
     cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
     for (unsigned i = 0; i < n; ++i) u(i) = ghosted_(dofs[i]);
     cell_matrix.vmult(r, u);
     r -= cell_rhs;
+    residual.add(dofs, r);
+    if (!bound) continue;
     for (unsigned i = 0; i < n; ++i) {
       scale(i) = std::abs(cell_rhs(i));
       for (unsigned j = 0; j < n; ++j) scale(i) += std::abs(cell_matrix(i, j) * u(j));
     }
-    residual.add(dofs, r);
-    bound.add(dofs, scale);
+    bound->add(dofs, scale);
   }
   for (const auto& [dof, value] : point_loads_) {
     residual(dof) -= value;
-    bound(dof) += std::abs(value);
+    if (bound) (*bound)(dof) += std::abs(value);
   }
   residual.compress(VectorOperation::add);
-  bound.compress(VectorOperation::add);
+  if (bound) bound->compress(VectorOperation::add);
+}
+
+/// max_i |f - K u|_i / (|K| |u| + |f|)_i over the unconstrained DoFs, with |K| |u| summed element
+/// by element (an upper bound of the assembled product). Near 1e-16, u solves K u = f to within
+/// rounding of K's entries, as a direct solve does. Then a relative residual ||K u - f|| / ||f||
+/// above the tolerance is the rounding floor of an ill-conditioned system (a thin bending strip:
+/// K u cancels terms of E t |u| to leave loads many orders smaller), not an unconverged or failed
+/// solve; the solution is then as accurate as the conditioning allows in double precision.
+template <int dim>
+double ElasticProblem<dim>::backward_error() {
+  TrilinosWrappers::MPI::Vector residual, bound;
+  element_residual(residual, &bound);
   double worst = 0;
   for (const auto i : owned_)
     if (!constraints_.is_constrained(i) && bound(i) > 0) worst = std::max(worst, std::abs(residual(i)) / bound(i));
@@ -841,29 +857,8 @@ double ElasticProblem<dim>::backward_error() {
 /// shared by two supports counts for the first).
 template <int dim>
 void ElasticProblem<dim>::compute_reactions() {
-  FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_,
-                          update_values | update_gradients | update_quadrature_points | update_JxW_values);
-  FEFaceValues<dim> fe_face_values(*mapping_, *fe_, *face_quadrature_,
-                                   update_values | update_quadrature_points | update_JxW_values);
-  const unsigned n = fe_->n_dofs_per_cell();
-  FullMatrix<double> cell_matrix(n, n);
-  Vector<double> cell_rhs(n), u(n), r(n);
-  std::vector<types::global_dof_index> dofs(n);
-  TrilinosWrappers::MPI::Vector residual(owned_, comm_);
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    if (!cell->is_locally_owned()) continue;
-    cell->get_dof_indices(dofs);
-    bool any = false;
-    for (auto d : dofs) any = any || constraints_.is_constrained(d);
-    if (!any) continue;
-    cell_system(cell, fe_values, fe_face_values, cell_matrix, cell_rhs);
-    for (unsigned i = 0; i < n; ++i) u(i) = ghosted_(dofs[i]);
-    cell_matrix.vmult(r, u);
-    r -= cell_rhs;
-    residual.add(dofs, r);
-  }
-  for (const auto& [dof, value] : point_loads_) residual(dof) -= value;
-  residual.compress(VectorOperation::add);
+  TrilinosWrappers::MPI::Vector residual;
+  element_residual(residual, nullptr);
 
   std::set<types::global_dof_index> claimed;
   std::vector<double> forces(problem_.supports.size() * 3, 0.0);

@@ -11,7 +11,7 @@ void check_every_section(const workbench::CaseFile& file) {
   agent::Coefficients k;
   agent::RuleSet rules;
   agent_study::read_agent_section(root, k, rules);
-  fem_reference::read_fem_options(root);
+  fem_reference::read_fem_section(root);
   compare::read_compare_options(root);
   file.reject_unknown_keys();
 }

@@ -3,6 +3,7 @@
 #include <pbd_study.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
+#include <workbench/study_setup.h>
 
 #include <iostream>
 #include <memory>
@@ -21,7 +22,10 @@ void add_pbd_command(CLI::App& app, Action& action) {
     action = [case_file, output, animate] {
       workbench::CaseFile file(*case_file);
       auto study = pbd_study::load_pbd_study(file);
-      file.reject_unknown_keys();
+      // A PBD-against-FEM case also describes the FEM body ([mesh], [material], [fem], ...): it is
+      // checked here too, so that the one case file runs with `pbd` and with `compare` alike.
+      if (file.root().has("mesh")) workbench::read_study_setup(file.root());
+      check_every_section(file);
       const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/pbd" : *output;
       workbench::StagedDirectory staged(dir);
       pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);

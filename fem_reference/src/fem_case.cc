@@ -16,9 +16,10 @@ namespace fs = std::filesystem;
 using workbench::Error;
 using workbench::Range;
 
-FemOptions read_fem_options(const workbench::CaseTable& root) {
+FemSection read_fem_section(const workbench::CaseTable& root) {
   const auto t = root.table("fem");
-  FemOptions o;
+  FemSection section;
+  FemOptions& o = section.options;
   o.degree = t.integer("degree", 1, 1, 2);
   const std::string model = t.text("model", "plane_stress", {"plane_stress", "plane_strain"});
   o.model = model == "plane_stress" ? Model::PlaneStress : Model::PlaneStrain;
@@ -34,7 +35,11 @@ FemOptions read_fem_options(const workbench::CaseTable& root) {
   const std::string load = t.text("load", "traction", {"traction", "point"});
   o.load = load == "traction" ? LoadKind::Traction : LoadKind::Point;
   o.write_vtu = t.flag("vtu", true);
-  return o;
+  const auto body = t.numbers("body_force", std::vector<double>{});
+  if (!body.empty() && body.size() != 2 && body.size() != 3)
+    t.fail("body_force", "must have 2 (2D) or 3 (3D) components [N/m^3]");
+  for (std::size_t a = 0; a < body.size(); ++a) section.body_force[a] = body[a];
+  return section;
 }
 
 FemProblem problem_from_case(const workbench::CaseFile& file) {
@@ -49,11 +54,9 @@ FemProblem problem_from_case(const workbench::CaseFile& file) {
   p.thickness = setup.thickness;
   for (const auto& g : setup.rigid_groups) p.supports.push_back({g, SupportKind::Clamped, {}});
   for (const auto& g : setup.roller_groups) p.supports.push_back({g, SupportKind::Roller, {}});
-  p.options = read_fem_options(root);
-  const auto body = root.table("fem").numbers("body_force", std::vector<double>{});
-  if (!body.empty() && body.size() != 2 && body.size() != 3)
-    root.table("fem").fail("body_force", "must have 2 (2D) or 3 (3D) components [N/m^3]");
-  for (std::size_t a = 0; a < body.size(); ++a) p.body_force[a] = body[a];
+  const auto fem = read_fem_section(root);
+  p.options = fem.options;
+  p.body_force = fem.body_force;
   for (const auto& l : setup.loads) {
     std::array<double, 3> force{};
     force[l.axis] = l.sign * l.force;

@@ -94,5 +94,20 @@ bad agent_key 's/^model = "pbd"/model = "pbd"\ndepths = [0.5]/' "agent_key.toml:
 bad misspelt 's/^damping = /dampin = /' "misspelt.toml: unknown key 'pbd.dampin'"
 bad no_load 's/^body_force = .*//' 'no_load.toml: load: missing: nothing loads the body'
 
+# The same case file runs the PBD model alone; `workbench pbd` checks the FEM sections it does not use.
+"$bin" pbd "$work/tight.toml" -o "$work/pbd_alone" 2>"$work/log"
+rc=$?
+check pbd_alone_exit $((rc != 0)) "exit $rc: $(tail -3 "$work/log")"
+[ -s "$work/pbd_alone/pbd.pvd" ] && [ -s "$work/pbd_alone/centreline.csv" ]
+check pbd_alone_output $? "no pbd.pvd / centreline.csv"
+cmp -s "$work/pbd_alone/centreline.csv" "$work/pass/pbd/centreline.csv"
+check pbd_alone_same $? "centreline.csv differs from the comparison's PBD run"
+sed -e 's/^degree = 2 .*/degree = 3/' "$work/tight.toml" >"$work/fem_typo.toml"
+"$bin" pbd "$work/fem_typo.toml" -o "$work/fem_typo" 2>"$work/log"
+rc=$?
+check pbd_fem_check_exit $((rc != 2)) "exit $rc"
+grep -q "fem_typo.toml: fem.degree" "$work/log" && [ ! -e "$work/fem_typo" ]
+check pbd_fem_check_message $? "$(cat "$work/log")"
+
 echo "compare pbd gate: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -44,8 +44,14 @@ struct FemOptions {
   bool write_vtu = true;                ///< VTU/PVTU + PVD next to the CSV files
 };
 
+/// Everything the [fem] section of a case holds.
+struct FemSection {
+  FemOptions options;
+  std::array<double, 3> body_force{};   ///< fem.body_force [N/m^3], zero if not given
+};
+
 /// Reads [fem] from the case root; range-checks every key.
-FemOptions read_fem_options(const workbench::CaseTable& root);
+FemSection read_fem_section(const workbench::CaseTable& root);
 
 /// f(x, value): x has 3 entries (z = 0 in 2D), value has dim entries.
 using VectorFunction = std::function<void(const double* x, double* value)>;

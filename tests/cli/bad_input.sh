@@ -2,13 +2,7 @@
 # Bad input to `workbench agent`: each case must give exit code 2, exactly one line on stderr
 # naming the file and the thing, and no output folder (not even a partial one).
 # Usage: bad_input.sh WORKBENCH_BINARY SOURCE_DIR
-set -u
-bin=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-passed=0
+. "$(dirname "$0")/common.sh"
 
 base_case() {
   cat <<CASE

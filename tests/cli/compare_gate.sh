@@ -2,16 +2,7 @@
 # The gated comparison study (cases/gate_plate.toml) as CI would run it: it passes with exit 0 and
 # a JUnit report; tightening a limit makes it exit 1 naming the metric; a gate on a metric that
 # does not exist is bad input (exit 2). Usage: compare_gate.sh WORKBENCH_BINARY SOURCE_DIR
-set -u
-bin=$1
-src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failures=0
-check() {  # check NAME CONDITION_EXIT_STATUS MESSAGE
-  if [ "$2" -eq 0 ]; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL $1: $3"; fi
-}
+. "$(dirname "$0")/common.sh"
 
 "$bin" compare "$src/cases/gate_plate.toml" -o "$work/pass" --junit "$work/junit.xml" 2>"$work/log"
 rc=$?

@@ -5,17 +5,8 @@
 # limit makes it exit 1 naming the metric; a gate on a metric that does not exist for the PBD
 # comparison, or a key the PBD comparison does not read, is bad input (exit 2, no output).
 # Usage: compare_pbd_gate.sh WORKBENCH_BINARY SOURCE_DIR
-set -u
-bin=$1
-src=$2
+. "$(dirname "$0")/common.sh"
 py=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failures=0
-check() {  # check NAME CONDITION_EXIT_STATUS MESSAGE
-  if [ "$2" -eq 0 ]; then passed=$((passed + 1)); else failures=$((failures + 1)); echo "FAIL $1: $3"; fi
-}
 
 "$bin" compare "$src/cases/pbd_strip_fem.toml" -o "$work/pass" --junit "$work/junit.xml" 2>"$work/log"
 rc=$?

@@ -47,8 +47,13 @@ bool interruption_under_way() { return interrupted; }
 void handle_interruptions(const std::string& program) {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
+  for (int sig : {SIGINT, SIGTERM}) {
+    // A signal ignored on entry (`nohup`, a shell's background job) stays ignored, as is custom.
+    struct sigaction now {};
+    if (::sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
+  if (sigisemptyset(&set)) return;
   pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread started from now on
   std::thread([set, program] {
     int sig = 0;

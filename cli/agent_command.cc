@@ -17,11 +17,11 @@ void add_agent_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/agent)");
   cmd->callback([&action, case_file, output] {
     action = [case_file, output] {
-      workbench::CaseFile file(*case_file);
+      workbench::CaseFile file = read_case_file(*case_file);
       const auto study = agent_study::load_agent_study(file);
       check_every_section(file);
-      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/agent" : *output;
-      workbench::StagedDirectory staged(dir);
+      const std::string dir = output_folder(*output, file, "agent");
+      workbench::StagedDirectory staged(dir, file.path());
       agent_study::write_agent_outputs(study, staged.path(), std::cerr);
       staged.commit();
       std::cerr << "agent: wrote " << staged.target().string() << "\n";

@@ -17,9 +17,9 @@ void add_calibrate_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *output, "output folder (default: out/<file name>/calibrate)");
   cmd->callback([&action, case_file, output] {
     action = [case_file, output] {
-      workbench::CaseFile file(*case_file);
-      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/calibrate" : *output;
-      workbench::StagedDirectory staged(dir);
+      workbench::CaseFile file = read_case_file(*case_file);
+      const std::string dir = output_folder(*output, file, "calibrate");
+      workbench::StagedDirectory staged(dir, file.path());
       compare::run_calibration(file, staged.path(), std::cerr);
       staged.commit();
       std::cerr << "calibrate: wrote " << staged.target().string() << "\n";

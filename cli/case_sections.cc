@@ -4,7 +4,38 @@
 #include <compare/compare_study.h>
 #include <fem_reference/fem.h>
 
+#include <filesystem>
+
+#include <unistd.h>
+
 namespace cli {
+
+workbench::CaseFile read_case_file(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw workbench::Error(path + ": is a folder, not a case file (give the .toml file inside it)");
+  return workbench::CaseFile(path);
+}
+
+void check_writable_file(const std::string& path, const std::string& option) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::absolute(path).lexically_normal();
+  auto refuse = [&](const std::string& why) { throw workbench::Error(path + ": " + option + ": " + why); };
+  std::error_code ec;
+  if (file.filename().empty() || fs::is_directory(file, ec)) refuse("is a folder, not a file");
+  if (fs::exists(fs::symlink_status(file, ec))) {
+    if (!fs::is_regular_file(file, ec)) refuse("exists and is not a regular file");
+    if (::access(file.c_str(), W_OK) != 0) refuse("cannot be written (no permission)");
+    return;
+  }
+  fs::path parent = file.parent_path();
+  while (!fs::exists(parent, ec)) parent = parent.parent_path();
+  if (!fs::is_directory(parent, ec)) refuse(parent.string() + " is not a folder");
+  if (::access(parent.c_str(), W_OK | X_OK) != 0) refuse("cannot be created in " + parent.string() + " (no permission)");
+}
+
+std::string output_folder(const std::string& option, const workbench::CaseFile& file, const std::string& subcommand) {
+  return option.empty() ? "out/" + file.path().stem().string() + "/" + subcommand : option;
+}
 
 void check_every_section(const workbench::CaseFile& file) {
   const auto root = file.root();

@@ -4,12 +4,23 @@
 #include <workbench/case_file.h>
 
 #include <functional>
+#include <string>
 
 namespace cli {
 
 /// A case file describes one study for every model, so each subcommand reads (and so checks) the
 /// [agent], [fem] and [compare] sections too, then rejects whatever no module knows.
 void check_every_section(const workbench::CaseFile& file);
+
+/// The case file at `path`; a folder or a missing file is one line naming it.
+workbench::CaseFile read_case_file(const std::string& path);
+
+/// Refuses (one line naming `option`) a file that could not be written later: a folder, an
+/// unwritable file, or one whose nearest existing parent is not a writable folder. Writes nothing.
+void check_writable_file(const std::string& path, const std::string& option);
+
+/// The output folder: `option` (-o) when given, else out/<case name>/<subcommand>.
+std::string output_folder(const std::string& option, const workbench::CaseFile& file, const std::string& subcommand);
 
 /// A subcommand's action, run after parsing; returns the exit code.
 using Action = std::function<int()>;

@@ -23,16 +23,19 @@ void add_compare_command(CLI::App& app, Action& action) {
   cmd->add_option("--junit", *junit, "also copy the gate's JUnit XML report to this file");
   cmd->callback([&action, case_file, output, junit] {
     action = [case_file, output, junit] {
-      workbench::CaseFile file(*case_file);
-      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/compare" : *output;
-      workbench::StagedDirectory staged(dir);
+      workbench::CaseFile file = read_case_file(*case_file);
+      if (!junit->empty()) check_writable_file(*junit, "--junit");
+      const std::string dir = output_folder(*output, file, "compare");
+      workbench::StagedDirectory staged(dir, file.path());
       const auto outcome = compare::run_compare(file, staged.path(), std::cerr);
       staged.commit();
       if (!junit->empty()) {
         const auto parent = std::filesystem::path(*junit).parent_path();
-        if (!parent.empty()) std::filesystem::create_directories(parent);
+        std::error_code ec;
+        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
         std::filesystem::copy_file(staged.target() / "junit.xml", *junit,
-                                   std::filesystem::copy_options::overwrite_existing);
+                                   std::filesystem::copy_options::overwrite_existing, ec);
+        if (ec) throw workbench::Error(*junit + ": --junit: cannot write the report (" + ec.message() + ")");
       }
       std::cerr << "compare: wrote " << staged.target().string() << "\n";
       for (const auto& f : outcome.failures)

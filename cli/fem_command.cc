@@ -19,14 +19,14 @@ void add_fem_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/fem)");
   cmd->callback([&action, case_file, output] {
     action = [case_file, output] {
-      workbench::CaseFile file(*case_file);
+      workbench::CaseFile file = read_case_file(*case_file);
       const auto problem = fem_reference::problem_from_case(file);
       check_every_section(file);
-      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/fem" : *output;
+      const std::string dir = output_folder(*output, file, "fem");
       // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
       const bool root = fem_reference::mpi_rank() == 0;
       std::optional<workbench::StagedDirectory> staged;
-      if (root) staged.emplace(dir);
+      if (root) staged.emplace(dir, file.path());
       const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
       const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
       if (root) fem_reference::write_fem_csv(result, path);

@@ -7,15 +7,18 @@
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //
-// Every error is one line "workbench: error: <file>: <what>" and a non-zero exit; output folders
-// appear whole or not at all.
+// Every error is one line "workbench: error: <file>: <what>"; bad input (command line included)
+// exits 2. Output folders appear whole or not at all and never replace a folder the workbench did
+// not write; SIGINT/SIGTERM end the run cleanly with 130/143 (docs/reliability.md).
 #include "commands.h"
 
 #include <workbench/error.h>
+#include <workbench/interruption.h>
 
 #include <iostream>
 
 int main(int argc, char** argv) {
+  workbench::handle_interruptions("workbench");  // first: before any thread starts
   CLI::App app{"Fast deformation models (agent load transfer, PBD angle bending) against a deal.II FEM reference"};
   app.require_subcommand(1);
   cli::Action action;
@@ -26,8 +29,11 @@ int main(int argc, char** argv) {
   cli::add_calibrate_command(app, action);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "workbench: error: command line: " << e.what() << " (see workbench --help)\n";
+    return 2;
   }
   try {
     return action();

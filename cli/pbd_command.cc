@@ -20,14 +20,14 @@ void add_pbd_command(CLI::App& app, Action& action) {
   cmd->add_flag("--animate", *animate, "also render animation.mp4 (or .gif, [pbd] animation) with ffmpeg");
   cmd->callback([&action, case_file, output, animate] {
     action = [case_file, output, animate] {
-      workbench::CaseFile file(*case_file);
+      workbench::CaseFile file = read_case_file(*case_file);
       auto study = pbd_study::load_pbd_study(file);
       // A PBD-against-FEM case also describes the FEM body ([mesh], [material], [fem], ...): it is
       // checked here too, so that the one case file runs with `pbd` and with `compare` alike.
       if (file.root().has("mesh")) workbench::read_study_setup(file.root());
       check_every_section(file);
-      const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/pbd" : *output;
-      workbench::StagedDirectory staged(dir);
+      const std::string dir = output_folder(*output, file, "pbd");
+      workbench::StagedDirectory staged(dir, file.path());
       pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);
       staged.commit();
       std::cerr << "pbd: wrote " << staged.target().string() << "\n";

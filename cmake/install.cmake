@@ -31,16 +31,7 @@ install(FILES ${PROJECT_BINARY_DIR}/workbenchConfig.cmake ${PROJECT_BINARY_DIR}/
               ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
         DESTINATION ${WORKBENCH_CMAKE_DIR})
 
-# The program and the scripts it runs. The program finds its scripts at
-# <its folder>/../share/workbench/, installed or in the build tree (linked there at configure time,
-# so an edited script takes effect without a rebuild): no source path is compiled in.
+# The program; common/CMakeLists.txt installs the scripts it runs (share/workbench/).
 if(WORKBENCH_WITH_FEM)
-  set(workbench_scripts compare/figures.py compare/pbd_figures.py scripts/render_frames.py)
   install(TARGETS workbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  install(FILES ${workbench_scripts} DESTINATION ${CMAKE_INSTALL_DATADIR}/workbench)
-  file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/share/workbench)
-  foreach(script ${workbench_scripts})
-    get_filename_component(name ${script} NAME)
-    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${script} ${PROJECT_BINARY_DIR}/share/workbench/${name} SYMBOLIC)
-  endforeach()
 endif()

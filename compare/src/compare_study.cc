@@ -308,7 +308,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   double figures_seconds = 0;
   if (options.figures) {
     t = std::chrono::steady_clock::now();
-    report::run_figure_script(WORKBENCH_SOURCE_DIR "/compare/figures.py", dir,
+    report::run_figure_script("compare/figures.py", dir,
                               study.setup.title.empty() ? file.path().stem().string() : study.setup.title, log);
     figures_seconds = seconds_since(t);
   }

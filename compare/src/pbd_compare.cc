@@ -268,7 +268,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   double figures_seconds = 0;
   if (options.figures) {
     t = std::chrono::steady_clock::now();
-    report::run_figure_script(WORKBENCH_SOURCE_DIR "/compare/pbd_figures.py", dir, title, log);
+    report::run_figure_script("compare/pbd_figures.py", dir, title, log);
     figures_seconds = seconds_since(t);
   }
   add("time.figures_s", figures_seconds);

@@ -1,5 +1,6 @@
 #include "report.h"
 
+#include <workbench/child_process.h>
 #include <workbench/error.h>
 
 #include <algorithm>
@@ -37,12 +38,6 @@ std::string xml_escape(const std::string& s) {
     else out += c;
   }
   return out;
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return q + "'";
 }
 
 }  // namespace
@@ -135,17 +130,9 @@ void finish(const fs::path& dir, const std::string& case_name, nlohmann::json js
 }
 
 void run_figure_script(const std::string& script, const fs::path& dir, const std::string& title, std::ostream& log) {
-  log << "compare: drawing figures (" << fs::path(script).filename().string() << ")\n" << std::flush;
-  const std::string command = "/usr/bin/python3 " + shell_quote(script) + " " + shell_quote(dir.string()) +
-                              " --title " + shell_quote(title) + " >" + shell_quote((dir / "figures.log").string()) +
-                              " 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    std::ifstream in(dir / "figures.log");
-    std::string last, line;
-    while (std::getline(in, line))
-      if (!line.empty()) last = line;
-    throw Error(fs::path(script).filename().string() + " failed: " + last);
-  }
+  const std::string name = fs::path(script).filename().string();
+  log << "compare: drawing figures (" << name << ")\n" << std::flush;
+  workbench::run_python_script(script, {dir.string(), "--title", title}, dir / "figures.log", name);
 }
 
 }  // namespace compare::report

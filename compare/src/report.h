@@ -48,8 +48,9 @@ void finish(const std::filesystem::path& dir, const std::string& case_name, nloh
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
             std::ostream& log);
 
-/// Runs `/usr/bin/python3 <script> <dir> --title <title>` (a script of compare/), output into
-/// dir/figures.log; throws workbench::Error with its last line when it fails.
+/// Runs `python <script> <dir> --title <title>` (`script` relative to share/workbench/, e.g.
+/// "compare/figures.py"; workbench/child_process.h), output into dir/figures.log; throws
+/// workbench::Error with its last line when it fails.
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
                        std::ostream& log);
 

@@ -1,5 +1,6 @@
 #include "pbd_study.h"
 
+#include <workbench/child_process.h>
 #include <workbench/error.h>
 
 #include <algorithm>
@@ -198,27 +199,10 @@ void write_render_frame(const fs::path& file, const std::vector<double>& points,
 
 void render_animation(const fs::path& frames_dir, const fs::path& output, int fps, const std::string& field,
                       const std::string& title) {
-  const char* script_env = std::getenv("WORKBENCH_RENDER_SCRIPT");
-  const char* python_env = std::getenv("WORKBENCH_PYTHON");
-  const std::string script = script_env ? script_env : PBD_RENDER_SCRIPT;
-  const std::string python = python_env ? python_env : "/usr/bin/python3";
-  if (!fs::is_regular_file(script)) throw Error(script + ": render script not found (set WORKBENCH_RENDER_SCRIPT)");
-  auto quote = [](const std::string& s) {
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-  };
-  const fs::path log = frames_dir / "render.log";
-  const std::string cmd = quote(python) + " " + quote(script) + " " + quote(frames_dir.string()) + " -o " +
-                          quote(output.string()) + " --fps " + std::to_string(fps) + " --field " + quote(field) +
-                          (title.empty() ? "" : " --title " + quote(title)) + " > " + quote(log.string()) + " 2>&1";
-  if (std::system(cmd.c_str()) != 0) {
-    std::ifstream in(log);
-    std::string line, last;
-    while (std::getline(in, line))
-      if (!line.empty()) last = line;
-    throw Error(output.string() + ": rendering the animation failed: " + (last.empty() ? "see " + log.string() : last));
-  }
+  std::vector<std::string> args{frames_dir.string(), "-o", output.string(), "--fps", std::to_string(fps), "--field", field};
+  if (!title.empty()) args.insert(args.end(), {"--title", title});
+  workbench::run_python_script("scripts/render_frames.py", args, frames_dir / "render.log",
+                               output.string() + ": rendering the animation");
 }
 
 void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostream& log) {

@@ -76,7 +76,7 @@ void write_render_frame(const std::filesystem::path& file, const std::vector<dou
                         const std::string& field_name, const std::vector<double>& field);
 
 /// Runs scripts/render_frames.py on `frames_dir` into `output` (ffmpeg); throws workbench::Error
-/// when it fails. The script and python are WORKBENCH_RENDER_SCRIPT / WORKBENCH_PYTHON when set.
+/// when it fails. The script and python are found by workbench/child_process.h.
 void render_animation(const std::filesystem::path& frames_dir, const std::filesystem::path& output, int fps,
                       const std::string& field, const std::string& title);
 

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support/scratch_folder.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -14,7 +16,7 @@ const std::string kMeshes = WORKBENCH_SOURCE_DIR "/meshes/";
 
 // A case file in a temporary folder; `extra` replaces nothing, it is appended.
 fs::path write_case(const std::string& name, const std::string& body) {
-  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study";
+  const fs::path dir = test_support::scratch_folder();
   fs::create_directories(dir);
   const fs::path file = dir / name;
   std::ofstream(file) << body;
@@ -81,8 +83,7 @@ TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
 TEST(AgentStudy, WritesEveryStepAndTheTables) {
   workbench::CaseFile file(write_case("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
-  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study_out";
-  fs::remove_all(dir);
+  const fs::path dir = test_support::scratch_folder() / "out";
   fs::create_directories(dir);
   std::ostringstream log;
   agent_study::write_agent_outputs(study, dir, log);
@@ -95,7 +96,6 @@ TEST(AgentStudy, WritesEveryStepAndTheTables) {
   while (std::getline(cells, line)) ++rows;
   EXPECT_EQ(rows, 400);
   EXPECT_NE(log.str().find("step 3/3"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 TEST(AgentStudy, BadCasesNameTheFileAndTheKey) {

@@ -1,6 +1,5 @@
 // Case files: typed, range-checked keys; every mistake named with its file and key.
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
 #include <workbench/study_setup.h>
 
 #include <gtest/gtest.h>
@@ -70,21 +69,4 @@ TEST(StudySetup, ReadsLoadsAndChecksGroups) {
   EXPECT_EQ(s.loads[0].sign, -1);
   EXPECT_EQ(error_of([&] { check_groups_exist(f, s, {"base", "free"}); }),
             "dir/case.toml: load[0].group: group 'top' is not a physical group of dir/m.geo (it has: base, free)");
-}
-
-TEST(StagedDirectory, AppearsWholeOrNotAtAll) {
-  const auto target = std::filesystem::temp_directory_path() / "workbench_staged_test";
-  std::filesystem::remove_all(target);
-  {
-    StagedDirectory staged(target);
-    std::ofstream(staged.path() / "a.txt") << "half";
-  }  // abandoned: nothing appears
-  EXPECT_FALSE(std::filesystem::exists(target));
-  {
-    StagedDirectory staged(target);
-    std::ofstream(staged.path() / "a.txt") << "whole";
-    staged.commit();
-  }
-  EXPECT_TRUE(std::filesystem::exists(target / "a.txt"));
-  std::filesystem::remove_all(target);
 }

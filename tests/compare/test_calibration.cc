@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support/scratch_folder.h"
+
 namespace fs = std::filesystem;
 using namespace compare;
 
@@ -16,7 +18,7 @@ namespace {
 const std::string kSource = WORKBENCH_SOURCE_DIR;
 
 fs::path write(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "workbench_calibration_test";
+  const fs::path dir = test_support::scratch_folder();
   fs::create_directories(dir);
   std::ofstream(dir / name) << text;
   return dir / name;
@@ -58,7 +60,7 @@ CalibrationOptions options() {
 std::string error_of(const std::string& text) {
   try {
     workbench::CaseFile file(write("calibration.toml", text));
-    compare::run_calibration(file, fs::temp_directory_path() / "workbench_calibration_out", *new std::ostringstream);
+    compare::run_calibration(file, test_support::scratch_folder() / "out", *new std::ostringstream);
   } catch (const workbench::Error& e) {
     return e.what();
   }

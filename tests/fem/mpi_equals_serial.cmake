@@ -17,3 +17,5 @@ message(STATUS "${out}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "serial and 2-rank results differ")
 endif()
+# Passed: the scratch folder goes (a failed run keeps it for inspection).
+file(REMOVE_RECURSE ${OUT})

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "../support/scratch_folder.h"
+
 namespace fs = std::filesystem;
 using namespace fem_reference;
 
@@ -333,7 +335,7 @@ TEST(FemCantilever, ThinStripResidualFloorIsRounding) {
 // ------------------------------------------------------------------------------------------------
 
 fs::path write_case(const std::string& name, const std::string& body) {
-  const fs::path dir = fs::temp_directory_path() / "workbench_fem_tests";
+  const fs::path dir = test_support::scratch_folder();
   fs::create_directories(dir);
   const fs::path file = dir / name;
   std::ofstream(file) << body;

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support/scratch_folder.h"
+
 namespace fs = std::filesystem;
 using pbd::Vec3;
 
@@ -22,8 +24,7 @@ const fs::path kSource = WORKBENCH_SOURCE_DIR;
 struct TempDir {
   fs::path path;
   TempDir() {
-    path = fs::temp_directory_path() / ("pbd_io_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    path = test_support::scratch_folder() / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(path);
     fs::create_directories(path);
   }

@@ -1,14 +1,26 @@
 #pragma once
-// Output that appears whole or not at all: files are written into a hidden sibling folder
-// that replaces the target folder only when commit() is called. If the run fails first, the
-// destructor removes the partial folder and the previous output stays untouched.
+// Output that appears whole or not at all, and never at the cost of a user's files.
+//
+// Files are written into a hidden sibling folder `.NAME.partial-PID` that replaces the target
+// folder only when commit() is called. The target may be replaced only if it is empty or carries
+// the stamp file every output folder gets (kStampFile: program, version, case file); any other
+// existing folder or file is refused up front, before anything is written. The replacement moves
+// the old folder aside, renames the new one in, then deletes the old one, so a kill at any moment
+// leaves either the old or the new output in place. If the run fails or is interrupted
+// (workbench/interruption.h), the staging folder is removed; one left by a killed run
+// (SIGKILL) is removed by the next run to the same target once its process is gone.
 #include <filesystem>
+#include <string>
 
 namespace workbench {
 
+/// The stamp file's name inside every output folder.
+inline constexpr const char* kStampFile = ".workbench-output";
+
 class StagedDirectory {
  public:
-  explicit StagedDirectory(std::filesystem::path target);
+  /// Throws workbench::Error (one line naming `target`) when `target` may not be replaced.
+  StagedDirectory(std::filesystem::path target, const std::filesystem::path& case_file);
   ~StagedDirectory();
   StagedDirectory(const StagedDirectory&) = delete;
   StagedDirectory& operator=(const StagedDirectory&) = delete;
@@ -24,5 +36,8 @@ class StagedDirectory {
   std::filesystem::path target_, staging_;
   bool committed_ = false;
 };
+
+/// True when `dir` is a folder the workbench wrote (it carries the stamp file).
+bool carries_stamp(const std::filesystem::path& dir);
 
 }  // namespace workbench

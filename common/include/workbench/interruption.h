@@ -1,0 +1,32 @@
+#pragma once
+// A run that is interrupted (SIGINT, SIGTERM) ends cleanly: its child processes are ended, its
+// staging folders removed, one line is printed and the exit code is the conventional 128 + signal.
+//
+// handle_interruptions() must be called first in main(), before any thread starts: it blocks the
+// two signals in every thread and leaves them to one watcher thread (sigwait), which does the
+// clean-up outside a signal handler, so it may take locks and remove folders.
+#include <filesystem>
+#include <mutex>
+#include <string>
+
+namespace workbench {
+
+/// Installs the watcher; `program` starts its one-line message ("workbench: interrupted ...").
+void handle_interruptions(const std::string& program);
+
+/// Held while the staged-folder bookkeeping changes (and while a folder is committed), so that an
+/// interruption never sees half a commit.
+std::unique_lock<std::mutex> hold_interruptions();
+
+/// Staging folders to remove when interrupted; both must be called under hold_interruptions().
+void remove_on_interruption(const std::filesystem::path& staging);
+void forget_on_interruption(const std::filesystem::path& staging);
+
+/// The process group of the running child (0: none), ended when interrupted.
+void set_child_group(int pgid);
+
+/// True once a signal arrived: a child that ended then was ended by the watcher, whose exit
+/// follows; the caller must not report the child's failure as an error of its own.
+bool interruption_under_way();
+
+}  // namespace workbench

@@ -1,0 +1,76 @@
+// SIGINT/SIGTERM: end the children, remove the staging folders, one line, exit 128 + signal.
+#include <workbench/interruption.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+#include <sys/types.h>
+#include <unistd.h>
+
+namespace workbench {
+
+namespace {
+
+std::mutex registry_mutex;
+std::vector<std::filesystem::path> staging_folders;  // guarded by registry_mutex
+std::atomic<int> child_group{0};
+std::atomic<bool> interrupted{false};
+
+void end_child_group(int pgid) {
+  if (pgid <= 0) return;
+  ::kill(-pgid, SIGTERM);
+  // A child that ignores SIGTERM gets SIGKILL after a grace period; the group is gone once every
+  // member has exited (the direct child may linger as a zombie until its waiter reaps it).
+  for (int i = 0; i < 40 && ::kill(-pgid, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ::kill(-pgid, SIGKILL);
+}
+
+}  // namespace
+
+std::unique_lock<std::mutex> hold_interruptions() { return std::unique_lock<std::mutex>(registry_mutex); }
+
+void remove_on_interruption(const std::filesystem::path& staging) { staging_folders.push_back(staging); }
+
+void forget_on_interruption(const std::filesystem::path& staging) {
+  staging_folders.erase(std::remove(staging_folders.begin(), staging_folders.end(), staging), staging_folders.end());
+}
+
+void set_child_group(int pgid) { child_group = pgid; }
+
+bool interruption_under_way() { return interrupted; }
+
+void handle_interruptions(const std::string& program) {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : {SIGINT, SIGTERM}) {
+    // A signal ignored on entry (`nohup`, a shell's background job) stays ignored, as is custom.
+    struct sigaction now {};
+    if (::sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
+  if (sigisemptyset(&set)) return;
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread started from now on
+  std::thread([set, program] {
+    int sig = 0;
+    while (sigwait(&set, &sig) != 0) {
+    }
+    interrupted = true;
+    auto lock = hold_interruptions();  // waits for a commit or a spawn in progress to finish
+    end_child_group(child_group.exchange(0));
+    for (const auto& dir : staging_folders) {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);  // only folders this process created (StagedDirectory)
+    }
+    std::fprintf(stderr, "%s: interrupted by %s; unfinished output removed\n", program.c_str(),
+                 sig == SIGINT ? "SIGINT" : "SIGTERM");
+    std::fflush(stderr);
+    ::_exit(128 + sig);
+  }).detach();
+}
+
+}  // namespace workbench

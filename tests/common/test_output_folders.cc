@@ -1,0 +1,201 @@
+// Output folders and child processes: nothing of the user's is ever replaced, an output appears
+// whole or not at all, stale staging folders of dead runs go, children run without a shell.
+#include <workbench/child_process.h>
+#include <workbench/error.h>
+#include <workbench/staged_directory.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "../support/scratch_folder.h"
+
+namespace fs = std::filesystem;
+using namespace workbench;
+
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Everything in `dir` but the names listed (siblings a run may have left behind).
+std::vector<std::string> entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A process id that belonged to a process that has exited and been reaped.
+pid_t dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+const fs::path kCase = "case.toml";
+
+}  // namespace
+
+TEST(StagedDirectory, AppearsWholeOrNotAtAllAndCarriesTheStamp) {
+  const fs::path target = test_support::scratch_folder() / "out";
+  {
+    StagedDirectory staged(target, kCase);
+    std::ofstream(staged.path() / "a.txt") << "half";
+  }  // abandoned: nothing appears, nothing is left beside it
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(entries(test_support::scratch_folder()).empty());
+  {
+    StagedDirectory staged(target, kCase);
+    std::ofstream(staged.path() / "a.txt") << "whole";
+    staged.commit();
+  }
+  EXPECT_EQ(read(target / "a.txt"), "whole");
+  EXPECT_TRUE(carries_stamp(target));
+  const std::string stamp = read(target / kStampFile);
+  EXPECT_EQ(stamp.rfind("program = \"workbench\"\nversion = \"", 0), 0u) << stamp;
+  EXPECT_NE(stamp.find("case = \"" + fs::absolute(kCase).string() + "\""), std::string::npos) << stamp;
+}
+
+TEST(StagedDirectory, ReplacesItsOwnOutputAndLeavesNothingBeside) {
+  const fs::path target = test_support::scratch_folder() / "out";
+  for (const char* text : {"first", "second"}) {
+    StagedDirectory staged(target, kCase);
+    std::ofstream(staged.path() / (std::string(text) + ".txt")) << text;
+    staged.commit();
+  }
+  EXPECT_FALSE(fs::exists(target / "first.txt"));
+  EXPECT_EQ(read(target / "second.txt"), "second");
+  EXPECT_EQ(entries(test_support::scratch_folder()), std::vector<std::string>{"out"});
+}
+
+TEST(StagedDirectory, RefusesAFolderItDidNotWriteAndTouchesNothing) {
+  const fs::path target = test_support::scratch_folder() / "mine";
+  fs::create_directories(target);
+  std::ofstream(target / "thesis.tex") << "years of work";
+  const std::string e = error_of([&] { StagedDirectory staged(target, kCase); });
+  EXPECT_EQ(e, target.string() + ": is a folder the workbench did not write (it has files and no " + kStampFile +
+                   "); refusing to replace it, choose a new or empty folder");
+  EXPECT_EQ(read(target / "thesis.tex"), "years of work");
+  EXPECT_EQ(entries(test_support::scratch_folder()), std::vector<std::string>{"mine"});
+  // A stamp that is not ours (a file of that name with other contents) does not count either.
+  std::ofstream(target / kStampFile) << "something else\n";
+  EXPECT_NE(error_of([&] { StagedDirectory staged(target, kCase); }).find("did not write"), std::string::npos);
+}
+
+TEST(StagedDirectory, RefusesAFolderThatChangedWhileTheStudyRan) {
+  const fs::path target = test_support::scratch_folder() / "out";
+  StagedDirectory staged(target, kCase);
+  fs::create_directories(target);
+  std::ofstream(target / "notes.txt") << "written meanwhile";
+  EXPECT_NE(error_of([&] { staged.commit(); }).find("did not write"), std::string::npos);
+  EXPECT_EQ(read(target / "notes.txt"), "written meanwhile");
+}
+
+TEST(StagedDirectory, UsesAnEmptyFolder) {
+  const fs::path target = test_support::scratch_folder() / "empty";
+  fs::create_directories(target);
+  StagedDirectory staged(target, kCase);
+  std::ofstream(staged.path() / "a.txt") << "x";
+  staged.commit();
+  EXPECT_EQ(read(target / "a.txt"), "x");
+}
+
+TEST(StagedDirectory, RefusesAFileALinkTheRootAndTheCurrentFolder) {
+  const fs::path dir = test_support::scratch_folder();
+  std::ofstream(dir / "file") << "keep";
+  EXPECT_EQ(error_of([&] { StagedDirectory s(dir / "file", kCase); }), (dir / "file").string() + ": exists and is not a folder");
+  fs::create_directory_symlink(dir, dir / "link");
+  EXPECT_NE(error_of([&] { StagedDirectory s(dir / "link", kCase); }).find("symbolic link"), std::string::npos);
+  EXPECT_EQ(error_of([&] { StagedDirectory s("/", kCase); }), "/: refusing to write into the root folder");
+  const fs::path before = fs::current_path();
+  fs::create_directories(dir / "here");
+  fs::current_path(dir / "here");
+  const std::string e = error_of([&] { StagedDirectory s(".", kCase); });
+  const std::string up = error_of([&] { StagedDirectory s("..", kCase); });
+  fs::current_path(before);
+  EXPECT_EQ(e, (dir / "here").string() + ": is the current folder or holds it; refusing to replace it");
+  EXPECT_NE(up.find("is the current folder or holds it"), std::string::npos) << up;
+  EXPECT_EQ(read(dir / "file"), "keep");
+}
+
+TEST(StagedDirectory, RemovesOnlyStaleStagingOfRunsThatAreGone) {
+  const fs::path dir = test_support::scratch_folder();
+  auto stamped = [&](const std::string& name) {
+    fs::create_directories(dir / name);
+    std::ofstream(dir / name / kStampFile) << "program = \"workbench\"\n";
+    std::ofstream(dir / name / "frame.vtu") << "partial";
+  };
+  const std::string dead = std::to_string(dead_pid()), alive = std::to_string(::getppid());
+  stamped(".out.partial-" + dead);  // killed run: removed
+  stamped(".out.old-" + dead);      // killed in the middle of a commit: removed
+  stamped(".out.partial-" + alive);  // a run still going: kept
+  fs::create_directories(dir / (".out.partial-" + dead + "x"));  // not our pattern: kept
+  fs::create_directories(dir / (".out.partial-" + dead + "-unstamped"));
+  fs::create_directories(dir / (".other.partial-" + dead));  // another target's: kept
+  std::ofstream(dir / (".other.partial-" + dead) / kStampFile) << "program = \"workbench\"\n";
+  fs::create_directories(dir / (".out.partial-1" + dead));   // no stamp: kept even if its pid is gone
+  StagedDirectory staged(dir / "out", kCase);
+  EXPECT_FALSE(fs::exists(dir / (".out.partial-" + dead)));
+  EXPECT_FALSE(fs::exists(dir / (".out.old-" + dead)));
+  EXPECT_TRUE(fs::exists(dir / (".out.partial-" + alive)));
+  EXPECT_TRUE(fs::exists(dir / (".out.partial-" + dead + "x")));
+  EXPECT_TRUE(fs::exists(dir / (".out.partial-" + dead + "-unstamped")));
+  EXPECT_TRUE(fs::exists(dir / (".other.partial-" + dead)));
+  EXPECT_TRUE(fs::exists(dir / (".out.partial-1" + dead)));
+}
+
+TEST(ChildProcess, PassesArgumentsVerbatimAndReportsTheExitStatus) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  const std::string tricky = "it's a $HOME `x` \"y\" ; rm -rf /nothing";
+  EXPECT_EQ(run_child({"/bin/sh", "-c", "printf '%s|%s' \"$0\" \"$1\"; exit 3", tricky, "second arg"}, log), 3);
+  EXPECT_EQ(read(log), tricky + "|second arg");
+  EXPECT_EQ(run_child({"sh", "-c", "echo to-stderr >&2"}, log), 0);  // looked up on PATH; stderr to the log
+  EXPECT_EQ(read(log), "to-stderr\n");
+  EXPECT_EQ(run_child({"/bin/sh", "-c", "kill -TERM $$"}, log), 128 + 15);
+  EXPECT_EQ(error_of([&] { run_child({"/nonexistent/program"}, log); }),
+            "/nonexistent/program: cannot run (No such file or directory)");
+}
+
+TEST(ChildProcess, PythonIsWorkbenchPythonElseTheSystemOne) {
+  const char* saved = std::getenv("WORKBENCH_PYTHON");
+  const std::string keep = saved ? saved : "";
+  ::unsetenv("WORKBENCH_PYTHON");
+  EXPECT_EQ(python_interpreter(), "/usr/bin/python3");
+  ::setenv("WORKBENCH_PYTHON", "/opt/py/bin/python", 1);
+  EXPECT_EQ(python_interpreter(), "/opt/py/bin/python");
+  if (saved) ::setenv("WORKBENCH_PYTHON", keep.c_str(), 1);
+  else ::unsetenv("WORKBENCH_PYTHON");
+}
+
+TEST(ChildProcess, ScriptsAreFoundBesideTheProgramOrInWorkbenchScriptDir) {
+  // The build copies the scripts into <build>/share/workbench, two folders above this test.
+  EXPECT_EQ(find_script("compare/figures.py").filename(), "figures.py");
+  const fs::path dir = test_support::scratch_folder();
+  ::setenv("WORKBENCH_SCRIPT_DIR", dir.c_str(), 1);
+  EXPECT_EQ(error_of([&] { find_script("compare/figures.py"); }),
+            (dir / "compare/figures.py").string() + ": script not found (WORKBENCH_SCRIPT_DIR is set)");
+  fs::create_directories(dir / "compare");
+  std::ofstream(dir / "compare/figures.py") << "";
+  EXPECT_EQ(find_script("compare/figures.py"), dir / "compare/figures.py");
+  ::unsetenv("WORKBENCH_SCRIPT_DIR");
+}

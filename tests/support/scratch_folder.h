@@ -1,0 +1,32 @@
+#pragma once
+// A scratch folder no other test can touch: ctest runs every test in its own process, in parallel,
+// and other build trees may run the same tests at the same time, so the folder is named by the
+// test and the process id. It is created on first use and removed when the process exits.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+namespace test_support {
+
+inline const std::filesystem::path& scratch_folder() {
+  struct Folder {
+    std::filesystem::path path;
+    Folder() {
+      const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+      const std::string name = test ? std::string(test->test_suite_name()) + "." + test->name() : "no_test";
+      path = std::filesystem::temp_directory_path() / ("workbench_test_" + name + "_" + std::to_string(::getpid()));
+      std::filesystem::create_directories(path);
+    }
+    ~Folder() {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
+}
+
+}  // namespace test_support

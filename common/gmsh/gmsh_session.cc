@@ -1,8 +1,13 @@
+// The process's one gmsh session: every .geo/.msh load starts from a fresh gmsh, after the
+// checks of mesh_checks.h (gmsh aborts or crashes on some bad input instead of reporting it).
 #include "gmsh_session.h"
+
+#include "mesh_checks.h"
 
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace workbench {
@@ -44,6 +49,9 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
   const std::string ext = file.extension().string();
   if (ext != ".geo" && ext != ".msh") throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file");
   if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters apply to .geo files only");
+  for (const auto& [key, value] : parameters)
+    if (!std::isfinite(value)) throw std::runtime_error(name + ": mesh parameter '" + key + "' is not a finite number");
+  if (ext == ".msh") check_msh_file(file);
   std::vector<std::string> declared;
   try {
     if (ext == ".geo") {
@@ -70,10 +78,21 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
         const auto colon = line.find(':');
         throw LoadError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
       }
-    if (ext == ".geo") gmsh::model::mesh::generate(gmsh::model::getDimension());
+    if (ext == ".geo") {
+      check_geo_mesh_size(file);
+      gmsh::model::mesh::generate(gmsh::model::getDimension());
+    }
     gmsh::logger::stop();
+    std::vector<std::size_t> tags;
+    std::vector<double> coords, parametric;
+    gmsh::model::mesh::getNodes(tags, coords, parametric);
+    for (std::size_t i = 0; i < coords.size(); ++i)
+      if (!std::isfinite(coords[i]))
+        throw LoadError(name + ": node " + std::to_string(tags[i / 3]) + " has a non-finite coordinate");
   } catch (const LoadError&) {
     throw;
+  } catch (const std::runtime_error& e) {  // the size check's refusal
+    throw std::runtime_error(e.what());
   } catch (...) {
     throw std::runtime_error(name + ": " + last_error());
   }

@@ -32,15 +32,17 @@ std::optional<double> as_number(const toml::node& node) {
 }
 }  // namespace
 
-bool Range::contains(double v) const {
-  if (!std::isfinite(v)) return false;
-  if (lo_open ? !(v > lo) : !(v >= lo)) return false;
-  if (hi_open ? !(v < hi) : !(v <= hi)) return false;
-  return true;
+std::string Range::problem(double v) const {
+  if (!std::isfinite(v)) return "must be a finite number (got " + format_number(v) + ")";
+  if (std::abs(v) > kMaxMagnitude)
+    return "magnitude above " + format_number(kMaxMagnitude) + " is not a usable value (got " + format_number(v) + ")";
+  const bool above_lo = lo_open ? v > lo : v >= lo, below_hi = hi_open ? v < hi : v <= hi;  // false for a NaN bound
+  if (!above_lo || !below_hi) return describe() + " (got " + format_number(v) + ")";
+  return "";
 }
 
 std::string Range::describe() const {
-  const bool has_lo = lo > -1e307, has_hi = hi < 1e307;
+  const bool has_lo = lo > -kMaxMagnitude, has_hi = hi < kMaxMagnitude;
   if (has_lo && has_hi)
     return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
            (hi_open ? ")" : "]");
@@ -118,7 +120,7 @@ double CaseTable::number(const std::string& key, std::optional<double> fallback,
     auto v = as_number(*node);
     if (!v) fail(key, std::string("must be a number, not ") + type_name(*node));
     value = *v;
-    if (!range.contains(value)) fail(key, range.describe() + " (got " + format_number(value) + ")");
+    if (const auto problem = range.problem(value); !problem.empty()) fail(key, problem);
   }
   return value;
 }
@@ -202,7 +204,7 @@ std::vector<double> CaseTable::numbers(const std::string& key, std::optional<std
   for (const auto& item : *arr) {
     auto v = as_number(item);
     if (!v) fail(key, std::string("must hold numbers only, found ") + type_name(item));
-    if (!range.contains(*v)) fail(key, "every entry " + range.describe() + " (got " + format_number(*v) + ")");
+    if (const auto problem = range.problem(*v); !problem.empty()) fail(key, "every entry " + problem);
     out.push_back(*v);
   }
   return out;
@@ -218,6 +220,7 @@ std::map<std::string, double> CaseTable::number_map(const std::string& key) cons
   for (const auto& [k, item] : *sub) {
     auto v = as_number(item);
     if (!v) fail(key + "." + std::string(k.str()), std::string("must be a number, not ") + type_name(item));
+    if (const auto problem = Range::any().problem(*v); !problem.empty()) fail(key + "." + std::string(k.str()), problem);
     file_->mark(full(key) + "." + std::string(k.str()));
     out[std::string(k.str())] = *v;
   }

@@ -27,16 +27,21 @@ class table;
 
 namespace workbench {
 
-/// An interval of admissible values, each end open or closed.
+/// An interval of admissible values, each end open or closed. No range admits NaN, an infinity
+/// or a magnitude above kMaxMagnitude: every quantity is in SI units, where such a value is a
+/// typo, and a product of three of them must stay finite.
 struct Range {
-  double lo = -1e308, hi = 1e308;
+  static constexpr double kMaxMagnitude = 1e100;
+  double lo = -kMaxMagnitude, hi = kMaxMagnitude;
   bool lo_open = false, hi_open = false;
   static Range any() { return {}; }
-  static Range positive() { return {0.0, 1e308, true, false}; }
-  static Range non_negative() { return {0.0, 1e308, false, false}; }
+  static Range positive() { return {0.0, kMaxMagnitude, true, false}; }
+  static Range non_negative() { return {0.0, kMaxMagnitude, false, false}; }
   static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
   static Range open(double lo, double hi) { return {lo, hi, true, true}; }
-  bool contains(double v) const;
+  bool contains(double v) const { return problem(v).empty(); }
+  /// Why `v` is not admissible ("must be > 0 (got -1)"), or "" when it is.
+  std::string problem(double v) const;
   std::string describe() const;
 };
 

@@ -217,6 +217,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         }
         f[enter_face] += top;
         top_buf[b] = top;
+        // Tallied here, where it happens: what the agent received less what it passes on, down
+        // and (every friction chain arriving goes on with `carry`) to the sides.
+        d.lost += from_above + from_side - down_t - (carry * from_side + lateral_dirs * emit * from_above);
         if (!(down_t > gamma)) {
           d.dropped += down_t;
         } else if (!last_layer) {
@@ -307,6 +310,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   diagnostics_.rigid_reaction += d.rigid_reaction;
   diagnostics_.passed_out += d.passed_out;
   diagnostics_.dropped += d.dropped;
+  diagnostics_.lost += d.lost;
   diagnostics_.lateral_reaction += d.lateral_reaction;
   diagnostics_.lateral_passed_out += d.lateral_passed_out;
   diagnostics_.lateral_dropped += d.lateral_dropped;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
 
 using namespace agent;
@@ -56,6 +57,9 @@ TEST(AgentRules, EntryTakesAlpha1AndEachStepDownAlpha2) {
   EXPECT_DOUBLE_EQ(face(m, 2, 0, kMinusY), 0.03125);
   EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, 0.03125);
   EXPECT_DOUBLE_EQ(m.diagnostics().applied, 1.0);
+  // Lost where it is lost: the entry 1 - alpha1 alpha2 = 0.75, then each agent 1 - alpha2 of its
+  // input (0.125, 0.0625, 0.03125).
+  EXPECT_DOUBLE_EQ(m.diagnostics().lost, 0.75 + 0.125 + 0.0625 + 0.03125);
   EXPECT_EQ(m.diagnostics().agents_generated, 4u);
   EXPECT_EQ(m.generation()[g.index(2, 0, 0)], 3);
   EXPECT_EQ(m.generation()[g.index(1, 3, 0)], -1);
@@ -278,4 +282,38 @@ TEST(AgentRules, RejectsCoefficientsOutOfRange) {
   EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, -1), RuleSet::Patent), std::invalid_argument);
   EXPECT_THROW(LoadTransfer(g, {1.0, 0.5}, coefficients(0.5, 0.5, 0.25, 0.5, 0), RuleSet::Patent), std::invalid_argument);
   EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 0), RuleSet::Conserving), std::invalid_argument);
+}
+
+// applied = rigid reaction + passed out + dropped + lost, tallied separately, for every rule set,
+// in 2D and 3D, with friction, Poisson pushes, free and rigid sides and a threshold that bites.
+TEST(AgentRules, LoadBalanceHoldsForEveryRuleSetIn2DAnd3D) {
+  struct Shape {
+    Grid grid;
+    std::size_t entry;
+  };
+  std::vector<Shape> shapes;
+  shapes.push_back({plate(21, 15), 0});
+  shapes.back().entry = shapes.back().grid.index(10, 14, 0);
+  shapes.push_back({plate(9, 30, false), 0});  // a free base: the load leaves the body
+  shapes.back().entry = shapes.back().grid.index(4, 29, 0);
+  Grid block = Grid::box(3, {9, 8, 7}, Eigen::Vector3d(1, 1, 1));
+  for (auto& b : block.sides[kMinusY]) b = Boundary::Rigid;
+  shapes.push_back({block, block.index(4, 7, 3)});
+  for (const auto& shape : shapes)
+    for (auto rules : {RuleSet::Patent, RuleSet::Conserving})
+      for (const auto& k : {coefficients(0.5, 0.5, 0.25, 0.5, 1e-3), coefficients(0.7, 0.6, 0.3, 0.2, 1e-6),
+                            coefficients(1.0, 0.9, 0.05, 0.5, 0.0), coefficients(0.5, 0.5, 0.25, 0.5, 0.05)}) {
+        LoadTransfer m(shape.grid, kMaterial, k, rules);
+        m.solve({{shape.entry, direction(1, false), 2.0}});
+        const auto& d = m.diagnostics();
+        EXPECT_DOUBLE_EQ(d.applied, 2.0);
+        EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped + d.lost, d.applied, 1e-13)
+            << "dim " << shape.grid.dim << " rules " << int(rules) << " alpha1 " << k.alpha1;
+        if (rules == RuleSet::Conserving) {
+          EXPECT_NEAR(d.lost, 0.0, 1e-13);
+        } else {
+          // The literal rules lose load at every step (or make it, where alpha2 + 2 alpha3 > 1).
+          EXPECT_GT(std::abs(d.lost), 0.1);
+        }
+      }
 }

@@ -1,3 +1,4 @@
+// The agent model as a workbench study: case file -> grid and loads -> VTU/PVD/CSV/JSON output.
 #include "agent_study.h"
 
 #include <workbench/error.h>

@@ -79,7 +79,7 @@ class LoadTransfer {
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
   const std::vector<std::int32_t>& generation() const { return generation_; }
   const Diagnostics& diagnostics() const { return diagnostics_; }
-  /// Bytes held for the grid's agents (results and per-layer scratch).
+  /// Bytes held for the grid's slots (results, the grid's flags, per-layer scratch).
   std::size_t memory_bytes() const;
 
  private:

@@ -1,5 +1,7 @@
+// Stress, strain and displacement of the agents from their face forces.
 #include <agent/fields.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace agent {
@@ -37,16 +39,26 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
     total += l.force;
   }
   if (total > 0) centre /= total;
+  // The lowest rigid face looking down each axis (or, failing that, the highest looking up).
+  std::array<double, 3> low{}, high{};
+  std::array<bool, 3> has_low{}, has_high{};
+  for (const auto& f : grid.boundary_faces()) {
+    if (grid.boundary(f.side, f.cell) != Boundary::Rigid) continue;
+    const int a = axis_of(f.side);
+    const double at = grid.coords(f.cell)[a] + (is_positive(f.side) ? 1.0 : 0.0);
+    if (!is_positive(f.side)) {
+      low[a] = has_low[a] ? std::min(low[a], at) : at;
+      has_low[a] = true;
+    } else {
+      high[a] = has_high[a] ? std::max(high[a], at) : at;
+      has_high[a] = true;
+    }
+  }
   for (int a = 0; a < grid.dim; ++a) {
-    auto rigid = [&](int side) {
-      for (auto b : grid.sides[side])
-        if (b == Boundary::Rigid) return true;
-      return false;
-    };
-    if (rigid(direction(a, false)))
-      datums[a] = 0;
-    else if (rigid(direction(a, true)))
-      datums[a] = grid.cells[a];
+    if (has_low[a])
+      datums[a] = low[a];
+    else if (has_high[a])
+      datums[a] = high[a];
     else
       datums[a] = total > 0 ? (centre[a] - grid.origin[a]) / grid.size[a] : 0.5 * grid.cells[a];
   }

@@ -1,6 +1,8 @@
+// The agent lattice: cells, air, faces and their boundary kinds.
 #include <agent/grid.h>
 
 #include <stdexcept>
+#include <string>
 
 namespace agent {
 
@@ -14,20 +16,22 @@ Grid Grid::box(int dim, std::array<int, 3> n, Eigen::Vector3d size, double thick
   g.cells = n;
   g.size = size;
   g.thickness = thickness;
-  for (int side = 0; side < 2 * dim; ++side) {
-    const int a = axis_of(side);
-    std::size_t count = 1;
-    for (int b = 0; b < 3; ++b)
-      if (b != a) count *= std::size_t(n[b]);
-    g.sides[side].assign(count, Boundary::Free);
-  }
+  g.flags.assign(g.count(), 0);
   return g;
 }
 
-std::size_t Grid::side_slot(int side, const std::array<int, 3>& c) const {
+std::size_t Grid::agent_count() const {
+  std::size_t n = 0;
+  for (auto f : flags) n += !(f & kAirBit);
+  return n;
+}
+
+bool Grid::has_neighbour(std::size_t cell, int side) const {
   const int a = axis_of(side);
-  const int b = a == 0 ? 1 : 0, d = a == 2 ? 1 : 2;  // the other two axes, ascending
-  return std::size_t(c[b]) + std::size_t(cells[b]) * c[d];
+  const int c = coords(cell)[a];
+  if (is_positive(side) ? c == cells[a] - 1 : c == 0) return false;
+  const std::size_t s = stride(a);
+  return !is_air(is_positive(side) ? cell + s : cell - s);
 }
 
 double Grid::face_area(int axis) const {
@@ -47,8 +51,31 @@ std::size_t Grid::node_count() const {
   return std::size_t(n[0]) * n[1] * n[2];
 }
 
+std::vector<BoundaryFace> Grid::boundary_faces() const {
+  std::vector<BoundaryFace> out;
+  for (std::size_t cell = 0; cell < count(); ++cell)
+    if (!is_air(cell))
+      for (int side = 0; side < 2 * dim; ++side)
+        if (!has_neighbour(cell, side)) out.push_back({cell, side});
+  return out;
+}
+
+std::vector<BoundaryFace> Grid::box_side(int side) const {
+  std::vector<BoundaryFace> out;
+  const int a = axis_of(side), at = is_positive(side) ? cells[a] - 1 : 0;
+  for (std::size_t cell = 0; cell < count(); ++cell)
+    if (!is_air(cell) && coords(cell)[a] == at) out.push_back({cell, side});
+  return out;
+}
+
 void Grid::set_boundary(const std::vector<BoundaryFace>& faces, Boundary kind) {
-  for (const auto& f : faces) sides[f.side][side_slot(f.side, coords(f.cell))] = kind;
+  for (const auto& f : faces) {
+    if (f.cell >= count() || is_air(f.cell) || has_neighbour(f.cell, f.side))
+      throw std::invalid_argument("agent::Grid::set_boundary: cell " + std::to_string(f.cell) + " face " +
+                                  std::to_string(f.side) + " is not a boundary face of the body");
+    const auto bit = std::uint8_t(1u << f.side);
+    flags[f.cell] = kind == Boundary::Rigid ? flags[f.cell] | bit : flags[f.cell] & ~bit;
+  }
 }
 
 }  // namespace agent

@@ -1,8 +1,10 @@
+// The agent load-transfer sweep (WO2001052193): layer by layer in the load direction.
 #include <agent/load_transfer.h>
 
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -19,8 +21,7 @@ void check(bool ok, const std::string& what) {
 LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules)
     : grid_(grid), material_(material), k_(k), rules_(rules) {
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
-  for (int side = 0; side < 2 * grid.dim; ++side)
-    check(grid.sides[side].size() * grid.cells[axis_of(side)] == grid.count(), "grid boundary sides are not set up");
+  check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
   check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
   check(material.poisson > -1 && material.poisson < 0.5, "poisson must be in (-1, 0.5)");
   auto unit = [](double x) { return x >= 0 && x <= 1; };
@@ -42,7 +43,7 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
-  return faces_.capacity() * sizeof(double) + generation_.capacity() * sizeof(std::int32_t) +
+  return faces_.capacity() * sizeof(double) + generation_.capacity() * sizeof(std::int32_t) + grid_.flags.capacity() +
          (fresh_.capacity() + down_.capacity() + next_down_.capacity() + top_.capacity()) * sizeof(double) +
          touched_.capacity() * sizeof(Touched);
 }
@@ -72,7 +73,8 @@ void LoadTransfer::clear_touched() {
 
 void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
   for (const auto& load : loads) {
-    check(load.cell < grid_.count(), "entry load outside the grid (cell " + std::to_string(load.cell) + ")");
+    check(load.cell < grid_.count() && !grid_.is_air(load.cell),
+          "entry load outside the body (cell " + std::to_string(load.cell) + ")");
     check(load.dir >= 0 && load.dir < 2 * grid_.dim, "entry load direction out of range");
     check(load.force >= 0 && std::isfinite(load.force), "entry load force must be finite and >= 0");
   }
@@ -95,6 +97,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const auto entry = g.coords(load.cell);
   const int eu = entry[l0], ev = entry[l1];
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
+  const std::ptrdiff_t next_layer = forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa);  // cell offset below
   const bool patent = rules_ == RuleSet::Patent;
   constexpr bool three_d = Dim == 3;
   constexpr int lateral_dirs = three_d ? 4 : 2;
@@ -112,6 +115,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   Diagnostics d;
   double* const faces = faces_.data();
   std::int32_t* const generation = generation_.data();
+  const std::uint8_t* const flags = g.flags.data();
+  constexpr std::uint8_t air = Grid::kAirBit;
+  auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   double* const fresh_buf = fresh_.data();
   double* const top_buf = top_.data();
 
@@ -160,9 +166,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
             d.dropped += out;
             return 0.0;
           }
-          if (w + sgn == end) {
-            const std::size_t cell = first_cell + w * cell_stride;
-            if (g.boundary(direction(lateral, up), g.coords(cell)) == Boundary::Rigid) d.rigid_reaction += out;
+          const std::size_t cell = first_cell + w * cell_stride;
+          if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a boundary face
+            if (rigid(cell, direction(lateral, up))) d.rigid_reaction += out;
             else d.passed_out += out;
             return 0.0;
           }
@@ -217,16 +223,19 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         }
         f[enter_face] += top;
         top_buf[b] = top;
+        // Tallied here, where it happens: what the agent received less what it passes on, down
+        // and (every friction chain arriving goes on with `carry`) to the sides.
+        d.lost += from_above + from_side - down_t - (carry * from_side + lateral_dirs * emit * from_above);
         if (!(down_t > gamma)) {
           d.dropped += down_t;
-        } else if (!last_layer) {
+        } else if (!last_layer && !(flags[cell + next_layer] & air)) {
           next_down_buf[b] += down_t;
           f[exit_face] += down_t;
           next.u_lo = std::min(next.u_lo, u);
           next.u_hi = std::max(next.u_hi, u);
           next.v_lo = std::min(next.v_lo, v);
           next.v_hi = std::max(next.v_hi, v);
-        } else if (g.boundary(exit_face, g.coords(cell)) == Boundary::Rigid) {
+        } else if (rigid(cell, exit_face)) {
           f[exit_face] += down_t;
           d.rigid_reaction += down_t;
         } else {
@@ -256,8 +265,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           }
           const std::size_t cell = first_cell + w * cell_stride;
           double* f = faces + cell * nd;
-          if (w + sgn == end) {  // a rigid face pushes back, a free one lets the push out
-            if (g.boundary(face_out, g.coords(cell)) == Boundary::Rigid) {
+          if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a rigid face pushes back, a free one lets the push out
+            if (rigid(cell, face_out)) {
               f[face_out] += t;
               d.lateral_reaction += t;
             } else {
@@ -307,6 +316,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   diagnostics_.rigid_reaction += d.rigid_reaction;
   diagnostics_.passed_out += d.passed_out;
   diagnostics_.dropped += d.dropped;
+  diagnostics_.lost += d.lost;
   diagnostics_.lateral_reaction += d.lateral_reaction;
   diagnostics_.lateral_passed_out += d.lateral_passed_out;
   diagnostics_.lateral_dropped += d.lateral_dropped;

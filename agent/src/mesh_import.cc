@@ -1,3 +1,4 @@
+// The agent grid from a gmsh mesh of equal squares or cubes (gmsh API, the one place agent meets gmsh).
 #include <agent/mesh_import.h>
 
 #include <gmsh.h>
@@ -5,10 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
+
+#include <unistd.h>
 
 namespace agent {
 
@@ -29,6 +33,21 @@ std::string point_text(const Eigen::Vector3d& x, int dim) {
 }
 
 }  // namespace
+
+double study_bytes_per_slot(int dim) {
+  // Solver: 2 dim face forces and a generation per slot, the grid's flag byte; study: stress,
+  // strain, displacement and output points, import tables (measured sizes, rounded up).
+  return dim == 2 ? 200.0 : 300.0;
+}
+
+double memory_limit_bytes() {
+  if (const char* text = std::getenv("WORKBENCH_MEMORY_LIMIT_GB")) {
+    char* end = nullptr;
+    const double gb = std::strtod(text, &end);
+    if (end != text && *end == '\0' && gb > 0 && std::isfinite(gb)) return gb * 1e9;
+  }
+  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+}
 
 ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
@@ -105,12 +124,28 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
     hi_all = hi_all.cwiseMax(hi);
   }
 
+  // The bounding box holds the agents and the air between them: refuse it up front when the
+  // study would not fit in memory (two cells far apart make a huge box of air).
   std::array<int, 3> n{1, 1, 1};
+  double slots = 1, longest = 1;
+  for (int a = 0; a < dim; ++a) {
+    const double along = std::round((hi_all[a] - lo_all[a]) / size[a]);
+    slots *= along;
+    longest = std::max(longest, along);
+  }
+  const double estimate = slots * study_bytes_per_slot(dim);
+  const double limit = memory_limit_bytes();
+  if (!(estimate <= limit) || !(longest < 1e9)) {
+    std::ostringstream s;
+    s << name << ": the agent grid's bounding box " << point_text(hi_all - lo_all, dim) << " m holds " << slots
+      << " agent slots of " << size[0] << " m: about " << estimate / 1e9 << " GB, more than the " << limit / 1e9
+      << " GB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT_GB to change it)";
+    throw MeshError(s.str());
+  }
   for (int a = 0; a < dim; ++a) n[a] = int(std::lround((hi_all[a] - lo_all[a]) / size[a]));
   if (dim == 2) size[2] = 1.0;
   Grid grid = Grid::box(dim, n, size);
   grid.origin = lo_all;
-  if (dim == 2) grid.origin[2] = lo_all[2];
   const double tol = 1e-4;
 
   auto grid_index = [&](double x, int a, const std::string& what) {
@@ -148,10 +183,9 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       grid_node_of_tag[tag] = node;
     }
   }
+  // A slot of the box that no element fills is air.
   for (std::size_t cell = 0; cell < grid.count(); ++cell)
-    if (element_in[cell] == std::size_t(-1))
-      throw MeshError(name + ": hole in the tiling at " + point_text(grid.centre(cell), dim) +
-                      "; the agents must fill a box");
+    if (element_in[cell] == std::size_t(-1)) grid.make_air(cell);
 
   // Physical groups of dimension dim-1: outer faces.
   const auto nc = grid.node_counts();
@@ -173,19 +207,28 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
           hi[a] = std::max(hi[a], p[a]);
         }
       }
-      int side = -1;
+      // The face is normal to the axis its nodes share; it belongs to the agent on one side of
+      // it and must have air (or the box's outside) on the other.
+      int axis = -1;
       for (int a = 0; a < dim; ++a)
-        if (lo[a] == hi[a]) {
-          if (lo[a] == 0) side = direction(a, false);
-          else if (lo[a] == grid.cells[a]) side = direction(a, true);
-        }
-      if (side < 0)
+        if (lo[a] == hi[a]) axis = a;
+      if (axis < 0) throw MeshError(name + ": physical group '" + group + "' has a degenerate face");
+      std::array<int, 3> below = lo, above = lo;
+      below[axis] -= 1;
+      if (dim == 2) below[2] = above[2] = 0;
+      auto agent_at = [&](const std::array<int, 3>& c) {
+        return c[axis] >= 0 && c[axis] < grid.cells[axis] && !grid.is_air(grid.index(c[0], c[1], c[2]));
+      };
+      const bool has_below = agent_at(below), has_above = agent_at(above);
+      if (has_below && has_above)
         throw MeshError(name + ": physical group '" + group +
-                        "' has a face inside the body; loads and supports act on outer faces only");
-      std::array<int, 3> c = lo;
-      if (is_positive(side)) c[axis_of(side)] -= 1;
-      if (dim == 2) c[2] = 0;
-      faces.push_back({grid.index(c[0], c[1], c[2]), side});
+                        "' has a face inside the body; loads and supports act on faces toward air only");
+      if (has_below)
+        faces.push_back({grid.index(below[0], below[1], below[2]), direction(axis, true)});
+      else if (has_above)
+        faces.push_back({grid.index(above[0], above[1], above[2]), direction(axis, false)});
+      else
+        throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
     }
   }
   out.grid = std::move(grid);

@@ -1,12 +1,16 @@
+// The agent model as a workbench study: case file -> grid and loads -> VTU/PVD/CSV/JSON output.
 #include "agent_study.h"
 
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <ostream>
+#include <sstream>
 
 namespace agent_study {
 
@@ -192,14 +196,61 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
 
 }  // namespace
 
-void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
+std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d) {
+  if (!(d.applied > 0) || d.rigid_reaction >= kWarnBelowReactionShare * d.applied) return {};
+  std::ostringstream s;
+  s << "only " << 100 * d.rigid_reaction / d.applied << " % of the applied load " << d.applied
+    << " N reaches a rigid face (warning below " << 100 * kWarnBelowReactionShare << " %): passed out " << d.passed_out
+    << " N, dropped under gamma " << d.dropped << " N, lost through the transfer coefficients " << d.lost << " N";
+  return {s.str()};
+}
+
+Eigen::Vector3d load_vector(const AgentStudy& study, double factor) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& l : study.loads) sum[agent::axis_of(l.dir)] += (agent::is_positive(l.dir) ? 1 : -1) * factor * l.force;
+  return sum;
+}
+
+namespace {
+
+std::string vector_text(const Eigen::Vector3d& v, int dim) {
+  std::ostringstream s;
+  s << "(" << v[0] << ", " << v[1];
+  if (dim == 3) s << ", " << v[2];
+  s << ")";
+  return s.str();
+}
+
+void write_summary(const fs::path& file, const AgentStudy& study, const agent::Diagnostics& d,
+                   const std::vector<std::string>& warnings) {
+  const int dim = study.mesh.grid.dim;
+  const Eigen::Vector3d v = load_vector(study, 1.0);
+  nlohmann::json j;
+  j["rule_set"] = study.rules == agent::RuleSet::Patent ? "patent" : "conserving";
+  j["load_vector"] = std::vector<double>(v.data(), v.data() + dim);
+  j["load_balance"] = {{"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
+                       {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},
+                       {"warn_below_reaction_share", kWarnBelowReactionShare}};
+  j["lateral"] = {{"reaction", d.lateral_reaction}, {"passed_out", d.lateral_passed_out}, {"dropped", d.lateral_dropped}};
+  j["agents"] = study.mesh.cell_of_element.size();
+  j["agents_generated"] = d.agents_generated;
+  j["warnings"] = warnings;
+  std::ofstream out(file);
+  out << j.dump(2) << '\n';
+  out.close();
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
+}  // namespace
+
+std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
   agent::Material material{study.setup.young, study.setup.poisson};
   agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules);
   const auto mesh = output_mesh(study);
   const int steps = study.setup.steps;
   std::vector<std::pair<double, std::string>> series;
   auto diagnostics = open_csv(dir / "agent_diagnostics.csv");
-  diagnostics << "step,load_factor,agents_generated,agent_updates,applied,rigid_reaction,passed_out,dropped,"
+  diagnostics << "step,load_factor,agents_generated,agent_updates,applied,rigid_reaction,passed_out,dropped,lost,"
                  "lateral_reaction,lateral_passed_out,lateral_dropped\n";
   AgentState state;
   for (int k = 1; k <= steps; ++k) {
@@ -213,16 +264,21 @@ void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostr
     series.emplace_back(factor, name);
     const auto& d = state.diagnostics;
     diagnostics << k << ',' << factor << ',' << d.agents_generated << ',' << d.agent_updates << ',' << d.applied << ','
-                << d.rigid_reaction << ',' << d.passed_out << ',' << d.dropped << ',' << d.lateral_reaction << ','
-                << d.lateral_passed_out << ',' << d.lateral_dropped << '\n';
-    log << "agent: step " << k << "/" << steps << ": load " << d.applied << " N, " << d.agents_generated
-        << " agents, rigid reaction " << d.rigid_reaction << " N, passed out " << d.passed_out << " N, dropped "
-        << d.dropped << " N\n";
+                << d.rigid_reaction << ',' << d.passed_out << ',' << d.dropped << ',' << d.lost << ','
+                << d.lateral_reaction << ',' << d.lateral_passed_out << ',' << d.lateral_dropped << '\n';
+    log << "agent: step " << k << "/" << steps << ": load " << vector_text(load_vector(study, factor), study.mesh.grid.dim)
+        << " N (" << d.applied << " N applied in all), " << d.agents_generated << " agents, rigid reaction "
+        << d.rigid_reaction << " N, passed out " << d.passed_out << " N, dropped " << d.dropped << " N, lost "
+        << d.lost << " N\n";
   }
   if (!diagnostics) throw Error((dir / "agent_diagnostics.csv").string() + ": write failed");
+  const auto warnings = load_balance_warnings(state.diagnostics);
+  for (const auto& w : warnings) log << "agent: warning: " << w << "\n";
+  write_summary(dir / "agent_summary.json", study, state.diagnostics, warnings);
   workbench::write_pvd(dir / "agent.pvd", series);
   write_cells_csv(dir / "agent_cells.csv", study, state);
   write_nodes_csv(dir / "agent_nodes.csv", study, state, mesh);
+  return warnings;
 }
 
 }  // namespace agent_study

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <string>
 #include <vector>
 
 namespace agent_study {
@@ -41,9 +42,22 @@ struct AgentState {
 /// Solves with the loads scaled by `factor` (a load step).
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
 
+/// A run whose rigid faces return less than this share of the applied load warns (on the log and
+/// in agent_summary.json): the method's answer stands, but a model that loses load says so.
+constexpr double kWarnBelowReactionShare = 0.9;
+
+/// The load-balance warnings of one solve: empty when at least kWarnBelowReactionShare of the
+/// applied load reaches a rigid face; otherwise one sentence saying where the rest went.
+std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d);
+
+/// The resultant of the entry loads scaled by `factor`, per axis [N] (loads in different
+/// directions do not add up to their sum of magnitudes, Diagnostics::applied).
+Eigen::Vector3d load_vector(const AgentStudy& study, double factor);
+
 /// Writes agent_step_NNN.vtu per step, agent.pvd, agent_cells.csv and agent_nodes.csv (full
-/// load) and agent_diagnostics.csv (per step) into `dir`, reporting progress on `log`.
-void write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
+/// load), agent_diagnostics.csv (per step) and agent_summary.json (the full load's balance and
+/// warnings) into `dir`, reporting progress and warnings on `log`. Returns the warnings.
+std::vector<std::string> write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
 
 /// The grid as an output mesh: all nodes, cells in the mesh's element order.
 workbench::OutputMesh output_mesh(const AgentStudy& study);

@@ -19,7 +19,7 @@ namespace {
 
 Grid plate(int dim, int n) {
   Grid g = Grid::box(dim, {n, n, dim == 3 ? n : 1}, Eigen::Vector3d::Constant(1e-3), 1e-3);
-  for (auto& b : g.sides[direction(1, false)]) b = Boundary::Rigid;
+  g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
   return g;
 }
 

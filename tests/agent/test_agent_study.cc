@@ -96,6 +96,39 @@ TEST(AgentStudy, WritesEveryStepAndTheTables) {
   while (std::getline(cells, line)) ++rows;
   EXPECT_EQ(rows, 400);
   EXPECT_NE(log.str().find("step 3/3"), std::string::npos);
+  // The conserving rule set returns the load at the base: no warning, the balance in the log.
+  EXPECT_NE(log.str().find("step 3/3: load (0, -2) N"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find(" lost "), std::string::npos);
+  EXPECT_EQ(log.str().find("warning"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "agent_summary.json"));
+}
+
+TEST(AgentStudy, LoadThatMissesTheRigidFaceWarnsAndMixedLoadsPrintVectors) {
+  // The literal rules lose the load on the way down, and a side load never meets the base:
+  // both runs finish, but say so in the log and in agent_summary.json.
+  const std::string conserving = "rule_set = \"conserving\"";
+  std::string patent = plate_case();
+  patent.replace(patent.find(conserving), conserving.size(), "rule_set = \"patent\"");
+  const std::string side = plate_case("rigid = [\"base\"]") +
+                           "[[load]]\ngroup = \"free\"\ndirection = \"+x\"\nforce = 2.0\n";
+  for (const bool mixed : {false, true}) {
+    workbench::CaseFile file(write_case("warn.toml", mixed ? side : patent));
+    const auto study = agent_study::load_agent_study(file);
+    const fs::path dir = test_support::scratch_folder() / (mixed ? "mixed" : "patent");
+    fs::create_directories(dir);
+    std::ostringstream log;
+    const auto warnings = agent_study::write_agent_outputs(study, dir, log);
+    ASSERT_EQ(warnings.size(), 1u) << log.str();
+    EXPECT_NE(warnings[0].find("reaches a rigid face"), std::string::npos);
+    EXPECT_NE(log.str().find("agent: warning: only "), std::string::npos);
+    std::ifstream summary(dir / "agent_summary.json");
+    std::stringstream text;
+    text << summary.rdbuf();
+    EXPECT_NE(text.str().find(warnings[0]), std::string::npos);
+    if (mixed) {
+      EXPECT_NE(log.str().find("load (2, -2) N (4 N applied in all)"), std::string::npos) << log.str();
+    }
+  }
 }
 
 TEST(AgentStudy, BadCasesNameTheFileAndTheKey) {

@@ -26,7 +26,7 @@ TEST(AgentFields, PlaneStressHooke) {
 TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
   for (int dim : {2, 3}) {
     Grid g = Grid::box(dim, {6, 5, 4}, Eigen::Vector3d(0.5, 0.25, 2.0));
-    for (auto& b : g.sides[2]) b = Boundary::Rigid;  // base: u_y = 0 at y = 0
+    g.set_boundary(g.box_side(2), Boundary::Rigid);  // base: u_y = 0 at y = 0
     std::vector<double> eps(g.count() * 3);
     for (std::size_t c = 0; c < g.count(); ++c) {
       eps[3 * c] = 1e-3;

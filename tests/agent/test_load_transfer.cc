@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
 
 using namespace agent;
@@ -16,7 +17,7 @@ constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
 Grid plate(int w, int h, bool rigid_base = true) {
   Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
   if (rigid_base)
-    for (auto& b : g.sides[kMinusY]) b = Boundary::Rigid;
+    g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
   return g;
 }
 
@@ -56,6 +57,9 @@ TEST(AgentRules, EntryTakesAlpha1AndEachStepDownAlpha2) {
   EXPECT_DOUBLE_EQ(face(m, 2, 0, kMinusY), 0.03125);
   EXPECT_DOUBLE_EQ(m.diagnostics().rigid_reaction, 0.03125);
   EXPECT_DOUBLE_EQ(m.diagnostics().applied, 1.0);
+  // Lost where it is lost: the entry 1 - alpha1 alpha2 = 0.75, then each agent 1 - alpha2 of its
+  // input (0.125, 0.0625, 0.03125).
+  EXPECT_DOUBLE_EQ(m.diagnostics().lost, 0.75 + 0.125 + 0.0625 + 0.03125);
   EXPECT_EQ(m.diagnostics().agents_generated, 4u);
   EXPECT_EQ(m.generation()[g.index(2, 0, 0)], 3);
   EXPECT_EQ(m.generation()[g.index(1, 3, 0)], -1);
@@ -165,7 +169,7 @@ TEST(AgentRules, CentredLoadGivesMirrorSymmetricForces) {
 
 TEST(AgentRules, CubesPassFrictionAndPoissonToFourSideNeighbours) {
   Grid g = Grid::box(3, {5, 4, 5}, Eigen::Vector3d(1, 1, 1));
-  for (auto& b : g.sides[kMinusY]) b = Boundary::Rigid;
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
   const std::size_t entry = g.index(2, 3, 2);
   {
     LoadTransfer m(g, kMaterial, coefficients(0.5, 0.0, 0.25, 1.0, 0.0), RuleSet::Patent);
@@ -193,7 +197,7 @@ TEST(AgentRules, ALoadAlongAnyAxisFollowsTheSameRules) {
   // the second; its faces +y, -y, -x, +x are the second's -x, +x, -y, +y.
   Grid down = plate(7, 7);
   Grid across = Grid::box(2, {7, 7, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
-  for (auto& b : across.sides[kPlusX]) b = Boundary::Rigid;
+  across.set_boundary(across.box_side(kPlusX), Boundary::Rigid);
   const Coefficients k = coefficients(0.5, 0.5, 0.25, 0.5, 1e-4);
   for (auto rules : {RuleSet::Patent, RuleSet::Conserving}) {
     LoadTransfer a(down, kMaterial, k, rules), b(across, kMaterial, k, rules);
@@ -278,4 +282,206 @@ TEST(AgentRules, RejectsCoefficientsOutOfRange) {
   EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, -1), RuleSet::Patent), std::invalid_argument);
   EXPECT_THROW(LoadTransfer(g, {1.0, 0.5}, coefficients(0.5, 0.5, 0.25, 0.5, 0), RuleSet::Patent), std::invalid_argument);
   EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.0, 0.0, 0.5, 0), RuleSet::Conserving), std::invalid_argument);
+}
+
+// applied = rigid reaction + passed out + dropped + lost, tallied separately, for every rule set,
+// in 2D and 3D, with friction, Poisson pushes, free and rigid sides and a threshold that bites.
+TEST(AgentRules, LoadBalanceHoldsForEveryRuleSetIn2DAnd3D) {
+  struct Shape {
+    Grid grid;
+    std::size_t entry;
+  };
+  std::vector<Shape> shapes;
+  shapes.push_back({plate(21, 15), 0});
+  shapes.back().entry = shapes.back().grid.index(10, 14, 0);
+  shapes.push_back({plate(9, 30, false), 0});  // a free base: the load leaves the body
+  shapes.back().entry = shapes.back().grid.index(4, 29, 0);
+  Grid block = Grid::box(3, {9, 8, 7}, Eigen::Vector3d(1, 1, 1));
+  block.set_boundary(block.box_side(kMinusY), Boundary::Rigid);
+  shapes.push_back({block, block.index(4, 7, 3)});
+  for (const auto& shape : shapes)
+    for (auto rules : {RuleSet::Patent, RuleSet::Conserving})
+      for (const auto& k : {coefficients(0.5, 0.5, 0.25, 0.5, 1e-3), coefficients(0.7, 0.6, 0.3, 0.2, 1e-6),
+                            coefficients(1.0, 0.9, 0.05, 0.5, 0.0), coefficients(0.5, 0.5, 0.25, 0.5, 0.05)}) {
+        LoadTransfer m(shape.grid, kMaterial, k, rules);
+        m.solve({{shape.entry, direction(1, false), 2.0}});
+        const auto& d = m.diagnostics();
+        EXPECT_DOUBLE_EQ(d.applied, 2.0);
+        EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped + d.lost, d.applied, 1e-13)
+            << "dim " << shape.grid.dim << " rules " << int(rules) << " alpha1 " << k.alpha1;
+        if (rules == RuleSet::Conserving) {
+          EXPECT_NEAR(d.lost, 0.0, 1e-13);
+        } else {
+          // The literal rules lose load at every step (or make it, where alpha2 + 2 alpha3 > 1).
+          EXPECT_GT(std::abs(d.lost), 0.1);
+        }
+      }
+}
+
+namespace {
+// A w x h box of unit squares with the listed slots made air, base (-y) rigid wherever it is body.
+Grid shape(int w, int h, const std::vector<std::pair<int, int>>& air) {
+  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
+  for (auto [i, j] : air) g.make_air(g.index(i, j, 0));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  return g;
+}
+}  // namespace
+
+TEST(AgentShapes, AnLOfThreeCellsByHand) {
+  // (0,1) on top of (0,0), (1,0) beside it, (1,1) air; 1 N down into (0,1); no Poisson push.
+  const Grid g = shape(2, 2, {{1, 1}});
+  const std::vector<EntryLoad> load{{g.index(0, 1, 0), direction(1, false), 1.0}};
+  {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Patent);
+    m.solve(load);
+    // Entry: top alpha1 = 0.5, down 0.25; friction 0.25 out of the left side and 0.25 into the
+    // air on the right (a free boundary face, passed out).
+    EXPECT_DOUBLE_EQ(face(m, 0, 1, kPlusY), 0.5);
+    EXPECT_DOUBLE_EQ(face(m, 0, 1, kMinusY), 0.25);
+    // (0,0): from above 0.25, friction 0.0625 each way; the right one enters (1,0) with alpha1.
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kPlusY), 0.25);
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kMinusY), 0.125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kPlusY), 0.03125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kMinusY), 0.015625);
+    for (int f = 0; f < 4; ++f) EXPECT_EQ(face(m, 1, 1, f), 0.0);  // air carries nothing
+    EXPECT_EQ(m.generation()[g.index(1, 1, 0)], -1);
+    const auto& d = m.diagnostics();
+    EXPECT_DOUBLE_EQ(d.rigid_reaction, 0.125 + 0.015625);
+    EXPECT_DOUBLE_EQ(d.passed_out, 0.25 + 0.25 + 0.0625 + 0.015625);
+    EXPECT_DOUBLE_EQ(d.lost, 0.25 + 0.0 + 0.03125);
+    EXPECT_EQ(d.agents_generated, 3u);
+  }
+  {
+    // Conserving: splits 0.5 : 0.25 : 0.25 from above, 2/3 : 1/3 for a friction load.
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Conserving);
+    m.solve(load);
+    EXPECT_DOUBLE_EQ(face(m, 0, 1, kPlusY), 1.0);
+    EXPECT_DOUBLE_EQ(face(m, 0, 1, kMinusY), 0.5);
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kPlusY), 0.5);
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kMinusY), 0.25);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kPlusY), 0.125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kMinusY), 0.125 * 2 / 3);
+    const auto& d = m.diagnostics();
+    EXPECT_DOUBLE_EQ(d.rigid_reaction, 0.25 + 0.125 * 2 / 3);
+    EXPECT_DOUBLE_EQ(d.passed_out, 0.25 + 0.25 + 0.125 + 0.125 / 3);
+    EXPECT_NEAR(d.lost, 0.0, 1e-16);
+  }
+}
+
+TEST(AgentShapes, AUOfFiveCellsByHand) {
+  // Base row (0,0) (1,0) (2,0), arms (0,1) and (2,1), (1,1) air; 1 N down into the left arm.
+  const Grid g = shape(3, 2, {{1, 1}});
+  const std::vector<EntryLoad> load{{g.index(0, 1, 0), direction(1, false), 1.0}};
+  {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Patent);
+    m.solve(load);
+    // The base row: 0.25 from above at (0,0); friction 0.0625 into (1,0), 0.015625 on into (2,0).
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kPlusY), 0.25);
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kMinusY), 0.125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kPlusY), 0.03125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kMinusY), 0.015625);
+    EXPECT_DOUBLE_EQ(face(m, 2, 0, kPlusY), 0.0078125);
+    EXPECT_DOUBLE_EQ(face(m, 2, 0, kMinusY), 0.00390625);
+    // The right arm is not reached: friction does not cross the notch's air.
+    EXPECT_EQ(face(m, 2, 1, kPlusY), 0.0);
+    EXPECT_EQ(m.generation()[g.index(2, 1, 0)], -1);
+    const auto& d = m.diagnostics();
+    EXPECT_DOUBLE_EQ(d.rigid_reaction, 0.125 + 0.015625 + 0.00390625);
+    EXPECT_DOUBLE_EQ(d.passed_out, 0.25 + 0.25 + 0.0625 + 0.00390625);
+    EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped + d.lost, 1.0, 1e-15);
+  }
+  {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Conserving);
+    m.solve(load);
+    EXPECT_DOUBLE_EQ(face(m, 0, 0, kMinusY), 0.25);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kPlusY), 0.125);
+    EXPECT_DOUBLE_EQ(face(m, 1, 0, kMinusY), 0.125 * 2 / 3);
+    EXPECT_DOUBLE_EQ(face(m, 2, 0, kPlusY), 0.125 / 3);
+    EXPECT_DOUBLE_EQ(face(m, 2, 0, kMinusY), 0.125 / 3 * 2 / 3);
+    const auto& d = m.diagnostics();
+    EXPECT_DOUBLE_EQ(d.rigid_reaction, 0.25 + 0.125 * 2 / 3 + 0.125 / 3 * 2 / 3);
+    EXPECT_DOUBLE_EQ(d.passed_out, 0.25 + 0.25 + 0.125 + 0.125 / 9);
+  }
+}
+
+TEST(AgentShapes, ASymmetricNotchedBodyGivesMirrorSymmetricForces) {
+  // 21 x 15 with a 3-wide, 4-deep notch up from the middle of the base; the base beside it rigid.
+  std::vector<std::pair<int, int>> notch;
+  for (int i = 9; i <= 11; ++i)
+    for (int j = 0; j < 4; ++j) notch.push_back({i, j});
+  const Grid g = shape(21, 15, notch);
+  for (auto rules : {RuleSet::Patent, RuleSet::Conserving}) {
+    LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 1e-5), rules);
+    m.solve(top_centre(g, 2.0));
+    const auto& d = m.diagnostics();
+    ASSERT_GT(d.agents_generated, 50u);
+    EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped + d.lost, 2.0, 1e-13);
+    for (int j = 0; j < 15; ++j)
+      for (int i = 0; i < 21; ++i) {
+        const int k = 20 - i;
+        EXPECT_DOUBLE_EQ(face(m, i, j, kMinusX), face(m, k, j, kPlusX)) << i << "," << j;
+        EXPECT_DOUBLE_EQ(face(m, i, j, kMinusY), face(m, k, j, kMinusY)) << i << "," << j;
+        EXPECT_DOUBLE_EQ(face(m, i, j, kPlusY), face(m, k, j, kPlusY)) << i << "," << j;
+      }
+    // The notch's roof faces air: the load passes out there (free), nothing reaches the notch.
+    for (auto [i, j] : notch) EXPECT_EQ(m.generation()[g.index(i, j, 0)], -1);
+    if (rules == RuleSet::Conserving) {
+      EXPECT_GT(d.passed_out, 0.1);  // the load above the notch leaves through its roof
+      EXPECT_GT(d.rigid_reaction, 0.5);
+    }
+  }
+}
+
+TEST(AgentShapes, LoadBalanceHoldsOnEveryShapeIn2DAnd3D) {
+  struct Case {
+    Grid grid;
+    EntryLoad load;
+  };
+  std::vector<Case> cases;
+  const Grid l = shape(30, 30, [] {
+    std::vector<std::pair<int, int>> air;
+    for (int i = 15; i < 30; ++i)
+      for (int j = 15; j < 30; ++j) air.push_back({i, j});
+    return air;
+  }());
+  cases.push_back({l, {l.index(7, 29, 0), direction(1, false), 2.0}});
+  cases.push_back({l, {l.index(29, 7, 0), direction(0, false), 2.0}});  // into the L's foot from the right
+  const Grid hole = shape(31, 31, [] {
+    std::vector<std::pair<int, int>> air;
+    for (int i = 0; i < 31; ++i)
+      for (int j = 0; j < 31; ++j)
+        if ((i - 15) * (i - 15) + (j - 15) * (j - 15) <= 36) air.push_back({i, j});
+    return air;
+  }());
+  cases.push_back({hole, {hole.index(15, 30, 0), direction(1, false), 2.0}});
+  Grid bracket = Grid::box(3, {12, 12, 6}, Eigen::Vector3d(1, 1, 1));
+  for (int i = 6; i < 12; ++i)
+    for (int j = 6; j < 12; ++j)
+      for (int k = 0; k < 6; ++k) bracket.make_air(bracket.index(i, j, k));
+  bracket.set_boundary(bracket.box_side(kMinusY), Boundary::Rigid);
+  cases.push_back({bracket, {bracket.index(3, 11, 3), direction(1, false), 2.0}});
+  cases.push_back({bracket, {bracket.index(11, 3, 3), direction(0, false), 2.0}});
+  for (const auto& c : cases)
+    for (auto rules : {RuleSet::Patent, RuleSet::Conserving}) {
+      LoadTransfer m(c.grid, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 1e-6), rules);
+      m.solve({c.load});
+      const auto& d = m.diagnostics();
+      ASSERT_GT(d.agents_generated, 10u);
+      EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped + d.lost, 2.0, 1e-13);
+      for (std::size_t cell = 0; cell < c.grid.count(); ++cell)
+        if (c.grid.is_air(cell)) {
+          EXPECT_EQ(m.generation()[cell], -1);
+          for (int f = 0; f < 2 * c.grid.dim; ++f) EXPECT_EQ(m.face_forces()[cell * 2 * c.grid.dim + f], 0.0);
+        }
+    }
+}
+
+TEST(AgentShapes, EntryIntoAirAndSupportsInsideTheBodyAreRefused) {
+  const Grid g = shape(2, 2, {{1, 1}});
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 0.5, 0), RuleSet::Patent);
+  EXPECT_THROW(m.solve({{g.index(1, 1, 0), direction(1, false), 1.0}}), std::invalid_argument);
+  Grid h = g;
+  EXPECT_THROW(h.set_boundary({{g.index(0, 0, 0), kPlusX}}, Boundary::Rigid), std::invalid_argument);
+  EXPECT_NO_THROW(h.set_boundary({{g.index(1, 0, 0), kPlusY}}, Boundary::Rigid));  // under the air
 }

@@ -59,11 +59,42 @@ TEST(MeshImport, BlockIsAGridOfCubesWithItsGroups) {
 
 TEST(MeshImport, RefusesWhatTheMethodCannotUse) {
   EXPECT_NE(import_error(kData + "triangles.geo").find("Triangle"), std::string::npos) << import_error(kData + "triangles.geo");
-  EXPECT_NE(import_error(kData + "l_shape.geo").find("hole in the tiling at (1.25, 1.25)"), std::string::npos)
-      << import_error(kData + "l_shape.geo");
+  // Two squares 1e10 apart: the bounding box is refused up front, naming its size and the estimate.
+  const std::string far = import_error(kData + "far_apart.geo");
+  EXPECT_NE(far.find("holds 1e+20 agent slots"), std::string::npos) << far;
+  EXPECT_NE(far.find("GB, more than the"), std::string::npos) << far;
   EXPECT_NE(import_error(kData + "graded.geo").find("same size"), std::string::npos) << import_error(kData + "graded.geo");
   EXPECT_NE(import_error(kMeshes + "plate2d.geo", {{"hh", 1.0}}).find("unknown mesh parameter 'hh'"), std::string::npos);
   EXPECT_NE(import_error(kMeshes + "plate2d.geo", {{"h", 0.003}}).find("must be multiples of h"), std::string::npos)
       << import_error(kMeshes + "plate2d.geo", {{"h", 0.003}});
   EXPECT_NE(import_error(kData + "missing.geo").find("no such mesh file"), std::string::npos);
+}
+
+TEST(MeshImport, AnLShapeLeavesItsMissingQuarterAsAirWithBoundaryFacesAround) {
+  // Three unit squares of 2 x 2 agents each (h = 0.5) in an L: a 4 x 4 box, its upper right
+  // 2 x 2 slots air.
+  const auto m = import_mesh(kData + "l_shape.geo");
+  ASSERT_EQ(m.grid.count(), 16u);
+  EXPECT_EQ(m.grid.agent_count(), 12u);
+  EXPECT_EQ(m.cell_of_element.size(), 12u);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(m.grid.is_air(m.grid.index(i, j, 0)), i >= 2 && j >= 2) << i << "," << j;
+  // The boundary: 4 + 2 faces looking down and up, 4 + 2 looking left and right... 16 in all,
+  // among them the two faces of each inner edge of the notch.
+  EXPECT_EQ(m.grid.boundary_faces().size(), 16u);
+  EXPECT_FALSE(m.grid.has_neighbour(m.grid.index(2, 1, 0), direction(1, true)));  // under the notch
+  EXPECT_FALSE(m.grid.has_neighbour(m.grid.index(1, 2, 0), direction(0, true)));  // left of the notch
+  const auto& base = m.face_groups.at("base");
+  ASSERT_EQ(base.size(), 4u);
+  for (const auto& f : base) {
+    EXPECT_EQ(f.side, direction(1, false));
+    EXPECT_EQ(m.grid.coords(f.cell)[1], 0);
+  }
+  const auto& load = m.face_groups.at("load");
+  ASSERT_EQ(load.size(), 2u);
+  for (const auto& f : load) {
+    EXPECT_EQ(f.side, direction(1, true));
+    EXPECT_EQ(m.grid.coords(f.cell)[1], 3);
+    EXPECT_LT(m.grid.coords(f.cell)[0], 2);
+  }
 }

@@ -55,7 +55,7 @@ expect bad_choice "bad_choice.toml: agent.rule_set: must be one of" "$(with rule
 expect missing_group "missing_group.toml: boundary.rigid: group 'floor' is not a physical group" "$(with rigid 'rigid = ["floor"]')"
 expect no_rigid "no_rigid.toml: boundary.rigid: no rigid faces" "$(with rigid 'rigid = []')"
 expect triangles "triangles.geo: has Triangle 3 elements" "$(with file "file = \"$src/tests/data/triangles.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d' | sed 's/"load"/"load"/')"
-expect hole "l_shape.geo: hole in the tiling" "$(with file "file = \"$src/tests/data/l_shape.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d')"
+expect far_apart "far_apart.geo: the agent grid's bounding box" "$(with file "file = \"$src/tests/data/far_apart.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d')"
 expect bad_parameter "plate2d.geo: unknown mesh parameter 'hx'" "$(with 'h =' 'hx = 0.01')"
 expect geo_error "plate2d.geo: plate2d.geo: W, H, lw and the patch's left end xc - lw/2 must be multiples of h" "$(with 'h =' 'h = 0.003')"
 expect syntax "syntax.toml:2:" "$(base_case | sed '2s/.*/file = = "x"/')"

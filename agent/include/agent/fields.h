@@ -21,7 +21,8 @@ std::vector<double> agent_strains(const Grid& grid, const Material& material, co
 using Datums = std::array<double, 3>;
 
 /// The seed plate's choice, generalised (docs/agent-model.md, "Displacement"): along an axis with
-/// a rigid outer side, zero on that side; otherwise zero at the force-weighted centre of the loads.
+/// rigid faces across it, zero at the lowest one facing down the axis (else the highest facing
+/// up); otherwise zero at the force-weighted centre of the loads.
 Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
 
 /// Nodal displacement [m], `dim` values per node (Grid::node_index order): each component is the

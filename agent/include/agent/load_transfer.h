@@ -46,7 +46,8 @@ struct EntryLoad {
 };
 
 /// Where the load went. Forces in the load direction are kept apart from the sideways
-/// (Poisson) pushes, which are self-equilibrated.
+/// (Poisson) pushes, which are self-equilibrated. In the load direction every newton is tallied
+/// where it goes: applied = rigid_reaction + passed_out + dropped + lost (to round-off).
 struct Diagnostics {
   std::size_t agents_generated = 0;  ///< agents reached (generation >= 0)
   std::size_t agent_updates = 0;     ///< agent visits by the sweeps (the cost measure)
@@ -54,6 +55,10 @@ struct Diagnostics {
   double rigid_reaction = 0;         ///< load returned by rigid boundary agents [N]
   double passed_out = 0;             ///< load passed out through free faces [N]
   double dropped = 0;                ///< transfers at or below gamma, not passed on [N]
+  /// Load lost through the transfer coefficients [N], summed agent by agent: what an agent
+  /// receives less what it passes on (negative where the coefficients create load). Zero to
+  /// round-off in the conserving rule set.
+  double lost = 0;
   double lateral_reaction = 0;       ///< Poisson pushes returned by rigid faces [N]
   double lateral_passed_out = 0;     ///< Poisson pushes passed out through free faces [N]
   double lateral_dropped = 0;        ///< Poisson pushes at or below gamma [N]
@@ -74,7 +79,7 @@ class LoadTransfer {
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
   const std::vector<std::int32_t>& generation() const { return generation_; }
   const Diagnostics& diagnostics() const { return diagnostics_; }
-  /// Bytes held for the grid's agents (results and per-layer scratch).
+  /// Bytes held for the grid's slots (results, the grid's flags, per-layer scratch).
   std::size_t memory_bytes() const;
 
  private:

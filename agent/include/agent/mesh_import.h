@@ -1,8 +1,9 @@
 #pragma once
 // Builds the agent grid from a gmsh mesh: a .geo file meshed through the gmsh API (with
 // parameters passed as ONELAB numbers, e.g. the agent size h) or a ready .msh file.
-// The mesh must be a structured tiling of one box by equal squares (2D) or cubes (3D); its
-// physical groups of dimension dim-1 become named sets of outer faces (loads, supports).
+// The mesh must be made of equal, axis-aligned squares (2D) or cubes (3D) on one lattice, in any
+// arrangement (slots of the bounding box without an element are air); its physical groups of
+// dimension dim-1 become named sets of boundary faces (loads, supports).
 #include <agent/grid.h>
 
 #include <filesystem>
@@ -22,9 +23,16 @@ struct ImportedMesh {
   std::vector<std::string> parameters;
 };
 
+/// Bytes a study holds per slot of the grid's bounding box (agents and air), for the up-front
+/// memory check.
+double study_bytes_per_slot(int dim);
+
+/// The memory a grid may take [bytes]: WORKBENCH_MEMORY_LIMIT_GB if set, else the machine's.
+double memory_limit_bytes();
+
 /// Reads or generates the mesh. `parameters` override the .geo's DefineConstant values; a name
 /// the file does not declare is an error. Every error is a std::runtime_error whose message
-/// starts with the file name and says what is wrong (element type, hole, overlap, ...).
+/// starts with the file name and says what is wrong (element type, overlap, size, ...).
 ImportedMesh import_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters = {});
 
 }  // namespace agent

@@ -222,10 +222,13 @@ class CellMatrixOperator : public Subscriptor {
       const unsigned* dofs = &cell_dofs_[c * n];
       const float* m = &matrices_[std::size_t(cell_matrix_[c]) * n * n];
       for (unsigned i = 0; i < n; ++i) x[i] = in[dofs[i]];
-      for (unsigned i = 0; i < n; ++i) {
-        float sum = 0;
-        for (unsigned j = 0; j < n; ++j) sum += m[i * n + j] * x[j];
-        y[i] = sum;
+      // y = sum_j x_j m(:, j) (m is symmetric): each step an axpy over a contiguous row, which the
+      // compiler vectorises; the dot-product form (a float reduction) it may not reorder.
+      for (unsigned i = 0; i < n; ++i) y[i] = 0;
+      for (unsigned j = 0; j < n; ++j) {
+        const float xj = x[j];
+        const float* row = m + j * n;
+        for (unsigned i = 0; i < n; ++i) y[i] += row[i] * xj;
       }
       for (unsigned i = 0; i < n; ++i) out[dofs[i]] += y[i];
     }

@@ -12,8 +12,8 @@
 // one rank), triangles/tetrahedra on a serial Triangulation with FE_SimplexP. Linear algebra:
 // Trilinos (Epetra) matrices; CG with ML smoothed-aggregation AMG given the rigid body modes as
 // near-null space, or Amesos KLU as the direct solver. On quadrilaterals/hexahedra, fem.solver = "mg"
-// (and "auto" above direct_limit) is CG with matrix-free geometric multigrid (mg_solver.cc): no
-// global matrix is assembled.
+// (and "auto" on refined meshes beyond a cheap direct solve) is CG with matrix-free geometric
+// multigrid (mg_solver.cc): no global matrix is assembled.
 #include "mg_solver.h"
 #include "plain_mesh.h"
 
@@ -308,6 +308,7 @@ class ElasticProblem {
   double mode_size_ = 1;
   std::ostream* log_;
   const int degree_;
+  bool direct_ = false;  // the solver, decided in setup_system
   bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
   double lambda_ = 0, mu_ = 0, lambda_solid_ = 0;  // lambda_ is lambda* in plane stress
   double thickness_ = 1;                          // 2D: force = thickness * per-unit-thickness force
@@ -480,11 +481,15 @@ void ElasticProblem<dim>::setup_system() {
   profile("constraints", t);
 
   const auto& o = problem_.options;
-  // auto: multigrid when the coarse mesh (about n_dofs / 2^(dim refine) DoFs) is solved directly;
-  // a larger coarse mesh is better served by ML on the whole problem.
+  // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
+  // else multigrid when its coarse mesh (about n_dofs / 2^(dim refine) DoFs) is, else ML on the
+  // whole problem (a large coarse mesh, or an unrefined one where multigrid has a single level).
   const double coarse_dofs = double(dof_handler_.n_dofs()) / std::pow(2.0, dim * o.refine);
-  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || (dof_handler_.n_dofs() > std::size_t(o.direct_limit) &&
-                                                            coarse_dofs <= double(o.direct_limit)));
+  direct_ = o.solver == SolverKind::Direct ||
+            (o.solver == SolverKind::Auto && direct_is_fast(double(dof_handler_.n_dofs()), dim, o.direct_limit));
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
+                             (o.solver == SolverKind::Auto && !direct_ && o.refine > 0 &&
+                              direct_is_fast(coarse_dofs, dim, o.direct_limit)));
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);
@@ -706,8 +711,6 @@ void ElasticProblem<dim>::assemble_system() {
 template <int dim>
 void ElasticProblem<dim>::solve() {
   const auto& o = problem_.options;
-  const bool direct = o.solver == SolverKind::Direct ||
-                      (o.solver == SolverKind::Auto && dof_handler_.n_dofs() <= std::size_t(o.direct_limit));
   const double rhs_norm = rhs_.l2_norm();
   if (rhs_norm == 0) {
     solution_ = 0;
@@ -742,7 +745,7 @@ void ElasticProblem<dim>::solve() {
     result_.residual = outcome.residual;
     ghosted_ = solution_;
     return;
-  } else if (direct) {
+  } else if (direct_) {
     SolverControl control(1, 0);
     TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
     TrilinosWrappers::SolverDirect solver(control, data);

@@ -1,8 +1,8 @@
 // Matrix-free geometric multigrid for the FEM reference (private header; deal.II types).
-// The solver of fem.solver = "mg" (and of "auto" above direct_limit on quadrilateral/hexahedral
-// meshes): CG on the matrix-free elasticity operator, preconditioned by a V-cycle over the global
-// refinement levels (Chebyshev-Jacobi smoothing in single precision, step-37 style) with the coarse
-// mesh solved by KLU (or one ML AMG cycle when the coarse mesh has more than direct_limit DoFs).
+// The solver of fem.solver = "mg" (and of "auto" on refined quadrilateral/hexahedral meshes): CG on
+// the matrix-free elasticity operator, preconditioned by a V-cycle over the global refinement levels
+// (Chebyshev-Jacobi smoothing in single precision, step-37 style) with the coarse mesh solved by KLU
+// when direct_is_fast for it, else by one ML AMG cycle.
 // No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
 #pragma once
 
@@ -27,7 +27,7 @@ struct MgSettings {
   double lambda = 0, mu = 0;  ///< Lame coefficients of the bilinear form (lambda* in plane stress)
   double tolerance = 1e-10;   ///< relative to ||rhs||
   int max_iterations = 2000;
-  long direct_limit = 50000;  ///< coarse level: KLU up to this many DoFs, else one ML cycle
+  long direct_limit = 50000;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
   int smoother_degree = 4;    ///< Chebyshev degree of pre- and post-smoothing
 };
 
@@ -39,6 +39,13 @@ struct MgOutcome {
 
 /// Zero boundary conditions of the multigrid levels: boundary ids and the components they hold.
 using MgBoundaries = std::vector<std::pair<std::set<dealii::types::boundary_id>, dealii::ComponentMask>>;
+
+/// Whether a sparse direct factorisation of n DoFs is cheap: its expected work, by nested-dissection
+/// estimates n^(3/2) in 2D and n^2 in 3D (separators of n^(1/2) and n^(2/3) DoFs), is at most that of
+/// a 2D problem of `direct_limit` DoFs. In 3D that is direct_limit^(3/4) DoFs (3 344 for 50 000):
+/// beyond it a 3D factorisation fills in so much that KLU takes tens of seconds where AMG takes a
+/// fraction of one (docs/performance.md, the solver sweep).
+bool direct_is_fast(double n_dofs, int dim, long direct_limit);
 
 /// Degrees 1 and 2 on quadrilaterals/hexahedra. `dof_handler` must have its DoFs distributed;
 /// its level DoFs are distributed here. `constraints` are the (possibly inhomogeneous) Dirichlet

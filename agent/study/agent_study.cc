@@ -117,18 +117,19 @@ workbench::OutputMesh output_mesh(const AgentStudy& study) {
 
 namespace {
 
+/// The faces of an agent in face_forces order: the face force components.
 const char* kDirections[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 
-/// Cell fields in mesh element order.
+/// Cell fields in mesh element order, named with their units (ParaView shows the names).
 std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentState& s) {
   const auto& grid = study.mesh.grid;
   const int dim = grid.dim, nd = 2 * dim;
   const auto& order = study.mesh.cell_of_element;
   std::vector<workbench::Field> fields;
-  fields.push_back({"generation", 1, {}});
-  fields.push_back({"face_force", nd, {}});
-  for (int a = 0; a < dim; ++a) fields.push_back({std::string("sigma_") + char('x' + a), 1, {}});
-  fields.push_back({"strain", 3, {}});
+  fields.push_back({"generation [-]", 1, {}, {}, {}});
+  fields.push_back({"face_force [N]", nd, {}, std::vector<std::string>(kDirections, kDirections + nd), {}});
+  for (int a = 0; a < dim; ++a) fields.push_back({std::string("sigma_") + char('x' + a) + " [Pa]", 1, {}, {}, {}});
+  fields.push_back({"strain [-]", 3, {}, {"x", "y", "z"}, {}});
   for (std::size_t cell : order) {
     fields[0].values.push_back(s.generation[cell]);
     for (int f = 0; f < nd; ++f) fields[1].values.push_back(s.face_forces[cell * nd + f]);
@@ -140,7 +141,7 @@ std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentSt
 
 std::vector<workbench::Field> point_fields(const AgentStudy& study, const AgentState& s) {
   const int dim = study.mesh.grid.dim;
-  workbench::Field u{"displacement", 3, {}};
+  workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
   for (std::size_t node = 0; node < study.mesh.grid.node_count(); ++node)
     for (int a = 0; a < 3; ++a) u.values.push_back(a < dim ? s.displacement[node * dim + a] : 0.0);
   return {u};

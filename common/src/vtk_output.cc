@@ -1,3 +1,4 @@
+// VTU/PVTU/PVD writing for every module (VTK's XML writer; the two small XML records by hand).
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 namespace workbench {
 
@@ -23,19 +25,41 @@ void OutputMesh::add_cell(int vtk_type, std::initializer_list<long long> ids) {
   offsets.push_back(static_cast<long long>(connectivity.size()));
 }
 
+void OutputMesh::add_cell(int vtk_type, const std::vector<long long>& ids) {
+  cell_types.push_back(vtk_type);
+  connectivity.insert(connectivity.end(), ids.begin(), ids.end());
+  offsets.push_back(static_cast<long long>(connectivity.size()));
+}
+
 namespace {
 vtkNew<vtkDoubleArray> to_array(const Field& field, std::size_t count, const char* where,
                                 const std::filesystem::path& file) {
-  if (field.components < 1 || field.values.size() != count * static_cast<std::size_t>(field.components))
+  const std::size_t nc = static_cast<std::size_t>(field.components);
+  if (field.components < 1 || field.values.size() != count * nc)
     throw Error(file.string() + ": field '" + field.name + "' has " + std::to_string(field.values.size()) +
                 " values for " + std::to_string(count) + " " + where);
-  for (double v : field.values)
-    if (!std::isfinite(v)) throw Error(file.string() + ": field '" + field.name + "' holds a non-finite value");
+  if (!field.component_names.empty() && field.component_names.size() != nc)
+    throw Error(file.string() + ": field '" + field.name + "' names " + std::to_string(field.component_names.size()) +
+                " of its " + std::to_string(nc) + " components");
+  if (!field.undefined.empty() && field.undefined.size() != count)
+    throw Error(file.string() + ": field '" + field.name + "' marks " + std::to_string(field.undefined.size()) +
+                " undefined entries for " + std::to_string(count) + " " + where);
   vtkNew<vtkDoubleArray> array;
   array->SetName(field.name.c_str());
   array->SetNumberOfComponents(field.components);
   array->SetNumberOfTuples(static_cast<vtkIdType>(count));
-  std::copy(field.values.begin(), field.values.end(), array->GetPointer(0));
+  for (std::size_t c = 0; c < field.component_names.size(); ++c)
+    array->SetComponentName(static_cast<vtkIdType>(c), field.component_names[c].c_str());
+  double* out = array->GetPointer(0);
+  for (std::size_t i = 0; i < field.values.size(); ++i) {
+    if (!field.undefined.empty() && field.undefined[i / nc]) {
+      out[i] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    const double v = field.values[i];
+    if (!std::isfinite(v)) throw Error(file.string() + ": field '" + field.name + "' holds a non-finite value");
+    out[i] = v + 0.0;  // -0 + 0 is +0: ParaView would print "-0"
+  }
   return array;
 }
 }  // namespace
@@ -76,6 +100,48 @@ void write_vtu(const std::filesystem::path& file, const OutputMesh& mesh, const 
   if (writer->Write() != 1) throw Error(file.string() + ": VTK could not write the file");
 }
 
+namespace {
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
+void write_pdata(std::ostream& out, const char* tag, const std::vector<Field>& fields) {
+  out << "    <" << tag << ">\n";
+  for (const auto& f : fields) {
+    out << "      <PDataArray type=\"Float64\" Name=\"" << xml_escaped(f.name) << "\" NumberOfComponents=\""
+        << f.components << "\"";
+    for (std::size_t c = 0; c < f.component_names.size(); ++c)
+      out << " ComponentName" << c << "=\"" << xml_escaped(f.component_names[c]) << "\"";
+    out << "/>\n";
+  }
+  out << "    </" << tag << ">\n";
+}
+}  // namespace
+
+void write_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                const std::vector<Field>& point_fields, const std::vector<Field>& cell_fields) {
+  std::ofstream out(file);
+  if (!out) throw Error(file.string() + ": cannot open for writing");
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  write_pdata(out, "PPointData", point_fields);
+  write_pdata(out, "PCellData", cell_fields);
+  out << "    <PPoints>\n      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+  for (const auto& p : pieces) out << "    <Piece Source=\"" << xml_escaped(p) << "\"/>\n";
+  out << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
 void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& series) {
   std::ofstream out(file);
   if (!out) throw Error(file.string() + ": cannot open for writing");
@@ -83,7 +149,7 @@ void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<do
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
          "  <Collection>\n";
   for (const auto& [time, name] : series)
-    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << name << "\"/>\n";
+    out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << xml_escaped(name) << "\"/>\n";
   out << "  </Collection>\n</VTKFile>\n";
   if (!out) throw Error(file.string() + ": write failed");
 }

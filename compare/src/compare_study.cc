@@ -244,9 +244,10 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     const auto rx = ratios(component(agent_sigma, 2, 0), component(fem_sigma, 2, 0), options.mask);
     const auto ry = ratios(component(agent_sigma, 2, 1), component(fem_sigma, 2, 1), options.mask);
     std::vector<workbench::Field> cells;
-    for (const char* n : {"agent_sigma_x", "agent_sigma_y", "fem_sigma_x", "fem_sigma_y", "diff_sigma_x", "diff_sigma_y",
-                          "ratio_sigma_x", "ratio_sigma_y", "ratio_masked_x", "ratio_masked_y", "generation"})
-      cells.push_back({n, 1, {}});
+    for (const char* n : {"agent_sigma_x [Pa]", "agent_sigma_y [Pa]", "fem_sigma_x [Pa]", "fem_sigma_y [Pa]",
+                          "diff_sigma_x [Pa]", "diff_sigma_y [Pa]", "ratio_sigma_x [-]", "ratio_sigma_y [-]",
+                          "ratio_masked_x [-]", "ratio_masked_y [-]", "generation [-]"})
+      cells.push_back({n, 1, {}, {}, {}});
     for (std::size_t cell : study.mesh.cell_of_element) {
       const double v[] = {agent_sigma[2 * cell], agent_sigma[2 * cell + 1], fem_sigma[2 * cell], fem_sigma[2 * cell + 1],
                           agent_sigma[2 * cell] - fem_sigma[2 * cell], agent_sigma[2 * cell + 1] - fem_sigma[2 * cell + 1],
@@ -254,7 +255,13 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
                           double(agent.generation[cell])};
       for (std::size_t f = 0; f < cells.size(); ++f) cells[f].values.push_back(v[f]);
     }
-    std::vector<workbench::Field> points{{"agent_u", 3, {}}, {"fem_u", 3, {}}, {"diff_u", 3, {}}};
+    for (std::size_t cell : study.mesh.cell_of_element) {  // masked ratios: NaN, blanked by ParaView
+      cells[6].undefined.push_back(rx.masked[cell]);
+      cells[7].undefined.push_back(ry.masked[cell]);
+    }
+    const std::vector<std::string> xyz{"x", "y", "z"};
+    std::vector<workbench::Field> points{
+        {"agent_u [m]", 3, {}, xyz, {}}, {"fem_u [m]", 3, {}, xyz, {}}, {"diff_u [m]", 3, {}, xyz, {}}};
     for (std::size_t n = 0; n < grid.node_count(); ++n)
       for (int a = 0; a < 3; ++a) {
         const double ua = a < dim ? agent.displacement[n * dim + a] : 0.0, uf = a < dim ? fem_u[n * dim + a] : 0.0;

@@ -18,6 +18,7 @@
 #include "plain_mesh.h"
 
 #include <workbench/error.h>
+#include <workbench/vtk_output.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/function.h>
@@ -48,7 +49,6 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
-#include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <p4est_base.h>
@@ -1010,35 +1010,55 @@ void ElasticProblem<dim>::compute_errors() {
 
 template <int dim>
 void ElasticProblem<dim>::write_vtu(const fs::path& dir) {
-  DataOut<dim> data_out;
-  data_out.attach_dof_handler(dof_handler_);
-  std::vector<std::string> names(dim, "displacement");
-  std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
-      dim, DataComponentInterpretation::component_is_part_of_vector);
-  data_out.add_data_vector(ghosted_, names, DataOut<dim>::type_dof_data, interpretation);
-  const char* cell_names[7] = {"sigma_x", "sigma_y", "sigma_z", "tau_xy", "tau_yz", "tau_xz", "von_mises"};
-  for (int k = 0; k < 7; ++k) {
-    if (dim == 2 && (k == 4 || k == 5)) continue;
-    data_out.add_data_vector(cell_fields_[k], cell_names[k], DataOut<dim>::type_cell_data);
+  // One VTK cell per active cell on shared vertices: the element-constant stresses as cell data,
+  // the displacement at the vertices. Linear cells for every degree and cell shape alike (Q2 and
+  // P2 show their vertex values; docs/fem-reference.md).
+  const int ranks = int(Utilities::MPI::n_mpi_processes(comm_));
+  workbench::OutputMesh out;
+  std::vector<long long> point_of_vertex(tria_->n_vertices(), -1);
+  workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
+  const char* stress_names[7] = {"sigma_x", "sigma_y", "sigma_z", "tau_xy", "tau_yz", "tau_xz", "von_mises"};
+  std::vector<int> stresses;
+  for (int k = 0; k < 7; ++k)
+    if (dim == 3 || (k != 4 && k != 5)) stresses.push_back(k);
+  std::vector<workbench::Field> cell_data;
+  for (int k : stresses) cell_data.push_back({std::string(stress_names[k]) + " [Pa]", 1, {}, {}, {}});
+  if (ranks > 1) cell_data.push_back({"rank [-]", 1, {}, {}, {}});
+  // deal.II numbers quadrilateral/hexahedron vertices lexicographically, VTK counter-clockwise.
+  const std::vector<unsigned> quad{0, 1, 3, 2}, hex{0, 1, 3, 2, 4, 5, 7, 6};
+  std::vector<long long> ids;
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    ids.clear();
+    for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+      const unsigned w = mesh_.simplex ? v : (dim == 2 ? quad[v] : hex[v]);
+      auto& point = point_of_vertex[cell->vertex_index(w)];
+      if (point < 0) {
+        point = (long long)out.point_count();
+        const auto x = cell->vertex(w);
+        for (int c = 0; c < 3; ++c) out.points.push_back(c < dim ? x[c] : 0.0);
+        for (int c = 0; c < 3; ++c) u.values.push_back(c < dim ? double(ghosted_(cell->vertex_dof_index(w, c))) : 0.0);
+      }
+      ids.push_back(point);
+    }
+    const int type = mesh_.simplex ? (dim == 2 ? 5 : 10) : (dim == 2 ? 9 : 12);  // triangle, tetra, quad, hexahedron
+    out.add_cell(type, ids);
+    for (std::size_t f = 0; f < stresses.size(); ++f)
+      cell_data[f].values.push_back(cell_fields_[stresses[f]][cell->active_cell_index()]);
+    if (ranks > 1) cell_data.back().values.push_back(double(tria_->locally_owned_subdomain()));
   }
-  Vector<float> subdomain(tria_->n_active_cells());
-  for (auto& x : subdomain) x = float(tria_->locally_owned_subdomain());
-  data_out.add_data_vector(subdomain, "rank", DataOut<dim>::type_cell_data);
-  data_out.build_patches(*mapping_, mesh_.simplex ? 1 : degree_);
-  std::string name;
-  if (Utilities::MPI::n_mpi_processes(comm_) == 1) {
-    name = "fem_000.vtu";
-    std::ofstream out(dir / name);
-    data_out.write_vtu(out);
-    if (!out) throw Error((dir / name).string() + ": write failed");
+  const unsigned rank = Utilities::MPI::this_mpi_process(comm_);
+  std::string name = "fem_000.vtu";
+  if (ranks == 1) {
+    workbench::write_vtu(dir / name, out, {u}, cell_data);
   } else {
-    name = data_out.write_vtu_with_pvtu_record(dir.string() + "/", "fem", 0, comm_, 3, 0);
+    workbench::write_vtu(dir / ("fem_000." + std::to_string(rank) + ".vtu"), out, {u}, cell_data);
+    name = "fem_000.pvtu";
+    std::vector<std::string> pieces;
+    for (int r = 0; r < ranks; ++r) pieces.push_back("fem_000." + std::to_string(r) + ".vtu");
+    if (rank == 0) workbench::write_pvtu(dir / name, pieces, {u}, cell_data);
   }
-  if (Utilities::MPI::this_mpi_process(comm_) == 0) {
-    std::ofstream pvd(dir / "fem.pvd");
-    DataOutBase::write_pvd_record(pvd, {{1.0, name}});
-    if (!pvd) throw Error((dir / "fem.pvd").string() + ": write failed");
-  }
+  if (rank == 0) workbench::write_pvd(dir / "fem.pvd", {{1.0, name}});
 }
 
 template <int dim>

@@ -230,8 +230,10 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
     const double time = frame * setup.step.dt;
     const auto& x = model.particles.x;
     const auto out_mesh = output_mesh(mesh, x);
-    workbench::Field u{"displacement", 3, {}}, v{"velocity", 3, {}}, pin{"pinned", 1, pinned_field};
-    workbench::Field bend{"bend_angle", 1, std::vector<double>(n, 0.0)};
+    workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
+    workbench::Field v{"velocity [m/s]", 3, {}, {"x", "y", "z"}, {}};
+    workbench::Field pin{"pinned [-]", 1, pinned_field, {}, {}};
+    workbench::Field bend{"bend_angle [rad]", 1, std::vector<double>(n, 0.0), {}, {}};
     std::vector<double> umag(n);
     double umax = 0;
     for (std::size_t i = 0; i < n; ++i) {

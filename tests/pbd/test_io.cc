@@ -83,7 +83,7 @@ TEST(PbdMeshIo, ReadsVtuWithZeroOneArraysAsGroups) {
   out.points = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
   out.add_cell(5, {0, 1, 2});
   out.add_cell(5, {0, 2, 3});
-  workbench::write_vtu(tmp.path / "m.vtu", out, {{"fixed", 1, {1, 0, 0, 1}}, {"other", 1, {0.5, 0, 0, 0}}}, {});
+  workbench::write_vtu(tmp.path / "m.vtu", out, {{"fixed", 1, {1, 0, 0, 1}, {}, {}}, {"other", 1, {0.5, 0, 0, 0}, {}, {}}}, {});
   const auto m = pbd_io::read_mesh(tmp.path / "m.vtu");
   EXPECT_EQ(m.mesh.cell_count(), 2u);
   EXPECT_EQ(pbd_io::group_nodes(m, "m.vtu", {"fixed"}), (std::vector<int>{0, 3}));

@@ -1,6 +1,6 @@
 #pragma once
-// VTU (through VTK's XML writer) and PVD series output for meshes of points and cells.
-// Used by the agent and PBD models; the FEM reference writes through deal.II's DataOut.
+// VTU (through VTK's XML writer), PVTU and PVD series output for meshes of points and cells: the
+// one way every module (agent, PBD, FEM, comparison) writes files for ParaView.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -17,19 +17,30 @@ struct OutputMesh {
   std::size_t point_count() const { return points.size() / 3; }
   std::size_t cell_count() const { return cell_types.size(); }
   void add_cell(int vtk_type, std::initializer_list<long long> ids);
+  void add_cell(int vtk_type, const std::vector<long long>& ids);
 };
 
-/// A named field: `components` values per point or per cell.
+/// A named field: `components` values per point or per cell. The name carries the unit, as
+/// ParaView shows it: "sigma_y [Pa]", "displacement [m]", "[-]" for a dimensionless one.
 struct Field {
   std::string name;
   int components = 1;
   std::vector<double> values;
+  std::vector<std::string> component_names;  ///< empty, or one per component ("x", "+y", ...)
+  std::vector<unsigned char> undefined;      ///< empty, or one per tuple: 1 = no value here, written as
+                                             ///< NaN so that ParaView blanks it (a masked ratio)
 };
 
 /// Writes one VTU file (binary, compressed). Throws workbench::Error if a field's size does not
-/// match the mesh or holds a NaN or infinity, so that no non-finite value is written silently.
+/// match the mesh or holds a NaN or infinity outside its `undefined` tuples, so that no
+/// non-finite value is written silently. Negative zeros are written as zeros.
 void write_vtu(const std::filesystem::path& file, const OutputMesh& mesh, const std::vector<Field>& point_fields,
                const std::vector<Field>& cell_fields);
+
+/// Writes a parallel VTU record naming `pieces` (file names relative to the PVTU's folder) that
+/// hold the given fields (their names, components and component names; the values are ignored).
+void write_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                const std::vector<Field>& point_fields, const std::vector<Field>& cell_fields);
 
 /// Writes a ParaView collection: (time, file name relative to the PVD's folder) pairs.
 void write_pvd(const std::filesystem::path& file, const std::vector<std::pair<double, std::string>>& series);

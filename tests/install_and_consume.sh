@@ -6,10 +6,11 @@ set -euo pipefail
 build=$1 source=$2
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/workbench_install.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
-cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
-cmake -S "$source/examples/embed" -B "$scratch/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_PREFIX_PATH="$scratch/prefix" >/dev/null
-cmake --build "$scratch/build" >/dev/null
+quiet() { "$@" >"$scratch/log" 2>&1 || { cat "$scratch/log"; echo "install_and_consume: failed: $*"; exit 1; }; }
+quiet cmake --install "$build" --prefix "$scratch/prefix"
+quiet cmake -S "$source/examples/embed" -B "$scratch/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$scratch/prefix"
+quiet cmake --build "$scratch/build"
 "$scratch/build/embed"
 # Nothing of the source tree is needed at run time: the program found only installed files.
 grep -q "$source" "$scratch/prefix/lib/cmake/workbench/workbenchTargets.cmake" \

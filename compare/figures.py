@@ -26,7 +26,7 @@ def read_csv(path):
         rows = list(csv.DictReader(f))
     if not rows:
         sys.exit(f"{path}: no rows")
-    return {k: np.array([r[k] for r in rows]) for k in rows[0]}
+    return {k.split(" [")[0]: np.array([r[k] for r in rows]) for k in rows[0]}  # "sigma_y [Pa]" -> "sigma_y"
 
 
 def num(a):
@@ -201,8 +201,11 @@ def main():
     cell_index = {c: k for k, c in enumerate(cells["cell"])}
     order = np.array([cell_index[c] for c in steps["cell"]])
     fig, ax = plt.subplots(figsize=(6, 5.5))
-    image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap="magma_r", vmin=-lim / 1e3, vmax=0)
-    fig.colorbar(image, ax=ax, label="agent sigma_y [kPa]")
+    # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey.
+    cmap = plt.get_cmap("magma_r").copy()
+    cmap.set_bad("0.85")
+    image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+    fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached)")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     label = ax.set_title("")
@@ -210,7 +213,7 @@ def main():
     def frame(k):
         sel = steps["step"].astype(int) == step_ids[k]
         values = np.full(len(x), np.nan)
-        values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, sy[sel] / 1e3, np.nan)
+        values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
         image.set_data(grid_of(values))
         label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
         return image, label

@@ -85,6 +85,9 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   s.stress = agent::agent_stresses(grid, s.face_forces);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
   s.displacement = agent::node_displacements(grid, s.strain, agent::choose_datums(grid, loads));
+  // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
+  for (auto* field : {&s.stress, &s.strain, &s.displacement})
+    for (double& v : *field) v += 0.0;
   return s;
 }
 

@@ -274,8 +274,9 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
       const Eigen::Vector3d c = grid.centre(cell);
       cells_csv << e;
       for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
+      // (+ 0.0: a zero ratio of a negative reference is -0, which would print as "-0")
       cells_csv << ',' << agent.generation[cell] << ',' << agent_sigma[2 * cell] << ',' << agent_sigma[2 * cell + 1] << ','
-                << fem_sigma[2 * cell] << ',' << fem_sigma[2 * cell + 1] << ',' << rx.ratio[cell] << ',' << ry.ratio[cell]
+                << fem_sigma[2 * cell] << ',' << fem_sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0
                 << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << '\n';
     }
     auto nodes_csv = open_out(dir / "nodes.csv");

@@ -33,10 +33,17 @@ def num(a):
     return a.astype(float)
 
 
+def progress(text):
+    """A progress line on stderr, only when it is a terminal (the workbench logs into figures.log)."""
+    if sys.stderr.isatty():
+        print("figures: " + text, file=sys.stderr, flush=True)
+
+
 def save(fig, out, name):
     for ext in ("png", "pdf"):
         fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150, bbox_inches="tight")
     plt.close(fig)
+    progress(f"{name} drawn")
 
 
 def line_groups(lines):
@@ -218,6 +225,7 @@ def main():
         label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
         return image, label
 
+    progress(f"rendering agent_steps.gif ({len(step_ids)} load steps)")
     anim = animation.FuncAnimation(fig, frame, frames=len(step_ids), blit=False)
     anim.save(os.path.join(out, "agent_steps.gif"), writer=animation.PillowWriter(fps=4))
     plt.close(fig)

@@ -44,7 +44,7 @@ struct Case {
   }
 };
 
-/// A Python value as a TOML node: bool, int, float, str, list, dict.
+/// A Python value as a TOML node: bool, int, float, str, list/tuple, dict (numpy scalars and arrays too).
 void insert(toml::table& table, const std::string& key, const py::handle& value);
 toml::array to_array(const py::handle& list) {
   toml::array out;
@@ -60,7 +60,13 @@ toml::table to_table(const py::dict& dict) {
   for (const auto& [key, value] : dict) insert(out, py::str(key), value);
   return out;
 }
-void insert(toml::table& table, const std::string& key, const py::handle& value) {
+void insert(toml::table& table, const std::string& key, const py::handle& item) {
+  // numpy scalars and arrays as the Python values they hold (np.int64 is no int, an array no list).
+  py::object value = py::reinterpret_borrow<py::object>(item);
+  if (py::isinstance<py::array>(value))
+    value = value.attr("tolist")();
+  else if (py::isinstance(value, py::module_::import("numpy").attr("generic")))
+    value = value.attr("item")();
   if (py::isinstance<py::bool_>(value))
     table.insert_or_assign(key, value.cast<bool>());
   else if (py::isinstance<py::int_>(value))

@@ -123,8 +123,10 @@ class Compare(unittest.TestCase):
 class Pbd(unittest.TestCase):
     def test_free_fall_is_an_acceleration(self):
         # tests/pbd/test_model.cc GravityIsAnAcceleration: symplectic Euler, y = -g dt^2 sum_k k.
-        case = {"pbd": {"mesh": f"{SRC}/meshes/rod2d.geo", "mesh_parameters": {"L": 1.0, "N": 4}, "frames": 100,
-                        "time_step": 0.01, "substeps": 1, "iterations": 1}}
+        # numpy values are taken as the numbers they hold
+        case = {"pbd": {"mesh": f"{SRC}/meshes/rod2d.geo", "mesh_parameters": {"L": 1.0, "N": np.int64(4)},
+                        "frames": np.int64(100), "time_step": np.float64(0.01), "substeps": 1, "iterations": 1,
+                        "gravity": np.array([0.0, -9.81, 0.0])}}
         progress = []
         r = workbench.run_pbd(workbench.Case.from_dict(case), progress=progress.append)
         p = r["positions"]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every kind of VTU the workbench writes opens in VTK's XML reader with named, unit-labelled arrays,
 # named components and no NaN outside masked ratio cells (tests/common/check_vtu.py): the agent
-# load steps, the comparison, the FEM on Q1/Q2 quadrilaterals, P1/P2 triangles, hexahedra and two
+# load steps, the comparison, the FEM on Q1/Q2 quadrilaterals, P1/P2 triangles, hexahedra, tetrahedra and two
 # MPI ranks (PVTU), the PBD frames; and no CSV beside them holds a "-0". Usage: vtu_files.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 checker="/usr/bin/python3 $src/tests/common/check_vtu.py"
@@ -28,6 +28,18 @@ run fem_p1 "$bin" fem "$src/tests/fem/cases/tri_plate.toml" -o "$work/fem_p1"
 variant "$src/tests/fem/cases/tri_plate.toml" tri_p2 $'[fem]\ndegree = 2'
 run fem_p2 "$bin" fem "$work/tri_p2.toml" -o "$work/fem_p2"
 run fem_hex "$bin" fem "$src/tests/fem/cases/block_q1.toml" -o "$work/fem_hex"
+# Tetrahedra: a unit cube, clamped at y = 0, pushed down at y = 1.
+cat >"$work/tet.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Mesh.MeshSizeMax = 0.4;
+Physical Surface("base") = {3};
+Physical Surface("load") = {4};
+Physical Volume("block") = {1};
+GEO
+printf '%s\n' '[mesh]' 'file = "tet.geo"' '[material]' 'young = 1.0' '[boundary]' 'rigid = ["base"]' '[[load]]' \
+  'group = "load"' 'direction = "-y"' 'force = 1.0' >"$work/tet.toml"
+run fem_tet "$bin" fem "$work/tet.toml" -o "$work/fem_tet"
 sed -e 's|^mesh = "\(.*\)"|mesh = "'"$src"'/cases/\1"|' -e 's|^frames = .*|frames = 5|' "$src/cases/pbd_strip.toml" >"$work/strip.toml"
 run pbd "$bin" pbd "$work/strip.toml" -o "$work/pbd"
 if command -v mpirun >/dev/null; then
@@ -37,7 +49,7 @@ if command -v mpirun >/dev/null; then
   check fem_mpi_pvtu $? "no fem_000.pvtu"
 fi
 
-$checker --unique-points --expect-files 10 "$work"
+$checker --unique-points --expect-files 12 "$work"
 check vtu_files $? "a VTU file fails the checks above"
 # No CSV value prints as "-0" (the VTU writer turns -0 into 0; the CSV writers' inputs must not hold one).
 ! grep -rlE -- '(^|,)-0(,|$)' --include='*.csv' "$work"

@@ -26,17 +26,24 @@ def read_csv(path):
         rows = list(csv.DictReader(f))
     if not rows:
         sys.exit(f"{path}: no rows")
-    return {k: np.array([r[k] for r in rows]) for k in rows[0]}
+    return {k.split(" [")[0]: np.array([r[k] for r in rows]) for k in rows[0]}  # "sigma_y [Pa]" -> "sigma_y"
 
 
 def num(a):
     return a.astype(float)
 
 
+def progress(text):
+    """A progress line on stderr, only when it is a terminal (the workbench logs into figures.log)."""
+    if sys.stderr.isatty():
+        print("figures: " + text, file=sys.stderr, flush=True)
+
+
 def save(fig, out, name):
     for ext in ("png", "pdf"):
         fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150, bbox_inches="tight")
     plt.close(fig)
+    progress(f"{name} drawn")
 
 
 def line_groups(lines):
@@ -201,8 +208,11 @@ def main():
     cell_index = {c: k for k, c in enumerate(cells["cell"])}
     order = np.array([cell_index[c] for c in steps["cell"]])
     fig, ax = plt.subplots(figsize=(6, 5.5))
-    image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap="magma_r", vmin=-lim / 1e3, vmax=0)
-    fig.colorbar(image, ax=ax, label="agent sigma_y [kPa]")
+    # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey.
+    cmap = plt.get_cmap("magma_r").copy()
+    cmap.set_bad("0.85")
+    image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+    fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached)")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     label = ax.set_title("")
@@ -210,11 +220,12 @@ def main():
     def frame(k):
         sel = steps["step"].astype(int) == step_ids[k]
         values = np.full(len(x), np.nan)
-        values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, sy[sel] / 1e3, np.nan)
+        values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
         image.set_data(grid_of(values))
         label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
         return image, label
 
+    progress(f"rendering agent_steps.gif ({len(step_ids)} load steps)")
     anim = animation.FuncAnimation(fig, frame, frames=len(step_ids), blit=False)
     anim.save(os.path.join(out, "agent_steps.gif"), writer=animation.PillowWriter(fps=4))
     plt.close(fig)

@@ -9,15 +9,17 @@ Input folder format
                      (0-based): 3 line (2 nodes), 5 triangle (3), 9 quad (4); 4 polyline (n).
   frame_*.csv        one per frame, sorted by name: optional "# time=<seconds>" comment line,
                      header "x,y,z[,<field>...]", one row per node (same node count every frame).
-                     The colour field is the column named by --field (default: the 4th column;
-                     none -> plain colour).
+                     Positions in metres. The colour field is the column named by --field
+                     (default: the 4th column; none -> plain colour); its name, unit included
+                     ("displacement [m]"), labels the colour bar.
 
 Usage
   /usr/bin/python3 scripts/render_frames.py DIR -o OUT.mp4|OUT.gif [--fps 25] [--field NAME]
         [--view auto|xy|xz|yz|3d] [--title TEXT] [--every N] [--size 6x4.5] [--dpi 100]
 
-  --view auto: xy when every z is equal in the first frame, else a 3D view. Axis limits and the
-  colour range are fixed over all frames. Exit status 0 on success, 1 with a one-line message.
+  --view auto: xy when every z is equal in the first frame, else a 3D view (equal axes). Axis
+  limits and the colour range are fixed over all frames. Progress on stderr when it is a terminal.
+  Exit status 0 on success, 1 with a one-line message.
 """
 import argparse
 import csv
@@ -27,6 +29,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time as clock
 
 import matplotlib
 
@@ -39,6 +42,24 @@ from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 def fail(msg):
     print("render_frames: error: " + msg, file=sys.stderr)
     sys.exit(1)
+
+
+class Progress:
+    """`label k/n` on one stderr line, shown only on a terminal and only after the first second."""
+
+    def __init__(self, label, total):
+        self.label, self.total, self.start = label, total, clock.monotonic()
+        self.shown = False
+        self.on = sys.stderr.isatty()
+
+    def step(self, k):
+        if self.on and (self.shown or clock.monotonic() - self.start > 1.0):
+            self.shown = True
+            print(f"\r{self.label} {k}/{self.total}", end="", file=sys.stderr, flush=True)
+
+    def done(self):
+        if self.shown:
+            print(f"\r{self.label} {self.total}/{self.total} ({clock.monotonic() - self.start:.1f} s)", file=sys.stderr)
 
 
 def read_cells(path):
@@ -111,7 +132,12 @@ def main():
     if not files:
         fail(f"{a.dir}: no frame_*.csv files")
     lines, polys = read_cells(cells)
-    frames = [read_frame(f, a.field) for f in files]
+    reading = Progress("render_frames: reading frame", len(files))
+    frames = []
+    for k, f in enumerate(files):
+        frames.append(read_frame(f, a.field))
+        reading.step(k + 1)
+    reading.done()
     n = frames[0][1].shape[0]
     for f, fr in zip(files, frames):
         if fr[1].shape[0] != n:
@@ -132,9 +158,13 @@ def main():
     w, h = (float(v) for v in a.size.split("x"))
     pad = 0.05 * max((hi - lo).max(), 1e-12)
 
+    # 3D: one length per axis unit (a cube around the bounding box), so that shapes are not distorted.
+    centre, half = (lo + hi) / 2, (hi - lo).max() / 2 + pad
     tmp = tempfile.mkdtemp(prefix="render_frames_")
+    drawing = Progress("render_frames: drawing frame", len(frames))
     try:
         for k, (time, x, v, _) in enumerate(frames):
+            drawing.step(k + 1)
             fig = plt.figure(figsize=(w, h), dpi=a.dpi)
             if view == "3d":
                 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
@@ -148,12 +178,13 @@ def main():
                     lc = Line3DCollection(x[lines], linewidths=2)
                     lc.set_color(cmap(norm(v[lines].mean(axis=1))) if v is not None else "C0")
                     ax.add_collection3d(lc)
-                ax.set_xlim(lo[0] - pad, hi[0] + pad)
-                ax.set_ylim(lo[1] - pad, hi[1] + pad)
-                ax.set_zlim(lo[2] - pad, hi[2] + pad)
-                ax.set_xlabel("x")
-                ax.set_ylabel("y")
-                ax.set_zlabel("z")
+                ax.set_xlim(centre[0] - half, centre[0] + half)
+                ax.set_ylim(centre[1] - half, centre[1] + half)
+                ax.set_zlim(centre[2] - half, centre[2] + half)
+                ax.set_box_aspect((1, 1, 1))
+                ax.set_xlabel("x [m]")
+                ax.set_ylabel("y [m]")
+                ax.set_zlabel("z [m]")
             else:
                 i, j = {"xy": (0, 1), "xz": (0, 2), "yz": (1, 2)}[view]
                 ax = fig.add_subplot()
@@ -168,14 +199,17 @@ def main():
                 ax.set_xlim(lo[i] - pad, hi[i] + pad)
                 ax.set_ylim(lo[j] - pad, hi[j] + pad)
                 ax.set_aspect("equal")
-                ax.set_xlabel("xyz"[i])
-                ax.set_ylabel("xyz"[j])
+                ax.set_xlabel("xyz"[i] + " [m]")
+                ax.set_ylabel("xyz"[j] + " [m]")
             if v is not None:
                 fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label=field, shrink=0.8)
             label = (a.title + "  " if a.title else "") + (f"t = {time:.4g} s" if time is not None else f"frame {k}")
             ax.set_title(label)
             fig.savefig(os.path.join(tmp, f"img_{k:05d}.png"))
             plt.close(fig)
+        drawing.done()
+        if sys.stderr.isatty():
+            print("render_frames: encoding with ffmpeg", file=sys.stderr)
         src = ["-framerate", str(a.fps), "-i", os.path.join(tmp, "img_%05d.png")]
         if ext == ".mp4":
             cmd = ["ffmpeg", "-y", "-loglevel", "error", *src, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",

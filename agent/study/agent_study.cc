@@ -89,6 +89,9 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   s.stress = agent::agent_stresses(grid, s.face_forces);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
   s.displacement = agent::node_displacements(grid, s.strain, agent::choose_datums(grid, loads));
+  // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
+  for (auto* field : {&s.stress, &s.strain, &s.displacement})
+    for (double& v : *field) v += 0.0;
   return s;
 }
 
@@ -163,10 +166,10 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
   const auto& grid = study.mesh.grid;
   const int dim = grid.dim, nd = 2 * dim;
   auto out = open_csv(file);
-  out << "cell,x,y" << (dim == 3 ? ",z" : "") << ",generation";
-  for (int f = 0; f < nd; ++f) out << ",f_" << kDirections[f];
-  for (int a = 0; a < dim; ++a) out << ",sigma_" << char('x' + a);
-  out << ",eps_x,eps_y,eps_z\n";
+  out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",generation";
+  for (int f = 0; f < nd; ++f) out << ",f_" << kDirections[f] << " [N]";
+  for (int a = 0; a < dim; ++a) out << ",sigma_" << char('x' + a) << " [Pa]";
+  out << ",eps_x [-],eps_y [-],eps_z [-]\n";
   for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
     const std::size_t cell = study.mesh.cell_of_element[e];
     const Eigen::Vector3d x = grid.centre(cell);
@@ -185,7 +188,7 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
                      const workbench::OutputMesh& mesh) {
   const int dim = study.mesh.grid.dim;
   auto out = open_csv(file);
-  out << "node,x,y" << (dim == 3 ? ",z" : "") << ",u_x,u_y" << (dim == 3 ? ",u_z" : "") << "\n";
+  out << "node,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",u_x [m],u_y [m]" << (dim == 3 ? ",u_z [m]" : "") << "\n";
   for (std::size_t node = 0; node < mesh.point_count(); ++node) {
     out << node;
     for (int a = 0; a < dim; ++a) out << ',' << mesh.points[3 * node + a];
@@ -251,8 +254,8 @@ std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::
   const int steps = study.setup.steps;
   std::vector<std::pair<double, std::string>> series;
   auto diagnostics = open_csv(dir / "agent_diagnostics.csv");
-  diagnostics << "step,load_factor,agents_generated,agent_updates,applied,rigid_reaction,passed_out,dropped,lost,"
-                 "lateral_reaction,lateral_passed_out,lateral_dropped\n";
+  diagnostics << "step,load_factor [-],agents_generated,agent_updates,applied [N],rigid_reaction [N],passed_out [N],"
+                 "dropped [N],lost [N],lateral_reaction [N],lateral_passed_out [N],lateral_dropped [N]\n";
   AgentState state;
   for (int k = 1; k <= steps; ++k) {
     const double factor = double(k) / steps;

@@ -202,7 +202,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   load_centre /= total;
   const auto lines = standard_lines(grid, load_centre, options.depths);
   auto lines_csv = open_out(dir / "lines.csv");
-  lines_csv << "model,line,arc_length,x,y" << (dim == 3 ? ",z" : "") << ",sigma_x,sigma_y,u_x,u_y\n";
+  lines_csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
+            << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
   for (std::size_t li = 0; li < lines.size(); ++li) {
     const auto& line = lines[li];
     std::vector<double> s[2][4];  // model, field (sx, sy, ux, uy)
@@ -272,23 +273,24 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     workbench::write_vtu(dir / "compare.vtu", mesh, points, cells);
 
     auto cells_csv = open_out(dir / "cells.csv");
-    cells_csv << "cell,x,y" << (dim == 3 ? ",z" : "")
-              << ",generation,agent_sigma_x,agent_sigma_y,fem_sigma_x,fem_sigma_y,ratio_sigma_x,ratio_sigma_y,"
-                 "masked_x,masked_y\n";
+    cells_csv << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
+              << ",generation,agent_sigma_x [Pa],agent_sigma_y [Pa],fem_sigma_x [Pa],fem_sigma_y [Pa],ratio_sigma_x [-],"
+                 "ratio_sigma_y [-],masked_x,masked_y\n";
     for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
       const std::size_t cell = study.mesh.cell_of_element[e];
       const Eigen::Vector3d c = grid.centre(cell);
       cells_csv << e;
       for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
+      // (+ 0.0: a zero ratio of a negative reference is -0, which would print as "-0")
       cells_csv << ',' << agent.generation[cell] << ',' << agent_sigma[2 * cell] << ',' << agent_sigma[2 * cell + 1] << ','
-                << fem_sigma[2 * cell] << ',' << fem_sigma[2 * cell + 1] << ',' << rx.ratio[cell] << ',' << ry.ratio[cell]
+                << fem_sigma[2 * cell] << ',' << fem_sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0
                 << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << '\n';
     }
     auto nodes_csv = open_out(dir / "nodes.csv");
     const auto nn = grid.node_counts();
-    nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x,y" << (dim == 3 ? ",z" : "")
-              << ",agent_u_x,agent_u_y" << (dim == 3 ? ",agent_u_z" : "") << ",fem_u_x,fem_u_y"
-              << (dim == 3 ? ",fem_u_z" : "") << "\n";
+    nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
+              << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
+              << (dim == 3 ? ",fem_u_z [m]" : "") << "\n";
     for (int k = 0; k < nn[2]; ++k)
       for (int j = 0; j < nn[1]; ++j)
         for (int i = 0; i < nn[0]; ++i) {
@@ -302,7 +304,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
         }
     // The agent's load steps, for the animation.
     auto steps_csv = open_out(dir / "steps.csv");
-    steps_csv << "step,load,cell,generation,sigma_x,sigma_y\n";
+    steps_csv << "step,load [N],cell,generation,sigma_x [Pa],sigma_y [Pa]\n";
     for (int k = 1; k <= study.setup.steps; ++k) {
       const double factor = double(k) / study.setup.steps;
       const auto s = agent_study::evaluate(study, model, factor);

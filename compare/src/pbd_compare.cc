@@ -217,7 +217,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   const RowSampler sampler(fem, 1e-6 * D);
   std::vector<double> s_used, pbd_uy, fem_uy, eb_uy;
   auto csv = open_out(dir / "centreline.csv");
-  csv << "s,x0,y0,pbd_x,pbd_y,pbd_u_x,pbd_u_y,fem_u_x,fem_u_y,eb_u_y\n";
+  csv << "s [m],x0 [m],y0 [m],pbd_x [m],pbd_y [m],pbd_u_x [m],pbd_u_y [m],fem_u_x [m],fem_u_y [m],eb_u_y [m]\n";
   for (std::size_t k = 0; k < n_line; ++k) {
     if (line.s[k] < -1e-12 * L) continue;
     const int node = line.nodes[k];

@@ -207,8 +207,8 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
   {
     const auto file = dir / "fem_cells.csv";
     auto out = open_csv(file);
-    out << "cell,x,y" << (dim == 3 ? ",z" : "") << ",sigma_x,sigma_y,sigma_z,tau_xy"
-        << (dim == 3 ? ",tau_yz,tau_xz" : "") << ",von_mises\n";
+    out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],sigma_z [Pa],tau_xy [Pa]"
+        << (dim == 3 ? ",tau_yz [Pa],tau_xz [Pa]" : "") << ",von_mises [Pa]\n";
     for (std::size_t e = 0; e < r.cell_count(); ++e) {
       out << e;
       for (int a = 0; a < dim; ++a) out << ',' << r.cell_centres[3 * e + a];
@@ -221,7 +221,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
   {
     const auto file = dir / "fem_nodes.csv";
     auto out = open_csv(file);
-    out << "node,x,y" << (dim == 3 ? ",z" : "") << ",u_x,u_y" << (dim == 3 ? ",u_z" : "") << "\n";
+    out << "node,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",u_x [m],u_y [m]" << (dim == 3 ? ",u_z [m]" : "") << "\n";
     for (std::size_t n = 0; n < r.node_count(); ++n) {
       out << n;
       for (int a = 0; a < dim; ++a) out << ',' << r.node_points[3 * n + a];
@@ -233,7 +233,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
   {
     const auto file = dir / "fem_reactions.csv";
     auto out = open_csv(file);
-    out << "group,kind,f_x,f_y" << (dim == 3 ? ",f_z" : "") << "\n";
+    out << "group,kind,f_x [N],f_y [N]" << (dim == 3 ? ",f_z [N]" : "") << "\n";
     for (const auto& g : r.reactions) {
       out << g.group << ',' << g.kind;
       for (int a = 0; a < dim; ++a) out << ',' << g.force[a];

@@ -224,7 +224,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   for (int p : study.pinned) pinned_field[p] = 1.0;
   std::vector<std::pair<double, std::string>> series;
   auto diagnostics = open_csv(dir / "diagnostics.csv");
-  diagnostics << "frame,time,kinetic_energy,max_angle_residual,max_stretch,max_displacement\n";
+  diagnostics << "frame,time [s],kinetic_energy [J],max_angle_residual [rad],max_stretch [-],max_displacement [m]\n";
 
   auto write_frame = [&](int frame) {
     const double time = frame * setup.step.dt;
@@ -254,7 +254,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
     series.emplace_back(time, "frames/" + name + ".vtu");
     if (animate) {
       if (frame == 0) write_render_cells(render_dir, out_mesh);
-      write_render_frame(render_dir / (name + ".csv"), out_mesh.points, time, "displacement", umag);
+      write_render_frame(render_dir / (name + ".csv"), out_mesh.points, time, "displacement magnitude [m]", umag);
     }
     const auto r = solver.residuals();
     diagnostics << frame << ',' << time << ',' << model.particles.kinetic_energy() << ',' << r.angle << ','
@@ -278,7 +278,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   const auto& x = model.particles.x;
   {
     auto out = open_csv(dir / "nodes.csv");
-    out << "node,file_node,x0,y0,z0,x,y,z,u_x,u_y,u_z,pinned\n";
+    out << "node,file_node,x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m],pinned\n";
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 &p = mesh.points[i], &q = x[i];
       out << i << ',' << study.mesh.node_names[i] << ',' << p[0] << ',' << p[1] << ',' << p[2] << ',' << q[0] << ','
@@ -290,7 +290,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   const auto& chain = line.nodes;
   if (!chain.empty()) {
     auto out = open_csv(dir / "centreline.csv");
-    out << "s,x0,y0,z0,x,y,z,u_x,u_y,u_z\n";
+    out << "s [m],x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m]\n";
     for (std::size_t k = 0; k < chain.size(); ++k) {
       const Vec3 &p = mesh.points[chain[k]], &q = x[chain[k]];
       out << line.s[k] << ',' << p[0] << ',' << p[1] << ',' << p[2] << ',' << q[0] << ',' << q[1] << ',' << q[2] << ','
@@ -302,7 +302,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   if (animate) {
     const fs::path file = dir / ("animation." + setup.animation_format);
     log << "pbd: rendering " << file.filename().string() << "\n";
-    render_animation(render_dir, file, setup.fps, "displacement", setup.title);
+    render_animation(render_dir, file, setup.fps, "displacement magnitude [m]", setup.title);
   }
 }
 

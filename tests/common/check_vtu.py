@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Opens every VTU/PVTU under the given folders with VTK's own XML readers and checks what a
 ParaView user relies on: every array named with a unit ("name [unit]"), every component of a
-vector array named, no NaN except in a ratio's masked cells, no negative zero, cells on shared
-points (no duplicated vertices). Prints one line per file; exit 1 on the first failed file set.
+vector array named, no NaN except in a ratio's masked cells, no negative zero, cells in VTK's
+vertex order (positive area/volume), cells on shared points (no duplicated vertices). Prints one line per file; exit 1 on the first failed file set.
 
     /usr/bin/python3 tests/common/check_vtu.py [--expect-files N] [--unique-points] FOLDER...
 """
@@ -14,6 +14,7 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkFiltersVerdict import vtkMeshQuality
 from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
 
 UNIT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]* \[[^\]]+\]$")
@@ -63,6 +64,19 @@ def check(path, unique_points):
                 problems.append(f"{where} array '{name}' holds NaN outside masked cells")
             elif np.any(allowed & ~nan):
                 problems.append(f"{where} array '{name}' has a value in a masked cell")
+    # Cells in VTK's vertex order: every quadrilateral, tetrahedron and hexahedron has a positive
+    # signed area/volume (a wrong order folds or inverts it).
+    quality = vtkMeshQuality()
+    quality.SetInputData(grid)
+    quality.SetQuadQualityMeasureToArea()
+    quality.SetTetQualityMeasureToVolume()
+    quality.SetHexQualityMeasureToVolume()
+    quality.Update()
+    types = np.array([grid.GetCellType(i) for i in range(grid.GetNumberOfCells())])
+    measure = vtk_to_numpy(quality.GetOutput().GetCellData().GetArray("Quality"))
+    solid = np.isin(types, (9, 10, 12))
+    if np.any(measure[solid] <= 0):
+        problems.append(f"{np.count_nonzero(measure[solid] <= 0)} cells with a non-positive area or volume")
     if unique_points:
         pts = vtk_to_numpy(grid.GetPoints().GetData())
         unique = len(np.unique(np.round(pts, 12), axis=0))

@@ -170,7 +170,7 @@ TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
   std::vector<std::string> rows;
   while (std::getline(in, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), 11u);  // header + ghost + 9 rod nodes
-  EXPECT_EQ(rows[0], "s,x0,y0,z0,x,y,z,u_x,u_y,u_z");
+  EXPECT_EQ(rows[0], "s [m],x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m]");
   EXPECT_EQ(rows[1].rfind("-0.125,-0.125,0,0,-0.125,0,0,0,0,0", 0), 0u) << rows[1];  // ghost node in the clamp
   EXPECT_EQ(rows[2].rfind("0,0,0,0,0,0,0,0,0,0", 0), 0u) << rows[2];                   // s = 0 at the clamp face
   double tip_uy = std::stod(rows.back().substr(rows.back().rfind(',', rows.back().rfind(',') - 1) + 1));

@@ -1,0 +1,505 @@
+// The `workbench` Python module (pybind11, docs/python.md): case files in, numpy arrays and dicts out.
+// A thin layer over the public study entry points; no model code lives here.
+#include <agent_study.h>
+#include <compare/calibration.h>
+#include <compare/calibration_study.h>
+#include <compare/compare_study.h>
+#include <compare/reference.h>
+#include <fem_reference/fem.h>
+#include <pbd_study.h>
+#include <workbench/case_file.h>
+#include <workbench/error.h>
+#include <workbench/staged_directory.h>
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+#include <toml++/toml.h>
+
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <streambuf>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A study's case: a case file, or TOML text standing for one (built from a dict). A fresh
+/// CaseFile is parsed per run, so that every run checks every key.
+struct Case {
+  fs::path path;     ///< the file, or the name standing for it in messages (its folder resolves paths)
+  std::string text;  ///< empty: read `path`
+  std::unique_ptr<workbench::CaseFile> open() const {
+    return text.empty() ? std::make_unique<workbench::CaseFile>(path)
+                        : std::make_unique<workbench::CaseFile>(text, path);
+  }
+};
+
+/// A Python value as a TOML node: bool, int, float, str, list/tuple, dict (numpy scalars and arrays too).
+void insert(toml::table& table, const std::string& key, const py::handle& value);
+toml::array to_array(const py::handle& list) {
+  toml::array out;
+  for (const auto& item : list) {
+    toml::table wrapper;
+    insert(wrapper, "v", item);
+    out.push_back(std::move(*wrapper.get("v")));
+  }
+  return out;
+}
+toml::table to_table(const py::dict& dict) {
+  toml::table out;
+  for (const auto& [key, value] : dict) insert(out, py::str(key), value);
+  return out;
+}
+void insert(toml::table& table, const std::string& key, const py::handle& item) {
+  // numpy scalars and arrays as the Python values they hold (np.int64 is no int, an array no list).
+  py::object value = py::reinterpret_borrow<py::object>(item);
+  if (py::isinstance<py::array>(value))
+    value = value.attr("tolist")();
+  else if (py::isinstance(value, py::module_::import("numpy").attr("generic")))
+    value = value.attr("item")();
+  if (py::isinstance<py::bool_>(value))
+    table.insert_or_assign(key, value.cast<bool>());
+  else if (py::isinstance<py::int_>(value))
+    table.insert_or_assign(key, value.cast<long long>());
+  else if (py::isinstance<py::float_>(value))
+    table.insert_or_assign(key, value.cast<double>());
+  else if (py::isinstance<py::str>(value))
+    table.insert_or_assign(key, value.cast<std::string>());
+  else if (py::isinstance<py::dict>(value))
+    table.insert_or_assign(key, to_table(value.cast<py::dict>()));
+  else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))
+    table.insert_or_assign(key, to_array(value));
+  else
+    throw workbench::Error(key + ": a case value must be a bool, number, string, list or dict, not " +
+                           std::string(py::str(value.get_type().attr("__name__"))));
+}
+
+/// Sends each line written to it to a Python callable (taking the GIL for the call). An exception
+/// raised by the callable is kept and re-raised after the run; later lines are dropped.
+class CallbackBuffer : public std::streambuf {
+ public:
+  explicit CallbackBuffer(py::object callback) : callback_(std::move(callback)) {}
+  ~CallbackBuffer() override {
+    py::gil_scoped_acquire gil;
+    callback_ = py::object();
+  }
+  void rethrow() {
+    flush_line();
+    if (error_) {
+      py::gil_scoped_acquire gil;
+      auto e = std::move(*error_);
+      error_.reset();
+      e.restore();
+      throw py::error_already_set();
+    }
+  }
+
+ protected:
+  int overflow(int ch) override {
+    if (ch == '\n')
+      flush_line();
+    else if (ch != EOF)
+      line_ += char(ch);
+    return ch;
+  }
+
+ private:
+  void flush_line() {
+    if (line_.empty() || callback_.is_none() || error_) {
+      line_.clear();
+      return;
+    }
+    py::gil_scoped_acquire gil;
+    try {
+      callback_(line_);
+    } catch (py::error_already_set& e) {
+      error_.emplace(std::move(e));
+    }
+    line_.clear();
+  }
+  py::object callback_;
+  std::string line_;
+  std::optional<py::error_already_set> error_;
+};
+
+/// Runs `body(log)` without the GIL, progress lines going to `progress` (None: discarded).
+template <class Body>
+auto with_progress(const py::object& progress, Body body) {
+  CallbackBuffer buffer(progress);
+  std::ostream log(&buffer);
+  using Result = decltype(body(log));
+  std::optional<Result> result;
+  {
+    py::gil_scoped_release release;
+    result.emplace(body(log));
+  }
+  buffer.rethrow();
+  return std::move(*result);
+}
+
+/// A numpy array owning the vector's storage (moved, not copied).
+template <class T>
+py::array_t<T> take(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<T>(std::move(values));
+  py::capsule free_owner(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owner->data(), free_owner);
+}
+
+py::ssize_t ssize(std::size_t n) { return static_cast<py::ssize_t>(n); }
+
+/// The same check the command line does before a run: every section read, no unknown key.
+void check_every_section(const workbench::CaseFile& file) {
+  const auto root = file.root();
+  agent::Coefficients k;
+  agent::RuleSet rules;
+  agent_study::read_agent_section(root, k, rules);
+  fem_reference::read_fem_section(root);
+  compare::read_compare_options(root);
+  file.reject_unknown_keys();
+}
+
+py::dict diagnostics_dict(const agent::Diagnostics& d) {
+  py::dict out;
+  out["agents_generated"] = d.agents_generated;
+  out["agent_updates"] = d.agent_updates;
+  out["applied_N"] = d.applied;
+  out["rigid_reaction_N"] = d.rigid_reaction;
+  out["passed_out_N"] = d.passed_out;
+  out["dropped_N"] = d.dropped;
+  out["lateral_reaction_N"] = d.lateral_reaction;
+  out["lateral_passed_out_N"] = d.lateral_passed_out;
+  out["lateral_dropped_N"] = d.lateral_dropped;
+  return out;
+}
+
+py::dict coefficients_dict(const agent::Coefficients& k) {
+  py::dict out;
+  out["alpha1"] = k.alpha1;
+  out["alpha2"] = k.alpha2;
+  out["alpha3"] = k.alpha3;
+  out["beta"] = k.beta;
+  out["gamma"] = k.gamma;
+  out["poisson_decay"] = k.poisson_decay;
+  return out;
+}
+
+py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, double load_factor,
+                   const py::object& progress) {
+  struct Out {
+    agent_study::AgentState state;
+    std::vector<double> centres, nodes;
+    std::vector<std::size_t> cell_of_element;
+    int dim;
+    std::array<int, 3> cells;
+  };
+  auto out = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    const auto study = agent_study::load_agent_study(*file);
+    check_every_section(*file);
+    if (output_dir) {
+      workbench::StagedDirectory staged(*output_dir);
+      agent_study::write_agent_outputs(study, staged.path(), log);
+      staged.commit();
+    }
+    const auto& grid = study.mesh.grid;
+    agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
+    Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
+          {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}};
+    for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+      const Eigen::Vector3d x = grid.centre(cell);
+      o.centres.insert(o.centres.end(), {x[0], x[1], x[2]});
+    }
+    o.nodes = agent_study::output_mesh(study).points;
+    return o;
+  });
+  const std::size_t n = out.centres.size() / 3, dim = std::size_t(out.dim);
+  py::dict r;
+  r["dim"] = out.dim;
+  r["cells"] = py::make_tuple(out.cells[0], out.cells[1], out.cells[2]);
+  r["cell_centres"] = take(std::move(out.centres), {ssize(n), 3});
+  r["node_points"] = take(std::move(out.nodes), {ssize(out.state.displacement.size() / dim), 3});
+  r["face_force"] = take(std::move(out.state.face_forces), {ssize(n), ssize(2 * dim)});
+  r["generation"] = take(std::move(out.state.generation), {ssize(n)});
+  r["stress"] = take(std::move(out.state.stress), {ssize(n), ssize(dim)});
+  r["strain"] = take(std::move(out.state.strain), {ssize(n), 3});
+  const std::size_t nodes = out.state.displacement.size() / dim;
+  r["displacement"] = take(std::move(out.state.displacement), {ssize(nodes), ssize(dim)});
+  r["cell_of_element"] = take(std::move(out.cell_of_element), {ssize(n)});
+  r["diagnostics"] = diagnostics_dict(out.state.diagnostics);
+  return r;
+}
+
+py::dict fem_dict(fem_reference::FemResult&& f) {
+  py::dict r;
+  const auto n_cells = ssize(f.cell_count()), n_nodes = ssize(f.node_count());
+  r["dim"] = f.dim;
+  r["degree"] = f.degree;
+  r["model"] = f.model;
+  r["cells"] = f.cells;
+  r["ranks"] = f.ranks;
+  r["n_dofs"] = f.n_dofs;
+  r["n_active_cells"] = f.n_active_cells;
+  r["node_points"] = take(std::move(f.node_points), {n_nodes, 3});
+  r["node_displacement"] = take(std::move(f.node_displacement), {n_nodes, py::ssize_t(f.dim)});
+  r["cell_centres"] = take(std::move(f.cell_centres), {n_cells, 3});
+  for (auto [name, v] : {std::pair{"sigma_x", &f.sigma_x}, {"sigma_y", &f.sigma_y}, {"sigma_z", &f.sigma_z},
+                         {"tau_xy", &f.tau_xy}, {"tau_yz", &f.tau_yz}, {"tau_xz", &f.tau_xz},
+                         {"von_mises", &f.von_mises}})
+    r[name] = take(std::move(*v), {n_cells});
+  py::list reactions;
+  for (const auto& g : f.reactions) {
+    py::dict d;
+    d["group"] = g.group;
+    d["kind"] = g.kind;
+    d["force_N"] = g.force;
+    reactions.append(d);
+  }
+  r["reactions"] = reactions;
+  r["applied_N"] = f.applied;
+  r["solver"] = f.solver;
+  r["iterations"] = f.iterations;
+  r["residual"] = f.residual;
+  r["backward_error"] = f.backward_error ? py::cast(*f.backward_error) : py::none();
+  r["l2_error"] = f.l2_error;
+  r["h1_error"] = f.h1_error;
+  py::dict seconds;
+  seconds["mesh"] = f.mesh_seconds;
+  seconds["setup"] = f.setup_seconds;
+  seconds["assemble"] = f.assemble_seconds;
+  seconds["solve"] = f.solve_seconds;
+  seconds["output"] = f.output_seconds;
+  r["seconds"] = seconds;
+  return r;
+}
+
+py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const py::object& progress) {
+  auto result = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    const auto problem = fem_reference::problem_from_case(*file);
+    check_every_section(*file);
+    if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
+    workbench::StagedDirectory staged(*output_dir);
+    auto r = fem_reference::solve_fem(problem, staged.path(), &log);
+    fem_reference::write_fem_csv(r, staged.path());
+    staged.commit();
+    return r;
+  });
+  return fem_dict(std::move(result));
+}
+
+py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object& progress) {
+  auto outcome = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    workbench::StagedDirectory staged(output_dir);
+    auto o = compare::run_compare(*file, staged.path(), log);
+    staged.commit();
+    return o;
+  });
+  py::dict metrics, meanings;
+  for (const auto& m : outcome.metrics) {
+    metrics[py::str(m.name)] = m.value;
+    meanings[py::str(m.name)] = m.meaning;
+  }
+  py::list failures;
+  for (const auto& f : outcome.failures) failures.append(py::make_tuple(f.metric, f.value, f.limit));
+  py::dict r;
+  r["metrics"] = metrics;
+  r["meanings"] = meanings;
+  r["gate_failures"] = failures;
+  r["gated"] = outcome.gated;
+  return r;
+}
+
+py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::object& progress) {
+  auto result = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    workbench::StagedDirectory staged(output_dir);
+    auto r = compare::run_calibration(*file, staged.path(), log);
+    staged.commit();
+    return r;
+  });
+  py::dict r;
+  r["start"] = coefficients_dict(result.start);
+  r["best"] = coefficients_dict(result.best);
+  r["objective_start"] = result.objective_start;
+  r["objective_best"] = result.objective_best;
+  r["start_objectives"] = result.start_objectives;
+  r["evaluations"] = result.evaluations;
+  py::list sensitivity;
+  for (const auto& s : result.sensitivity) {
+    py::dict d;
+    d["name"] = s.name;
+    d["objective_minus"] = s.objective_minus;
+    d["objective_plus"] = s.objective_plus;
+    d["curvature"] = s.curvature;
+    d["pinned"] = s.pinned;
+    sensitivity.append(d);
+  }
+  r["sensitivity"] = sensitivity;
+  return r;
+}
+
+py::dict run_pbd(const Case& c, const py::object& progress) {
+  struct Out {
+    std::vector<double> rest, frames, times;
+    std::vector<int> pinned;
+    std::size_t written = 0, nodes = 0;
+  };
+  auto out = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    auto study = pbd_study::load_pbd_study(*file);
+    if (file->root().has("mesh")) workbench::read_study_setup(file->root());  // as `workbench pbd` does
+    check_every_section(*file);
+    const auto& setup = study.setup;
+    Out o;
+    o.nodes = study.mesh.mesh.points.size();
+    for (const auto& p : study.mesh.mesh.points) o.rest.insert(o.rest.end(), {p[0], p[1], p[2]});
+    o.pinned = study.pinned;
+    pbd::Solver solver(study.model);
+    auto record = [&](int frame) {
+      for (const auto& x : study.model.particles.x) {
+        if (!x.allFinite()) throw workbench::Error("pbd: non-finite position at frame " + std::to_string(frame));
+        o.frames.insert(o.frames.end(), {x[0], x[1], x[2]});
+      }
+      o.times.push_back(frame * setup.step.dt);
+      ++o.written;
+    };
+    record(0);
+    const int report = std::max(1, setup.frames / 10);
+    for (int f = 1; f <= setup.frames; ++f) {
+      solver.step(setup.step);  // the same stepping as `workbench pbd` (pbd_study.cc)
+      if (f % setup.output_every == 0 || f == setup.frames) record(f);
+      if (f % report == 0 || f == setup.frames) log << "pbd: frame " << f << "/" << setup.frames << "\n";
+    }
+    return o;
+  });
+  py::dict r;
+  r["rest_positions"] = take(std::move(out.rest), {ssize(out.nodes), 3});
+  r["positions"] = take(std::move(out.frames), {ssize(out.written), ssize(out.nodes), 3});
+  r["times"] = take(std::move(out.times), {ssize(out.written)});
+  r["pinned"] = take(std::move(out.pinned), {ssize(out.pinned.size())});
+  return r;
+}
+
+/// The calibration objective on a set of study cases, each FEM reference solved once: for fitting
+/// with any optimiser (scipy.optimize in notebooks/calibration_scipy.ipynb).
+class Objective {
+ public:
+  Objective(const std::vector<Case>& cases, const std::string& rule_set, double w_sigma_x, double w_sigma_y,
+            double w_displacement, const py::object& progress) {
+    if (rule_set != "patent" && rule_set != "conserving")
+      throw workbench::Error("rule_set: must be \"patent\" or \"conserving\", not \"" + rule_set + "\"");
+    rules_ = rule_set == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
+    weights_.sigma_x = w_sigma_x;
+    weights_.sigma_y = w_sigma_y;
+    weights_.displacement = w_displacement;
+    cases_ = with_progress(progress, [&](std::ostream& log) {
+      std::vector<compare::CalibrationCase> out;
+      for (const auto& c : cases) {
+        auto file = c.open();
+        compare::CalibrationCase cc;
+        cc.name = c.path.stem().string();
+        cc.study = agent_study::load_agent_study(*file);
+        const auto problem = fem_reference::problem_from_case(*file);
+        check_every_section(*file);
+        const auto fem = fem_reference::solve_fem(problem, {}, &log);
+        cc.reference = compare::fem_on_grid(cc.study, fem, file->path().string());
+        out.push_back(std::move(cc));
+      }
+      return out;
+    });
+  }
+  /// J(alpha1, alpha2, alpha3, beta, gamma); poisson_decay follows alpha2 as in `workbench calibrate`.
+  double operator()(const std::array<double, 5>& values) const {
+    py::gil_scoped_release release;
+    return compare::objective(cases_, compare::coefficients_from(values), rules_, weights_);
+  }
+  py::list scores(const std::array<double, 5>& values) const {
+    std::vector<compare::Score> per_case;
+    {
+      py::gil_scoped_release release;
+      compare::objective(cases_, compare::coefficients_from(values), rules_, weights_, &per_case);
+    }
+    py::list out;
+    for (std::size_t i = 0; i < per_case.size(); ++i) {
+      py::dict d;
+      d["case"] = cases_[i].name;
+      d["sigma_x"] = per_case[i].sigma_x;
+      d["sigma_y"] = per_case[i].sigma_y;
+      d["displacement"] = per_case[i].displacement;
+      out.append(d);
+    }
+    return out;
+  }
+
+ private:
+  std::vector<compare::CalibrationCase> cases_;
+  agent::RuleSet rules_ = agent::RuleSet::Conserving;
+  compare::ObjectiveWeights weights_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(workbench, m) {
+  m.doc() = "The deformation-model workbench from Python: agent model, FEM reference, comparison, calibration, "
+            "PBD model (docs/python.md)";
+  py::register_exception<workbench::Error>(m, "Error", PyExc_RuntimeError);
+
+  py::class_<Case>(m, "Case", "A study's case: a case file, or a dict with the same tables (docs/case-file.md)")
+      .def(py::init([](const fs::path& path) {
+             Case c{path, {}};
+             c.open();  // a missing file or a syntax error is raised now
+             return c;
+           }),
+           py::arg("path"), "Reads a case file (TOML).")
+      .def_static(
+          "from_dict",
+          [](const py::dict& tables, const fs::path& name) {
+            std::ostringstream text;
+            text << to_table(tables);
+            Case c{name, text.str()};
+            c.open();
+            return c;
+          },
+          py::arg("tables"), py::arg("name") = fs::path("case.toml"),
+          "A case from a dict of tables; `name` stands for the file in messages and its folder resolves "
+          "relative paths (the mesh file).")
+      .def_property_readonly("path", [](const Case& c) { return c.path; })
+      .def_property_readonly("toml", [](const Case& c) {
+        if (!c.text.empty()) return c.text;
+        std::ifstream in(c.path);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+      }, "The case as TOML text");
+
+  m.def("run_agent", &run_agent, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("load_factor") = 1.0,
+        py::arg("progress") = py::none(),
+        "The agent model at `load_factor` times the load: arrays in grid order (cell_of_element[e] is the agent of "
+        "mesh element e), diagnostics as a dict. With output_dir, also the files of `workbench agent`.");
+  m.def("run_fem", &run_fem, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("progress") = py::none(),
+        "The FEM reference: per-cell stresses [Pa] in gmsh element order, nodal displacements [m]. With output_dir, "
+        "also the files of `workbench fem`.");
+  m.def("compare", &run_compare, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
+        "`workbench compare`: writes everything into output_dir, returns the metrics and the gate's verdict.");
+  m.def("calibrate", &run_calibrate, py::arg("calibration"), py::arg("output_dir"), py::arg("progress") = py::none(),
+        "`workbench calibrate` on a calibration file: the fitted coefficients and the objective.");
+  m.def("run_pbd", &run_pbd, py::arg("case"), py::arg("progress") = py::none(),
+        "The PBD model's frames: positions [m] per written frame (frames x nodes x 3), times [s], rest positions.");
+
+  py::class_<Objective>(m, "Objective", "The calibration objective over study cases (FEM solved once per case)")
+      .def(py::init<const std::vector<Case>&, const std::string&, double, double, double, const py::object&>(),
+           py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("sigma_x") = 0.0, py::arg("sigma_y") = 1.0,
+           py::arg("displacement") = 1.0, py::arg("progress") = py::none())
+      .def("__call__", &Objective::operator(), py::arg("coefficients"),
+           "J at [alpha1, alpha2, alpha3, beta, gamma]")
+      .def("scores", &Objective::scores, py::arg("coefficients"), "Each case's relative errors");
+}

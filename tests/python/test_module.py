@@ -1,0 +1,151 @@
+#!/usr/bin/python3
+"""The `workbench` Python module asserts, through the module, what the C++ tests assert:
+tests/agent/test_agent_study.cc (load balance, mirror symmetry), tests/cli/fem_cook.sh (Cook's
+membrane 23.96), tests/cli/compare_gate.sh (the gate plate passes its gate), tests/pbd/test_model.cc
+(free fall), tests/compare/test_calibration.cc (the fit never ends worse than it started); and that
+errors arrive as workbench.Error with the command line's one-line message, arrays without copies,
+progress through a callback. Run by ctest with PYTHONPATH=<build>/python, WORKBENCH_SOURCE_DIR and WORKBENCH_BIN (the program) set.
+"""
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+import workbench
+
+SRC = os.environ["WORKBENCH_SOURCE_DIR"]
+
+
+def plate(**agent):
+    """tests/agent/test_agent_study.cc's plate: 20 x 20 agents, conserving, 2 N down on the patch."""
+    return {
+        "mesh": {"file": f"{SRC}/meshes/plate2d.geo", "parameters": {"h": 0.01, "lw": 0.02}},
+        "material": {"young": 206e9, "poisson": 0.3, "thickness": 0.002},
+        "boundary": {"rigid": ["base"]},
+        "load": [{"group": "load", "direction": "-y", "force": 2.0}],
+        "agent": {"rule_set": "conserving", "gamma": 1e-6, **agent},
+        "steps": {"count": 3},
+    }
+
+
+class Agent(unittest.TestCase):
+    def test_load_balance_and_mirror_symmetry(self):
+        r = workbench.run_agent(workbench.Case.from_dict(plate()))
+        d = r["diagnostics"]
+        self.assertAlmostEqual(d["rigid_reaction_N"] + d["passed_out_N"] + d["dropped_N"], 2.0, delta=1e-12)
+        self.assertEqual(r["dim"], 2)
+        self.assertEqual(r["cells"], (20, 20, 1))
+        u = r["displacement"].reshape(21, 21, 2)  # node_index order: x fastest
+        np.testing.assert_allclose(u[:, :, 0], -u[:, ::-1, 0], rtol=0, atol=1e-20)
+        np.testing.assert_allclose(u[:, :, 1], u[:, ::-1, 1], rtol=0, atol=1e-20)
+        self.assertTrue(np.all(u[0, :, 1] == 0.0))  # the rigid base
+        self.assertLess(u[:, :, 1].min(), -1e-10)
+        self.assertGreater(u[:, :, 1].min(), -1e-7)
+        self.assertEqual(r["face_force"].shape, (400, 4))
+        self.assertEqual(r["stress"].shape, (400, 2))
+
+    def test_arrays_are_not_copies(self):
+        r = workbench.run_agent(workbench.Case.from_dict(plate()))
+        for name in ("face_force", "stress", "displacement"):
+            a = r[name]
+            self.assertFalse(a.flags.owndata, name)  # a view of the C++ vector, kept alive by its capsule
+            self.assertTrue(a.flags.c_contiguous, name)
+
+    def test_writes_the_files_of_workbench_agent(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            workbench.run_agent(workbench.Case.from_dict(plate()), output_dir=os.path.join(tmp, "agent"))
+            for f in ("agent.pvd", "agent_step_003.vtu", "agent_cells.csv", "agent_nodes.csv"):
+                self.assertTrue(os.path.isfile(os.path.join(tmp, "agent", f)), f)
+
+
+class Errors(unittest.TestCase):
+    def test_bad_value_is_the_command_lines_message(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = os.path.join(tmp, "bad.toml")
+            with open(bad, "w") as f:
+                f.write(workbench.Case.from_dict(plate(alpha2=1.5)).toml)
+            with self.assertRaises(workbench.Error) as e:
+                workbench.run_agent(workbench.Case(bad))
+            cli = subprocess.run([os.environ["WORKBENCH_BIN"], "agent", bad, "-o", os.path.join(tmp, "out")],
+                                 capture_output=True, text=True)
+        self.assertEqual(str(e.exception), f"{bad}: agent.alpha2: in [0, 1] (got 1.5)")
+        self.assertEqual(cli.returncode, 2)
+        self.assertEqual(cli.stderr.strip(), "workbench: error: " + str(e.exception))
+
+    def test_unknown_key_and_missing_file(self):
+        with self.assertRaisesRegex(workbench.Error, r"^bad\.toml: .*colour.*"):
+            workbench.run_agent(workbench.Case.from_dict({**plate(), "colour": "red"}, name="bad.toml"))
+        with self.assertRaises(workbench.Error):
+            workbench.Case(os.path.join(SRC, "cases", "no_such_case.toml"))
+        self.assertTrue(issubclass(workbench.Error, RuntimeError))
+
+    def test_a_failing_progress_callback_is_raised_after_the_run(self):
+        def bad(line):
+            raise KeyError("stop")
+
+        with tempfile.TemporaryDirectory() as tmp, self.assertRaises(KeyError):
+            workbench.run_agent(workbench.Case.from_dict(plate()), output_dir=os.path.join(tmp, "a"), progress=bad)
+
+
+class Fem(unittest.TestCase):
+    def test_cooks_membrane(self):
+        lines = []
+        r = workbench.run_fem(workbench.Case(os.path.join(SRC, "cases", "cook.toml")), progress=lines.append)
+        x, u = r["node_points"], r["node_displacement"]
+
+        def uy(px, py):
+            k = np.flatnonzero((x[:, 0] == px) & (x[:, 1] == py))
+            self.assertEqual(len(k), 1)
+            return u[k[0], 1]
+
+        self.assertAlmostEqual(uy(48, 52), 23.96, delta=0.005)  # the published value
+        self.assertAlmostEqual(uy(48, 60), 25.137, delta=0.01)
+        self.assertEqual(r["sigma_y"].shape, (r["n_active_cells"],))
+        self.assertTrue(any("DoFs" in line for line in lines), lines)  # progress came through
+        # Equilibrium: the clamp returns the applied force.
+        np.testing.assert_allclose(np.array(r["reactions"][0]["force_N"]), -np.array(r["applied_N"]), atol=1e-9)
+
+
+class Compare(unittest.TestCase):
+    def test_gate_plate_passes_its_gate(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            r = workbench.compare(workbench.Case(os.path.join(SRC, "cases", "gate_plate.toml")), os.path.join(tmp, "c"))
+            self.assertTrue(os.path.isfile(os.path.join(tmp, "c", "summary.json")))
+        self.assertEqual(r["gate_failures"], [])
+        self.assertEqual(r["gated"], 5)
+        m = r["metrics"]
+        self.assertLess(m["fem.equilibrium_dev"], 1e-8)
+        self.assertLess(m["agent.equilibrium_dev"], 0.02)
+        self.assertLess(m["vertical.sigma_y.rel_l2"], 0.75)
+
+
+class Pbd(unittest.TestCase):
+    def test_free_fall_is_an_acceleration(self):
+        # tests/pbd/test_model.cc GravityIsAnAcceleration: symplectic Euler, y = -g dt^2 sum_k k.
+        # numpy values are taken as the numbers they hold
+        case = {"pbd": {"mesh": f"{SRC}/meshes/rod2d.geo", "mesh_parameters": {"L": 1.0, "N": np.int64(4)},
+                        "frames": np.int64(100), "time_step": np.float64(0.01), "substeps": 1, "iterations": 1,
+                        "gravity": np.array([0.0, -9.81, 0.0])}}
+        progress = []
+        r = workbench.run_pbd(workbench.Case.from_dict(case), progress=progress.append)
+        p = r["positions"]
+        self.assertEqual(p.shape[0], 101)
+        self.assertEqual(p.shape[1:], r["rest_positions"].shape)
+        np.testing.assert_allclose(p[-1, :, 1] - r["rest_positions"][:, 1], -9.81 * 1e-4 * 5050, atol=1e-9)
+        self.assertAlmostEqual(r["times"][-1], 1.0, delta=1e-12)
+        self.assertIn("pbd: frame 100/100", progress)
+
+
+class Calibration(unittest.TestCase):
+    def test_objective_is_the_weighted_sum_of_the_case_errors(self):
+        objective = workbench.Objective([workbench.Case.from_dict(plate())], sigma_x=1.0)
+        seed = [0.5, 0.5, 0.25, 0.5, 1e-6]
+        j = objective(seed)
+        s = objective.scores(seed)[0]
+        self.assertAlmostEqual(j, s["sigma_x"] ** 2 + s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12 * j)
+        self.assertGreater(j, 0.0)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

@@ -23,12 +23,13 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   const std::string rule_set = t.text("rule_set", "patent", {"patent", "conserving"});
   rules = rule_set == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
   const auto unit = Range::closed(0, 1);
-  k.alpha1 = t.number("alpha1", 0.5, unit);
-  k.alpha2 = t.number("alpha2", 0.5, unit);
-  k.alpha3 = t.number("alpha3", 0.25, unit);
-  k.beta = t.number("beta", 0.5, unit);
-  k.gamma = t.number("gamma", 1e-3, Range::non_negative());
-  k.poisson_decay = t.number("poisson_decay", k.alpha2, unit);
+  const agent::Coefficients defaults;  // the library's defaults, the seed's values
+  k.alpha1 = t.number("alpha1", defaults.alpha1, unit);
+  k.alpha2 = t.number("alpha2", defaults.alpha2, unit);
+  k.alpha3 = t.number("alpha3", defaults.alpha3, unit);
+  k.beta = t.number("beta", defaults.beta, unit);
+  k.gamma = t.number("gamma", defaults.gamma, Range::non_negative());
+  k.poisson_decay = t.has("poisson_decay") ? std::optional<double>(t.number("poisson_decay", {}, unit)) : std::nullopt;
   if (rules == agent::RuleSet::Conserving && k.alpha2 + k.alpha3 <= 0)
     t.fail("alpha2", "the conserving rule set needs alpha2 + alpha3 > 0");
 }

@@ -15,6 +15,7 @@ void check_every_section(const workbench::CaseFile& file);
 using Action = std::function<int()>;
 
 void add_agent_command(CLI::App& app, Action& action);
+void add_voxelize_command(CLI::App& app, Action& action);
 void add_pbd_command(CLI::App& app, Action& action);
 void add_fem_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);

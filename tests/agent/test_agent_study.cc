@@ -16,7 +16,8 @@ const std::string kMeshes = WORKBENCH_SOURCE_DIR "/meshes/";
 
 // A case file in a temporary folder; `extra` replaces nothing, it is appended.
 fs::path write_case(const std::string& name, const std::string& body) {
-  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study";
+  // One folder per test process (ctest runs each test in its own): tests never share scratch.
+  const fs::path dir = fs::temp_directory_path() / ("workbench_agent_study_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / name;
   std::ofstream(file) << body;
@@ -83,7 +84,7 @@ TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
 TEST(AgentStudy, WritesEveryStepAndTheTables) {
   workbench::CaseFile file(write_case("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
-  const fs::path dir = fs::temp_directory_path() / "workbench_agent_study_out";
+  const fs::path dir = fs::temp_directory_path() / ("workbench_agent_study_out_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::ostringstream log;

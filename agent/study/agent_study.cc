@@ -184,9 +184,13 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
 void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentState& s,
                      const workbench::OutputMesh& mesh) {
   const int dim = study.mesh.grid.dim;
+  // Only the nodes of agents: a node of the box that touches air alone has no displacement.
+  std::vector<char> of_agent(mesh.point_count(), 0);
+  for (long long p : mesh.connectivity) of_agent[std::size_t(p)] = 1;
   auto out = open_csv(file);
   out << "node,x,y" << (dim == 3 ? ",z" : "") << ",u_x,u_y" << (dim == 3 ? ",u_z" : "") << "\n";
   for (std::size_t node = 0; node < mesh.point_count(); ++node) {
+    if (!of_agent[node]) continue;
     out << node;
     for (int a = 0; a < dim; ++a) out << ',' << mesh.points[3 * node + a];
     for (int a = 0; a < dim; ++a) out << ',' << s.displacement[node * dim + a];

@@ -1,11 +1,20 @@
 #include "commands.h"
 
+#include <agent/voxelize.h>
 #include <agent_study.h>
+#include <workbench/error.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <vector>
+
+#include <unistd.h>
 
 namespace cli {
 
@@ -25,6 +34,53 @@ void add_agent_command(CLI::App& app, Action& action) {
       agent_study::write_agent_outputs(study, staged.path(), std::cerr);
       staged.commit();
       std::cerr << "agent: wrote " << staged.target().string() << "\n";
+      return 0;
+    };
+  });
+}
+
+void add_voxelize_command(CLI::App& app, Action& action) {
+  auto* cmd = app.add_subcommand("voxelize", "Turn a gmsh geometry of any shape into an agent grid (a staircase .msh)");
+  auto geometry = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto size = std::make_shared<double>(0.0);
+  auto settings = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("geometry", *geometry, "gmsh .geo or .msh of the body (any elements, physical groups)")->required();
+  cmd->add_option("-s,--size", *size, "agent size [m]")->required();
+  cmd->add_option("-p,--parameter", *settings, "a .geo parameter, NAME=VALUE (repeatable)");
+  cmd->add_option("-o,--output", *output, "the staircase mesh to write (.msh; must not exist)")->required();
+  cmd->callback([&action, geometry, output, size, settings] {
+    action = [geometry, output, size, settings] {
+      namespace fs = std::filesystem;
+      std::map<std::string, double> parameters;
+      for (const auto& s : *settings) {
+        const auto eq = s.find('=');
+        char* end = nullptr;
+        const double value = eq == std::string::npos ? 0.0 : std::strtod(s.c_str() + eq + 1, &end);
+        if (eq == std::string::npos || end == s.c_str() + eq + 1 || *end != '\0' || !std::isfinite(value))
+          throw workbench::Error(*geometry + ": --parameter " + s + ": expected NAME=VALUE with a finite number");
+        parameters[s.substr(0, eq)] = value;
+      }
+      const fs::path target(*output);
+      if (target.extension() != ".msh") throw workbench::Error(*output + ": the staircase mesh must be a .msh file");
+      if (fs::exists(target)) throw workbench::Error(*output + ": exists; the workbench does not overwrite a file it did not write");
+      // Written beside the target and renamed into place: whole or nothing.
+      const fs::path staged = target.parent_path() / ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + ".msh");
+      try {
+        const auto mesh = agent::voxelize(*geometry, *size, parameters, staged);
+        fs::rename(staged, target);
+        std::cerr << "voxelize: " << mesh.grid.agent_count() << " agents of " << *size << " m in a "
+                  << mesh.grid.cells[0] << " x " << mesh.grid.cells[1];
+        if (mesh.grid.dim == 3) std::cerr << " x " << mesh.grid.cells[2];
+        std::cerr << " box; groups:";
+        for (const auto& [name, faces] : mesh.face_groups) std::cerr << " " << name << " (" << faces.size() << " faces)";
+        std::cerr << "\nvoxelize: wrote " << target.string() << "\n";
+      } catch (const std::runtime_error& e) {
+        std::error_code ignored;
+        fs::remove(staged, ignored);
+        if (dynamic_cast<const workbench::Error*>(&e)) throw;
+        throw workbench::Error(e.what());
+      }
       return 0;
     };
   });

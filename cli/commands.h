@@ -26,6 +26,7 @@ std::string output_folder(const std::string& option, const workbench::CaseFile& 
 using Action = std::function<int()>;
 
 void add_agent_command(CLI::App& app, Action& action);
+void add_voxelize_command(CLI::App& app, Action& action);
 void add_pbd_command(CLI::App& app, Action& action);
 void add_fem_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);

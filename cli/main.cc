@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   cli::Action action;
   cli::add_agent_command(app, action);
+  cli::add_voxelize_command(app, action);
   cli::add_pbd_command(app, action);
   cli::add_fem_command(app, action);
   cli::add_compare_command(app, action);

@@ -29,7 +29,7 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   check(unit(k.alpha2), "alpha2 must be in [0, 1]");
   check(unit(k.alpha3), "alpha3 must be in [0, 1]");
   check(unit(k.beta), "beta must be in [0, 1]");
-  check(unit(k.poisson_decay), "poisson_decay must be in [0, 1]");
+  check(unit(k.decay()), "poisson_decay must be in [0, 1]");
   check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
   check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
   faces_.assign(grid.count() * 2 * grid.dim, 0.0);
@@ -109,7 +109,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const double carry = patent ? alpha3 : alpha3 / (alpha2 + alpha3);
   const double keep_above = patent ? 0.0 : alpha2 / (alpha2 + lateral_dirs * alpha3);
   const double keep_side = patent ? 0.0 : alpha2 / (alpha2 + alpha3);
-  const double decay = k_.poisson_decay;
+  const double decay = k_.decay();
   // Locals, not members, in the hot loops: the compiler cannot keep members in registers
   // across the stores into the face array.
   Diagnostics d;

@@ -23,12 +23,13 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   const std::string rule_set = t.text("rule_set", "patent", {"patent", "conserving"});
   rules = rule_set == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
   const auto unit = Range::closed(0, 1);
-  k.alpha1 = t.number("alpha1", 0.5, unit);
-  k.alpha2 = t.number("alpha2", 0.5, unit);
-  k.alpha3 = t.number("alpha3", 0.25, unit);
-  k.beta = t.number("beta", 0.5, unit);
-  k.gamma = t.number("gamma", 1e-3, Range::non_negative());
-  k.poisson_decay = t.number("poisson_decay", k.alpha2, unit);
+  const agent::Coefficients defaults;  // the library's defaults, the seed's values
+  k.alpha1 = t.number("alpha1", defaults.alpha1, unit);
+  k.alpha2 = t.number("alpha2", defaults.alpha2, unit);
+  k.alpha3 = t.number("alpha3", defaults.alpha3, unit);
+  k.beta = t.number("beta", defaults.beta, unit);
+  k.gamma = t.number("gamma", defaults.gamma, Range::non_negative());
+  k.poisson_decay = t.has("poisson_decay") ? std::optional<double>(t.number("poisson_decay", {}, unit)) : std::nullopt;
   if (rules == agent::RuleSet::Conserving && k.alpha2 + k.alpha3 <= 0)
     t.fail("alpha2", "the conserving rule set needs alpha2 + alpha3 > 0");
 }
@@ -187,9 +188,13 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
 void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentState& s,
                      const workbench::OutputMesh& mesh) {
   const int dim = study.mesh.grid.dim;
+  // Only the nodes of agents: a node of the box that touches air alone has no displacement.
+  std::vector<char> of_agent(mesh.point_count(), 0);
+  for (long long p : mesh.connectivity) of_agent[std::size_t(p)] = 1;
   auto out = open_csv(file);
   out << "node,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",u_x [m],u_y [m]" << (dim == 3 ? ",u_z [m]" : "") << "\n";
   for (std::size_t node = 0; node < mesh.point_count(); ++node) {
+    if (!of_agent[node]) continue;
     out << node;
     for (int a = 0; a < dim; ++a) out << ',' << mesh.points[3 * node + a];
     for (int a = 0; a < dim; ++a) out << ',' << s.displacement[node * dim + a];

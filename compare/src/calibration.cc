@@ -21,7 +21,6 @@ agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
   k.alpha3 = v[2];
   k.beta = v[3];
   k.gamma = v[4];
-  k.poisson_decay = v[1];
   return k;
 }
 

@@ -59,7 +59,8 @@ Plan read_plan(const workbench::CaseFile& file) {
   }
   // Defaults for the coefficients: the seed's values, free except gamma (and alpha1, which the
   // conserving rule set does not use).
-  const std::array<double, 5> seed_values{0.5, 0.5, 0.25, 0.5, 1e-3};
+  const agent::Coefficients seed;  // the library's defaults
+  const std::array<double, 5> seed_values{seed.alpha1, seed.alpha2, seed.alpha3, seed.beta, seed.gamma};
   int n_free = 0;
   for (int i = 0; i < 5; ++i) {
     const std::string name = kCoefficientNames[i];
@@ -108,7 +109,7 @@ void write_calibrated_case(const fs::path& original, const fs::path& target, con
   a.insert_or_assign("alpha3", k.alpha3);
   a.insert_or_assign("beta", k.beta);
   a.insert_or_assign("gamma", k.gamma);
-  a.insert_or_assign("poisson_decay", k.poisson_decay);
+  a.insert_or_assign("poisson_decay", k.decay());
   auto out = open_out(target);
   out << "# " << note << "\n" << t << "\n";
 }
@@ -214,7 +215,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   nlohmann::json j;
   auto coeffs = [](const agent::Coefficients& k) {
     return nlohmann::json{{"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
-                          {"gamma", k.gamma}, {"poisson_decay", k.poisson_decay}};
+                          {"gamma", k.gamma}, {"poisson_decay", k.decay()}};
   };
   j["calibration"] = file.path().string();
   j["rule_set"] = o.rules == agent::RuleSet::Patent ? "patent" : "conserving";

@@ -339,7 +339,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   json["agent"] = {{"rule_set", study.rules == agent::RuleSet::Patent ? "patent" : "conserving"},
                    {"alpha1", study.coefficients.alpha1}, {"alpha2", study.coefficients.alpha2},
                    {"alpha3", study.coefficients.alpha3}, {"beta", study.coefficients.beta},
-                   {"gamma", study.coefficients.gamma}, {"poisson_decay", study.coefficients.poisson_decay},
+                   {"gamma", study.coefficients.gamma}, {"poisson_decay", study.coefficients.decay()},
                    {"agents", n_cells}, {"agent_size", grid.size[0]},
                    {"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                    {"dropped", d.dropped}, {"agents_generated", d.agents_generated}};

@@ -1,9 +1,15 @@
 // Agents from gmsh meshes: the project's .geo files, and the meshes the method must refuse.
 #include <agent/mesh_import.h>
+#include <agent/voxelize.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
+#include <set>
 #include <string>
+
+#include <unistd.h>
 
 using namespace agent;
 
@@ -97,4 +103,65 @@ TEST(MeshImport, AnLShapeLeavesItsMissingQuarterAsAirWithBoundaryFacesAround) {
     EXPECT_EQ(m.grid.coords(f.cell)[1], 3);
     EXPECT_LT(m.grid.coords(f.cell)[0], 2);
   }
+}
+
+TEST(Voxelize, ADiscHasAboutPiRSquaredOverHSquaredAgents) {
+  // Cells whose centre lies inside: the count can differ from pi r^2 / h^2 only by the cells
+  // whose centre is within h / sqrt(2) of the rim (a ring of about 2 pi r sqrt(2) h / h^2 slots).
+  for (double h : {0.2, 0.1, 0.05}) {
+    const auto m = voxelize(kData + "disc.geo", h);
+    const double expected = M_PI / (h * h), ring = 2 * M_PI * std::sqrt(2.0) / h;
+    const double count = double(m.grid.agent_count());
+    EXPECT_NEAR(count, expected, ring) << "h = " << h;
+    EXPECT_NEAR(count, expected, 0.25 * ring) << "h = " << h;  // in practice well inside the ring
+    EXPECT_EQ(m.cell_of_element.size(), m.grid.agent_count());
+    // Every staircase boundary face lies next to the rim, and all of them are in "rim".
+    const auto faces = m.grid.boundary_faces();
+    EXPECT_EQ(m.face_groups.at("rim").size(), faces.size());
+    for (const auto& f : faces) EXPECT_LT(std::abs(m.grid.centre(f.cell).norm() - 1.0), 1.5 * h) << f.cell;
+  }
+}
+
+TEST(Voxelize, GroupsGoToTheNearestStaircaseFacesAndTheMshReadsBackIdentical) {
+  namespace fs = std::filesystem;
+  const fs::path msh = fs::temp_directory_path() / ("workbench_voxelize_" + std::to_string(::getpid()) + ".msh");
+  const double h = 0.005;
+  const auto m = voxelize(kMeshes + "plate_hole.geo", h, {}, msh);
+  const auto& g = m.grid;
+  ASSERT_EQ(g.cells[0], 40);
+  ASSERT_EQ(g.cells[1], 20);
+  // The hole (R = 10 mm = 2 h at (0.1, 0.05), a lattice node) makes air of the 12 cells whose
+  // centres lie within it: (+-0.5 h, +-0.5 h) and (+-1.5 h, +-0.5 h), (+-0.5 h, +-1.5 h).
+  EXPECT_EQ(g.agent_count(), 800u - 12u);
+  auto count_side = [&](const std::string& group, int side) {
+    std::size_t n = 0;
+    for (const auto& f : m.face_groups.at(group)) n += f.side == side;
+    return n;
+  };
+  EXPECT_EQ(m.face_groups.at("fixed").size(), 20u);
+  EXPECT_EQ(count_side("fixed", direction(0, false)), 20u);
+  EXPECT_EQ(count_side("pull", direction(0, true)), 20u);
+  EXPECT_EQ(m.face_groups.at("free").size(), 80u);
+  for (const auto& f : m.face_groups.at("hole")) {
+    const Eigen::Vector3d c = g.centre(f.cell) - Eigen::Vector3d(0.1, 0.05, 0);
+    EXPECT_LT(c.head<2>().norm(), 0.01 + h) << f.cell;
+    EXPECT_GT(c.head<2>().norm(), 0.01 - h) << f.cell;
+  }
+  // The staircase's boundary: the outer 120 faces and the hole's rim, a 4 x 4 square of air
+  // without its corners (the cells centred (1.5 h, 1.5 h) from the centre lie outside R = 2 h):
+  // cutting corners off a square keeps its perimeter, 16 faces.
+  EXPECT_EQ(m.face_groups.at("hole").size(), 16u);
+  EXPECT_EQ(g.boundary_faces().size(), 136u);
+  // The written .msh is the same grid with the same groups.
+  const auto back = import_mesh(msh);
+  EXPECT_EQ(back.grid.cells, g.cells);
+  EXPECT_EQ(back.grid.flags, g.flags);
+  for (const auto& [name, faces] : m.face_groups) {
+    ASSERT_EQ(back.face_groups.at(name).size(), faces.size()) << name;
+    std::set<std::pair<std::size_t, int>> a, b;
+    for (const auto& f : faces) a.insert({f.cell, f.side});
+    for (const auto& f : back.face_groups.at(name)) b.insert({f.cell, f.side});
+    EXPECT_EQ(a, b) << name;
+  }
+  fs::remove(msh);
 }

@@ -79,7 +79,7 @@ TEST(Calibration, RecoversKnownCoefficientsFromAgentGeneratedTargets) {
   EXPECT_NEAR(r.best.alpha3, 0.35, 2e-3);
   EXPECT_NEAR(r.best.beta, 0.6, 2e-3);
   EXPECT_DOUBLE_EQ(r.best.alpha1, 0.5);  // fixed
-  EXPECT_DOUBLE_EQ(r.best.poisson_decay, r.best.alpha2);
+  EXPECT_DOUBLE_EQ(r.best.decay(), r.best.alpha2);
   EXPECT_LE(r.objective_best, r.objective_start);
   EXPECT_EQ(r.after.size(), 2u);
   EXPECT_EQ(r.sensitivity.size(), 3u);

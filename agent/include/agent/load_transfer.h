@@ -13,6 +13,7 @@
 #include <agent/grid.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace agent {
@@ -29,7 +30,10 @@ struct Coefficients {
   double alpha3 = 0.25;        ///< friction to each side neighbour (P3 = alpha3 P0)
   double beta = 0.5;           ///< share of the Poisson expansion an agent keeps; 1 - beta is pushed out
   double gamma = 1e-3;         ///< threshold [N]: a load at or below it is not passed on
-  double poisson_decay = 0.5;  ///< factor per agent on a sideways (Poisson) push as it is passed on
+  /// Factor per agent on a sideways (Poisson) push as it is passed on; unset, it follows alpha2
+  /// ("the same rule set turned 90 degrees", docs/agent-model.md). Read it through decay().
+  std::optional<double> poisson_decay;
+  double decay() const { return poisson_decay.value_or(alpha2); }
 };
 
 struct Material {

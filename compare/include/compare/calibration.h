@@ -77,7 +77,7 @@ struct CalibrationResult {
 CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress = nullptr);
 
-/// Coefficients from a parameter vector (alpha1..gamma); poisson_decay follows alpha2.
+/// Coefficients from a parameter vector (alpha1..gamma); poisson_decay is left to follow alpha2.
 agent::Coefficients coefficients_from(const std::array<double, 5>& values);
 
 }  // namespace compare

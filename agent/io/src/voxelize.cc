@@ -1,0 +1,243 @@
+// Voxelization: any gmsh geometry -> agents whose centres lie inside it, groups on the nearest staircase faces.
+#include <agent/voxelize.h>
+
+#include <Eigen/Geometry>
+#include <gmsh.h>
+#include <gmsh_session.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace agent {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Eigen::Vector3d;
+
+/// A facet of the body's boundary (a segment in 2D, a triangle in 3D) and the groups it is in.
+struct Facet {
+  std::array<Vector3d, 3> corner;
+  int corners;
+  const std::vector<std::string>* groups;
+};
+
+double segment_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
+  const Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+double triangle_distance(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
+  const Vector3d n = (b - a).cross(c - a);
+  if (n.squaredNorm() > 0) {
+    const Vector3d q = p - (p - a).dot(n) / n.squaredNorm() * n;  // p projected onto the plane
+    const double u = (b - q).cross(c - q).dot(n), v = (c - q).cross(a - q).dot(n), w = (a - q).cross(b - q).dot(n);
+    if (u >= 0 && v >= 0 && w >= 0) return (p - q).norm();
+  }
+  return std::min({segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
+}
+
+double distance(const Vector3d& p, const Facet& f) {
+  return f.corners == 2 ? segment_distance(p, f.corner[0], f.corner[1])
+                        : triangle_distance(p, f.corner[0], f.corner[1], f.corner[2]);
+}
+
+/// Writes the staircase into a new gmsh model and saves it.
+void write_staircase(const ImportedMesh& m, const fs::path& file) {
+  const Grid& g = m.grid;
+  const int dim = g.dim;
+  gmsh::model::add("agent_staircase");
+  const int body = gmsh::model::addDiscreteEntity(dim);
+  // Lattice nodes used by an agent, tagged node_index + 1.
+  std::vector<char> used(g.node_count(), 0);
+  auto corner_node = [&](std::size_t cell, int corner) {
+    static const int kQuad[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const auto c = g.coords(cell);
+    const int q = corner % 4, up = corner / 4;
+    return g.node_index(c[0] + kQuad[q][0], c[1] + kQuad[q][1], c[2] + up);
+  };
+  const int corners = dim == 2 ? 4 : 8;
+  std::vector<std::size_t> element_tags, element_nodes;
+  for (std::size_t e = 0; e < m.cell_of_element.size(); ++e) {
+    element_tags.push_back(e + 1);
+    for (int k = 0; k < corners; ++k) {
+      const std::size_t node = corner_node(m.cell_of_element[e], k);
+      used[node] = 1;
+      element_nodes.push_back(node + 1);
+    }
+  }
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords;
+  const auto nn = g.node_counts();
+  for (std::size_t node = 0; node < g.node_count(); ++node)
+    if (used[node]) {
+      node_tags.push_back(node + 1);
+      const std::size_t i = node % nn[0], j = (node / nn[0]) % nn[1], k = node / (std::size_t(nn[0]) * nn[1]);
+      coords.insert(coords.end(), {g.origin[0] + i * g.size[0], g.origin[1] + j * g.size[1],
+                                   dim == 3 ? g.origin[2] + k * g.size[2] : g.origin[2]});
+    }
+  gmsh::model::mesh::addNodes(dim, body, node_tags, coords);
+  gmsh::model::mesh::addElementsByType(body, dim == 2 ? 3 : 5, element_tags, element_nodes);
+  gmsh::model::addPhysicalGroup(dim, {body}, 1);
+  gmsh::model::setPhysicalName(dim, 1, "body");
+  // One entity per group; a face is a 2-node line (2D) or a 4-node quadrangle (3D) of its corners.
+  std::size_t next_tag = m.cell_of_element.size() + 1;
+  int group_tag = 1;
+  for (const auto& [name, faces] : m.face_groups) {
+    const int entity = gmsh::model::addDiscreteEntity(dim - 1);
+    std::vector<std::size_t> tags, nodes;
+    for (const auto& f : faces) {
+      const int a = axis_of(f.side), b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+      const auto p = g.coords(f.cell);
+      std::array<int, 3> at = p;
+      at[a] += is_positive(f.side) ? 1 : 0;
+      auto node = [&](int db, int dc) {
+        std::array<int, 3> q = at;
+        q[b] += db;
+        if (dim == 3) q[c] += dc;
+        return g.node_index(q[0], q[1], q[2]) + 1;
+      };
+      tags.push_back(next_tag++);
+      if (dim == 2) {
+        nodes.insert(nodes.end(), {node(0, 0), node(1, 0)});
+      } else {
+        nodes.insert(nodes.end(), {node(0, 0), node(1, 0), node(1, 1), node(0, 1)});
+      }
+    }
+    gmsh::model::mesh::addElementsByType(entity, dim == 2 ? 1 : 3, tags, nodes);
+    gmsh::model::addPhysicalGroup(dim - 1, {entity}, group_tag);
+    gmsh::model::setPhysicalName(dim - 1, group_tag++, name);
+  }
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.SaveAll", 0);
+  gmsh::write(file.string());
+}
+
+}  // namespace
+
+ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std::string, double>& parameters,
+                      const fs::path& staircase_msh) {
+  const std::string name = geometry.string();
+  if (!(size > 0) || !std::isfinite(size)) throw std::runtime_error(name + ": the agent size must be a number > 0");
+  ImportedMesh out;
+  out.parameters = workbench::gmsh_load(geometry, parameters);
+  const int dim = gmsh::model::getDimension();
+  if (dim != 2 && dim != 3) throw std::runtime_error(name + ": the model must be 2D or 3D");
+
+  std::vector<std::size_t> node_tags;
+  std::vector<double> xyz, parametric;
+  gmsh::model::mesh::getNodes(node_tags, xyz, parametric);
+  if (node_tags.empty()) throw std::runtime_error(name + ": the mesh has no nodes");
+  std::unordered_map<std::size_t, Vector3d> node_at;
+  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < node_tags.size(); ++i) {
+    const Vector3d x(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (!x.allFinite()) throw std::runtime_error(name + ": node " + std::to_string(node_tags[i]) + " is not finite");
+    node_at[node_tags[i]] = x;
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  if (dim == 2 && hi[2] - lo[2] > 1e-12 * (hi - lo).norm()) throw std::runtime_error(name + ": a 2D model must lie in the x-y plane");
+
+  // The lattice over the bounding box, refused up front when it would not fit in memory.
+  std::array<int, 3> n{1, 1, 1};
+  double slots = 1;
+  for (int a = 0; a < dim; ++a) {
+    const double along = std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9));
+    slots *= along;
+    if (!(along < 1e9)) slots = std::numeric_limits<double>::infinity();
+  }
+  if (!(slots * study_bytes_per_slot(dim) <= memory_limit_bytes())) {
+    std::ostringstream s;
+    s << name << ": agent size " << size << " m gives " << slots << " agent slots, about "
+      << slots * study_bytes_per_slot(dim) / 1e9 << " GB, more than the " << memory_limit_bytes() / 1e9
+      << " GB allowed (set WORKBENCH_MEMORY_LIMIT_GB to change it)";
+    throw std::runtime_error(s.str());
+  }
+  for (int a = 0; a < dim; ++a) n[a] = int(std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9)));
+  Grid grid = Grid::box(dim, n, Vector3d(size, size, dim == 3 ? size : 1.0));
+  grid.origin = lo;
+
+  // An agent where its centre lies inside an element of the body (strict search: no tolerance).
+  std::vector<std::size_t> found;
+  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+    const Vector3d c = grid.centre(cell);
+    found.clear();
+    try {
+      gmsh::model::mesh::getElementsByCoordinates(c[0], c[1], dim == 3 ? c[2] : lo[2], found, dim, true);
+    } catch (const std::string&) {  // gmsh 4.8 reports "no element found" by throwing its message
+      found.clear();
+    }
+    if (found.empty())
+      grid.make_air(cell);
+    else
+      out.cell_of_element.push_back(cell);
+  }
+  if (out.cell_of_element.empty())
+    throw std::runtime_error(name + ": no agent of size " + std::to_string(size) + " m has its centre inside the body");
+
+  // The facets of the body's boundary, each with the physical groups of its entity.
+  gmsh::vectorpair bodies, boundary;
+  gmsh::model::getEntities(bodies, dim);
+  gmsh::model::getBoundary(bodies, boundary, true, false, false);
+  std::map<int, std::vector<std::string>> groups_of_entity;
+  std::vector<Facet> facets;
+  for (const auto& [d, signed_tag] : boundary) {
+    const int tag = std::abs(signed_tag);
+    auto& names = groups_of_entity[tag];
+    std::vector<int> physical;
+    gmsh::model::getPhysicalGroupsForEntity(d, tag, physical);
+    for (int p : physical) {
+      std::string group;
+      gmsh::model::getPhysicalName(d, p, group);
+      names.push_back(group.empty() ? std::to_string(p) : group);
+    }
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> tags, nodes;
+    gmsh::model::mesh::getElements(types, tags, nodes, d, tag);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      std::string type_name;
+      int edim, order, per, primary;
+      std::vector<double> local;
+      gmsh::model::mesh::getElementProperties(types[t], type_name, edim, order, per, local, primary);
+      for (std::size_t e = 0; e < tags[t].size(); ++e) {
+        auto x = [&](int k) { return node_at.at(nodes[t][e * per + k]); };
+        if (d == 1) {
+          facets.push_back({{x(0), x(1), x(1)}, 2, &names});
+        } else {  // triangles, and quadrangles as two triangles
+          facets.push_back({{x(0), x(1), x(2)}, 3, &names});
+          if (primary == 4) facets.push_back({{x(0), x(2), x(3)}, 3, &names});
+        }
+      }
+    }
+  }
+  for (const auto& [tag, names] : groups_of_entity)
+    for (const auto& group : names) out.face_groups[group];  // every boundary group, even if no face lands in it
+
+  // Each staircase boundary face joins the groups of the facet nearest to its centre.
+  for (const auto& f : grid.boundary_faces()) {
+    Vector3d centre = grid.centre(f.cell);
+    centre[axis_of(f.side)] += (is_positive(f.side) ? 0.5 : -0.5) * grid.size[axis_of(f.side)];
+    double best = std::numeric_limits<double>::infinity();
+    const Facet* nearest = nullptr;
+    for (const auto& facet : facets) {
+      const double dist = distance(centre, facet);
+      if (dist < best) {
+        best = dist;
+        nearest = &facet;
+      }
+    }
+    if (nearest)
+      for (const auto& group : *nearest->groups) out.face_groups[group].push_back(f);
+  }
+  out.grid = std::move(grid);
+  if (!staircase_msh.empty()) write_staircase(out, staircase_msh);
+  return out;
+}
+
+}  // namespace agent

@@ -1,5 +1,6 @@
 #include "agent_study.h"
 
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
@@ -147,12 +148,7 @@ void check_finite(const std::vector<double>& v, const std::string& what) {
     if (!std::isfinite(x)) throw Error("agent model produced a non-finite " + what);
 }
 
-std::ofstream open_csv(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
-}
+using workbench::open_csv;
 
 void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentState& s) {
   const auto& grid = study.mesh.grid;
@@ -173,7 +169,7 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
     for (int a = 0; a < 3; ++a) out << ',' << s.strain[cell * 3 + a];
     out << '\n';
   }
-  if (!out) throw Error(file.string() + ": write failed");
+  out.close();
 }
 
 void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentState& s,
@@ -187,7 +183,7 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
     for (int a = 0; a < dim; ++a) out << ',' << s.displacement[node * dim + a];
     out << '\n';
   }
-  if (!out) throw Error(file.string() + ": write failed");
+  out.close();
 }
 
 }  // namespace
@@ -219,7 +215,7 @@ void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostr
         << " agents, rigid reaction " << d.rigid_reaction << " N, passed out " << d.passed_out << " N, dropped "
         << d.dropped << " N\n";
   }
-  if (!diagnostics) throw Error((dir / "agent_diagnostics.csv").string() + ": write failed");
+  diagnostics.close();
   workbench::write_pvd(dir / "agent.pvd", series);
   write_cells_csv(dir / "agent_cells.csv", study, state);
   write_nodes_csv(dir / "agent_nodes.csv", study, state, mesh);

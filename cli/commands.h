@@ -8,9 +8,15 @@
 
 namespace cli {
 
-/// A case file describes one study for every model, so each subcommand reads (and so checks) the
-/// [agent], [fem] and [compare] sections too, then rejects whatever no module knows.
+/// A case file describes one study for every model, so each subcommand checks every section
+/// (the list is in case_sections.cc), then rejects whatever no module knows.
 void check_every_section(const workbench::CaseFile& file);
+
+/// `--check`: read the case file, check every section (and, but for compare, load the model's
+/// study, mesh included), write nothing.
+inline constexpr const char* kCheckHelp = "only check the case file (every section) and write nothing";
+/// Says the case file was checked; returns exit code 0.
+int checked(const workbench::CaseFile& file, const std::string& subcommand);
 
 /// The case file at `path`; a folder or a missing file is one line naming it.
 workbench::CaseFile read_case_file(const std::string& path);

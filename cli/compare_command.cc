@@ -17,13 +17,17 @@ void add_compare_command(CLI::App& app, Action& action) {
       "compare them (exit 1 if the gate fails)");
   auto case_file = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
+  auto check = std::make_shared<bool>(false);
   auto junit = std::make_shared<std::string>();
   cmd->add_option("case", *case_file, "case file (TOML, see docs/case-file.md)")->required();
   cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/compare)");
+  cmd->add_flag("--check", *check, kCheckHelp);
   cmd->add_option("--junit", *junit, "also copy the gate's JUnit XML report to this file");
-  cmd->callback([&action, case_file, output, junit] {
-    action = [case_file, output, junit] {
+  cmd->callback([&action, case_file, output, check, junit] {
+    action = [case_file, output, check, junit] {
       workbench::CaseFile file = read_case_file(*case_file);
+      check_every_section(file);
+      if (*check) return checked(file, "compare");
       if (!junit->empty()) check_writable_file(*junit, "--junit");
       const std::string dir = output_folder(*output, file, "compare");
       workbench::StagedDirectory staged(dir, file.path());

@@ -15,13 +15,16 @@ void add_fem_command(CLI::App& app, Action& action) {
                                         "(serial, or distributed under mpirun)");
   auto case_file = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
+  auto check = std::make_shared<bool>(false);
   cmd->add_option("case", *case_file, "case file (TOML, see docs/case-file.md)")->required();
   cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/fem)");
-  cmd->callback([&action, case_file, output] {
-    action = [case_file, output] {
+  cmd->add_flag("--check", *check, kCheckHelp);
+  cmd->callback([&action, case_file, output, check] {
+    action = [case_file, output, check] {
       workbench::CaseFile file = read_case_file(*case_file);
       const auto problem = fem_reference::problem_from_case(file);
       check_every_section(file);
+      if (*check) return checked(file, "fem");
       const std::string dir = output_folder(*output, file, "fem");
       // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
       const bool root = fem_reference::mpi_rank() == 0;

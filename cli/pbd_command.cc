@@ -3,7 +3,6 @@
 #include <pbd_study.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
-#include <workbench/study_setup.h>
 
 #include <iostream>
 #include <memory>
@@ -14,18 +13,18 @@ void add_pbd_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("pbd", "Run the PBD angle bending model (CN104268305A) on a case file");
   auto case_file = std::make_shared<std::string>();
   auto output = std::make_shared<std::string>();
+  auto check = std::make_shared<bool>(false);
   auto animate = std::make_shared<bool>(false);
   cmd->add_option("case", *case_file, "case file (TOML with a [pbd] section, see docs/case-file.md)")->required();
   cmd->add_option("-o,--output", *output, "output folder (default: out/<case name>/pbd)");
+  cmd->add_flag("--check", *check, kCheckHelp);
   cmd->add_flag("--animate", *animate, "also render animation.mp4 (or .gif, [pbd] animation) with ffmpeg");
-  cmd->callback([&action, case_file, output, animate] {
-    action = [case_file, output, animate] {
+  cmd->callback([&action, case_file, output, check, animate] {
+    action = [case_file, output, check, animate] {
       workbench::CaseFile file = read_case_file(*case_file);
       auto study = pbd_study::load_pbd_study(file);
-      // A PBD-against-FEM case also describes the FEM body ([mesh], [material], [fem], ...): it is
-      // checked here too, so that the one case file runs with `pbd` and with `compare` alike.
-      if (file.root().has("mesh")) workbench::read_study_setup(file.root());
       check_every_section(file);
+      if (*check) return checked(file, "pbd");
       const std::string dir = output_folder(*output, file, "pbd");
       workbench::StagedDirectory staged(dir, file.path());
       pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);

@@ -1,6 +1,7 @@
 // The agent model as a workbench study: case file -> grid and loads -> VTU/PVD/CSV/JSON output.
 #include "agent_study.h"
 
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
@@ -156,12 +157,7 @@ void check_finite(const std::vector<double>& v, const std::string& what) {
     if (!std::isfinite(x)) throw Error("agent model produced a non-finite " + what);
 }
 
-std::ofstream open_csv(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
-}
+using workbench::open_csv;
 
 void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentState& s) {
   const auto& grid = study.mesh.grid;
@@ -182,7 +178,7 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
     for (int a = 0; a < 3; ++a) out << ',' << s.strain[cell * 3 + a];
     out << '\n';
   }
-  if (!out) throw Error(file.string() + ": write failed");
+  out.close();
 }
 
 void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentState& s,
@@ -200,7 +196,7 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
     for (int a = 0; a < dim; ++a) out << ',' << s.displacement[node * dim + a];
     out << '\n';
   }
-  if (!out) throw Error(file.string() + ": write failed");
+  out.close();
 }
 
 }  // namespace
@@ -280,7 +276,7 @@ std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::
         << d.rigid_reaction << " N, passed out " << d.passed_out << " N, dropped " << d.dropped << " N, lost "
         << d.lost << " N\n";
   }
-  if (!diagnostics) throw Error((dir / "agent_diagnostics.csv").string() + ": write failed");
+  diagnostics.close();
   const auto warnings = load_balance_warnings(state.diagnostics);
   for (const auto& w : warnings) log << "agent: warning: " << w << "\n";
   write_summary(dir / "agent_summary.json", study, state.diagnostics, warnings);

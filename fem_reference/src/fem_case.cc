@@ -2,6 +2,7 @@
 // need no deal.II, CSV output.
 #include "plain_mesh.h"
 
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/study_setup.h>
 
@@ -188,17 +189,7 @@ std::array<double, 3> FemResult::displacement_at(const std::array<double, 3>& x)
 
 namespace {
 
-std::ofstream open_csv(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
-}
-
-void close_csv(std::ofstream& out, const fs::path& file) {
-  out.close();
-  if (!out) throw Error(file.string() + ": write failed");
-}
+using workbench::open_csv;
 
 }  // namespace
 
@@ -216,7 +207,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
       if (dim == 3) out << ',' << r.tau_yz[e] << ',' << r.tau_xz[e];
       out << ',' << r.von_mises[e] << '\n';
     }
-    close_csv(out, file);
+    out.close();
   }
   {
     const auto file = dir / "fem_nodes.csv";
@@ -228,7 +219,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
       for (int a = 0; a < dim; ++a) out << ',' << r.node_displacement[dim * n + a];
       out << '\n';
     }
-    close_csv(out, file);
+    out.close();
   }
   {
     const auto file = dir / "fem_reactions.csv";
@@ -242,7 +233,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
     out << "(applied),load";
     for (int a = 0; a < dim; ++a) out << ',' << r.applied[a];
     out << '\n';
-    close_csv(out, file);
+    out.close();
   }
   {
     const auto file = dir / "fem_summary.csv";
@@ -256,7 +247,7 @@ void write_fem_csv(const FemResult& r, const fs::path& dir) {
         << r.mesh_seconds << "\nsetup_seconds," << r.setup_seconds << "\nassemble_seconds," << r.assemble_seconds
         << "\nsolve_seconds," << r.solve_seconds << "\noutput_seconds," << r.output_seconds
         << "\npeak_memory_bytes," << r.peak_memory_bytes << "\n";
-    close_csv(out, file);
+    out.close();
   }
 }
 

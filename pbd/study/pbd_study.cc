@@ -1,6 +1,7 @@
 #include "pbd_study.h"
 
 #include <workbench/child_process.h>
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 
 #include <algorithm>
@@ -26,12 +27,7 @@ Vec3 read_vector(const workbench::CaseTable& t, const std::string& key, const Ve
   return Vec3(v[0], v[1], v[2]);
 }
 
-std::ofstream open_csv(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
-}
+using workbench::open_csv;
 
 std::string frame_name(int k) {
   char buf[32];
@@ -184,7 +180,7 @@ void write_render_cells(const fs::path& dir, const workbench::OutputMesh& mesh) 
     out << '\n';
     b = mesh.offsets[c];
   }
-  if (!out) throw Error((dir / "cells.csv").string() + ": write failed");
+  out.close();
 }
 
 void write_render_frame(const fs::path& file, const std::vector<double>& points, double time,
@@ -194,7 +190,7 @@ void write_render_frame(const fs::path& file, const std::vector<double>& points,
   out << "x,y,z," << field_name << "\n";
   for (std::size_t i = 0; i < points.size() / 3; ++i)
     out << points[3 * i] << ',' << points[3 * i + 1] << ',' << points[3 * i + 2] << ',' << field[i] << '\n';
-  if (!out) throw Error(file.string() + ": write failed");
+  out.close();
 }
 
 void render_animation(const fs::path& frames_dir, const fs::path& output, int fps, const std::string& field,
@@ -273,7 +269,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
           << " s, kinetic energy " << model.particles.kinetic_energy() << " J\n";
   }
   workbench::write_pvd(dir / "pbd.pvd", series);
-  if (!diagnostics) throw Error((dir / "diagnostics.csv").string() + ": write failed");
+  diagnostics.close();
 
   const auto& x = model.particles.x;
   {
@@ -285,6 +281,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
           << q[1] << ',' << q[2] << ',' << q[0] - p[0] << ',' << q[1] - p[1] << ',' << q[2] - p[2] << ','
           << int(pinned_field[i]) << '\n';
     }
+    out.close();
   }
   const auto line = centreline(mesh, study.pinned);
   const auto& chain = line.nodes;
@@ -296,6 +293,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
       out << line.s[k] << ',' << p[0] << ',' << p[1] << ',' << p[2] << ',' << q[0] << ',' << q[1] << ',' << q[2] << ','
           << q[0] - p[0] << ',' << q[1] - p[1] << ',' << q[2] - p[2] << '\n';
     }
+    out.close();
     log << "pbd: centreline.csv: " << chain.size() << " nodes, end displacement ("
         << (x[chain.back()] - mesh.points[chain.back()]).transpose() << ") m\n";
   }

@@ -1,11 +1,13 @@
 // Output folders and child processes: nothing of the user's is ever replaced, an output appears
 // whole or not at all, stale staging folders of dead runs go, children run without a shell.
 #include <workbench/child_process.h>
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/staged_directory.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -198,4 +200,32 @@ TEST(ChildProcess, ScriptsAreFoundBesideTheProgramOrInWorkbenchScriptDir) {
   std::ofstream(dir / "compare/figures.py") << "";
   EXPECT_EQ(find_script("compare/figures.py"), dir / "compare/figures.py");
   ::unsetenv("WORKBENCH_SCRIPT_DIR");
+}
+
+TEST(CsvFile, WritesShortestRoundTripNumbersAndRefusesNonFiniteNamingTheColumn) {
+  const fs::path file = test_support::scratch_folder() / "t.csv";
+  auto out = open_csv(file);
+  out << "# a comment, not the header\n" << "node,x,y\n";
+  out << 7 << ',' << 0.1 << ',' << 1.0 / 3.0 << '\n';
+  out << 8 << ',' << -2.5e-300 << ',' << 1e21 << '\n';
+  EXPECT_EQ(error_of([&] { out << 9 << ',' << 1.0 << ',' << std::nan(""); }),
+            "t.csv: column 'y' (row 9): nan is not a finite number");
+  EXPECT_EQ(error_of([&] { out << ',' << -HUGE_VAL; }), "t.csv: column 'y' (row 9): -inf is not a finite number");
+  out << '\n';
+  out.close();
+  EXPECT_EQ(read(file), "# a comment, not the header\nnode,x,y\n7,0.1,0.3333333333333333\n8,-2.5e-300,1e+21\n9,1,,\n");
+  EXPECT_EQ(std::stod(shortest_decimal(1.0 / 3.0)), 1.0 / 3.0);
+  EXPECT_EQ(shortest_decimal(0.1), "0.1");
+}
+
+TEST(CsvFile, AFailedWriteIsAnError) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  auto out = open_csv("/dev/full");
+  EXPECT_EQ(error_of([&] {
+              for (int i = 0; i < 100000; ++i) out << "a,b\n";
+              out.close();
+            }),
+            "/dev/full: write failed");
+  EXPECT_EQ(error_of([&] { open_csv(test_support::scratch_folder() / "no" / "such" / "folder.csv"); }),
+            (test_support::scratch_folder() / "no" / "such" / "folder.csv").string() + ": cannot open for writing");
 }

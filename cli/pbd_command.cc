@@ -21,11 +21,12 @@ void add_pbd_command(CLI::App& app, Action& action) {
   cmd->callback([&action, case_file, output, animate] {
     action = [case_file, output, animate] {
       workbench::CaseFile file(*case_file);
-      auto study = pbd_study::load_pbd_study(file);
+      auto setup = pbd_study::read_pbd_case(file);
       // A PBD-against-FEM case also describes the FEM body ([mesh], [material], [fem], ...): it is
       // checked here too, so that the one case file runs with `pbd` and with `compare` alike.
       if (file.root().has("mesh")) workbench::read_study_setup(file.root());
       check_every_section(file);
+      auto study = pbd_study::load_pbd_study(file, std::move(setup));
       const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/pbd" : *output;
       workbench::StagedDirectory staged(dir);
       pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);

@@ -42,6 +42,7 @@ std::string frame_name(int k) {
 
 PbdCase read_pbd_case(const workbench::CaseFile& file) {
   PbdCase c;
+  c.case_file = file.path();
   const auto root = file.root();
   c.title = root.text("title", "");
   const auto t = root.table("pbd");
@@ -50,7 +51,7 @@ PbdCase read_pbd_case(const workbench::CaseFile& file) {
   c.pinned_groups = t.texts("pinned", std::vector<std::string>{});
   c.frames = t.integer("frames", 100, 1, 1000000);
   c.step.dt = t.number("time_step", 0.01, Range::positive());
-  c.step.substeps = t.integer("substeps", 10, 1, 1000000);
+  c.step.substeps = t.has("substeps") ? t.integer("substeps", std::nullopt, 1, 1000000) : 0;
   c.step.iterations = t.integer("iterations", 1, 1, 100000);
   c.step.gravity = read_vector(t, "gravity", Vec3(0, -9.81, 0));
   c.step.node_force = read_vector(t, "node_force", Vec3::Zero());
@@ -80,9 +81,9 @@ PbdCase read_pbd_case(const workbench::CaseFile& file) {
   return c;
 }
 
-PbdStudy load_pbd_study(const workbench::CaseFile& file) {
+PbdStudy load_pbd_study(const workbench::CaseFile& file, PbdCase setup) {
   PbdStudy s;
-  s.setup = read_pbd_case(file);
+  s.setup = std::move(setup);
   s.mesh = pbd_io::read_mesh(s.setup.mesh_file, s.setup.mesh_parameters);
   s.pinned = pbd_io::group_nodes(s.mesh, s.setup.mesh_file, s.setup.pinned_groups);
   const auto t = file.root().table("pbd");
@@ -98,6 +99,10 @@ PbdStudy load_pbd_study(const workbench::CaseFile& file) {
     s.model = pbd::build_model(s.mesh.mesh, s.pinned, s.setup.model);
   } catch (const std::invalid_argument& e) {
     throw Error(s.setup.mesh_file.string() + ": " + e.what());
+  }
+  if (s.setup.step.substeps == 0) {
+    s.setup.step.substeps = pbd::substeps_for_accuracy(s.model, s.setup.step.dt);
+    s.setup.substeps_chosen = true;
   }
   return s;
 }
@@ -235,6 +240,10 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
       << " angle constraints (" << model.raw_triple_count << " chains before deduplication), "
       << (model.planar ? "signed angles about z" : "unsigned angles") << ", " << study.pinned.size()
       << " pinned nodes\n";
+  const std::string substeps_text =
+      std::to_string(setup.step.substeps) + " substeps x " + std::to_string(setup.step.iterations) + " iterations per frame" +
+      (setup.substeps_chosen ? " (substeps chosen for the stiffest bending constraint, docs/pbd-model.md)" : "");
+  log << "pbd: " << substeps_text << "\n";
 
   std::vector<double> pinned_field(n, 0.0);
   for (int p : study.pinned) pinned_field[p] = 1.0;
@@ -245,6 +254,12 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   auto write_frame = [&](int frame) {
     const double time = frame * setup.step.dt;
     const auto& x = model.particles.x;
+    for (const auto& p : x)
+      if (!p.allFinite())
+        throw Error(setup.case_file.string() + ": pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged "
+                    "(a non-finite position at frame " + std::to_string(frame) + " of " + std::to_string(setup.frames) +
+                    "): the loads or the time step are too large for " + std::to_string(setup.step.substeps) +
+                    " substeps per frame");
     const auto out_mesh = output_mesh(mesh, x);
     workbench::Field u{"displacement", 3, {}}, v{"velocity", 3, {}}, pin{"pinned", 1, pinned_field};
     workbench::Field bend{"bend_angle", 1, std::vector<double>(n, 0.0)};
@@ -273,8 +288,6 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
     const auto r = solver.residuals();
     diagnostics << frame << ',' << time << ',' << model.particles.kinetic_energy() << ',' << r.angle << ','
                 << r.distance << ',' << umax << '\n';
-    for (const auto& p : x)
-      if (!p.allFinite()) throw Error("pbd: non-finite position at frame " + std::to_string(frame));
   };
 
   write_frame(0);
@@ -290,6 +303,26 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   if (!diagnostics) throw Error((dir / "diagnostics.csv").string() + ": write failed");
 
   const auto& x = model.particles.x;
+  {
+    const auto r = solver.residuals();
+    std::ostringstream warning;
+    if (r.exceeds_tolerance())
+      warning << "the final constraint residuals exceed their tolerances (stretch of the inextensible edges "
+              << r.inextensible_stretch << " > " << pbd::Residuals::kStretchTolerance << " or rigid-angle violation "
+              << r.rigid_angle << " rad > " << pbd::Residuals::kAngleTolerance
+              << " rad): the result is not converged; raise pbd.substeps or pbd.iterations";
+    auto out = open_csv(dir / "summary.txt");
+    out << "pbd: " << substeps_text << "\n"
+        << "final residuals: inextensible stretch " << r.inextensible_stretch << " (tolerance "
+        << pbd::Residuals::kStretchTolerance << "), rigid angle " << r.rigid_angle << " rad (tolerance "
+        << pbd::Residuals::kAngleTolerance << " rad); all edges: stretch " << r.distance << ", largest bend " << r.angle
+        << " rad\n";
+    if (!warning.str().empty()) {
+      out << "warning: " << warning.str() << "\n";
+      log << "pbd: warning: " << warning.str() << "\n";
+    }
+    if (!out) throw Error((dir / "summary.txt").string() + ": write failed");
+  }
   {
     auto out = open_csv(dir / "nodes.csv");
     out << "node,file_node,x0,y0,z0,x,y,z,u_x,u_y,u_z,pinned\n";

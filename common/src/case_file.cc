@@ -1,3 +1,4 @@
+// Case files: TOML through typed getters that check every value (finite, in range) and every key.
 #include <workbench/case_file.h>
 
 #include <toml++/toml.h>

@@ -1,3 +1,4 @@
+// The PBD model as a workbench study: case reading, mesh and model, frames, output files.
 #include "pbd_study.h"
 
 #include <workbench/error.h>
@@ -133,8 +134,9 @@ std::vector<int> chain_order(const pbd::Mesh& mesh, const std::vector<int>& pinn
     const auto &p = mesh.points[a], &q = mesh.points[b];
     return std::tie(p[0], p[1], p[2]) < std::tie(q[0], q[1], q[2]);
   };
+  // Walk from the lexicographically smaller end; reversed below when the pinned nodes lie nearer
+  // the other end, so that the order starts at the clamped end.
   if (lex(ends[1], ends[0])) start = ends[1];
-  // Start at the clamped end: the end nearest (along the chain) to a pinned node.
   std::vector<int> order{start};
   int prev = -1, cur = start;
   while (order.size() < n) {

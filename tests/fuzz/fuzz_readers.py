@@ -89,7 +89,9 @@ def mutate_msh(rng, text):
     body = [i for i in range(start, len(lines)) if lines[i] and not lines[i].startswith("$")]
     op = rng.choice(["token", "token", "token", "drop", "duplicate", "truncate"])
     if op == "token":
-        i = rng.choice(body)
+        elements = next(i for i, l in enumerate(lines) if l.startswith("$Elements"))
+        # Half of them in $Elements, where a bad node tag crashed gmsh.
+        i = rng.choice([j for j in body if j > elements] if rng.random() < 0.5 else body)
         tokens = lines[i].split()
         tokens[rng.randrange(len(tokens))] = rng.choice(SPECIAL_MSH)
         lines[i] = " ".join(tokens)

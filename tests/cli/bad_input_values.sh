@@ -61,6 +61,7 @@ expect nan_lw fem "$c: mesh.parameters.lw: must be a finite number (got nan)" "$
 expect inf_N pbd "$c: pbd.mesh_parameters.N: must be a finite number (got inf)" "$(rod inf)"
 expect nan_L pbd "$c: pbd.mesh_parameters.L: must be a finite number (got nan)" "$(rod 8 | sed 's/L = 1/L = nan/')"
 expect huge_force agent "$c: load[0].force: magnitude above 1e+100" "$(plate 0.01 0.02 | sed 's/force = 2.0/force = 1e300/')"
+expect tiny_thickness fem "$c: material.thickness: magnitude below 1e-100" "$(plate 0.01 0.02 | sed 's/thickness = 0.002/thickness = 1e-300/')"
 expect huge_node_force pbd "$c: pbd.node_force: every entry magnitude above 1e+100" "$(rod 8 'node_force = [0, -1e300, 0]')"
 expect diverging_pbd pbd "$c: pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged" \
   "$(rod 8 $'node_force = [0, -1e90, 0]\ntime_step = 1e60')"

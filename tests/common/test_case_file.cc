@@ -44,13 +44,16 @@ TEST(CaseFile, NamesFileKeyAndReason) {
 }
 
 TEST(CaseFile, EveryGetterRefusesNonFiniteAndHugeNumbers) {
-  CaseFile f("a = nan\nb = inf\nc = -inf\nd = 1e300\ne = [1, nan]\n[p]\nh = nan\nlw = 1e200\nW = 0.2\n", "case.toml");
+  CaseFile f("a = nan\nb = inf\nc = -inf\nd = 1e300\ntiny = 1e-300\nzero = 0.0\ne = [1, nan]\n[p]\nh = nan\nlw = 1e200\nW = 0.2\n", "case.toml");
   const auto r = f.root();
   EXPECT_EQ(error_of([&] { r.number("a", {}); }), "case.toml: a: must be a finite number (got nan)");
   EXPECT_EQ(error_of([&] { r.number("b", {}, Range::positive()); }), "case.toml: b: must be a finite number (got inf)");
   EXPECT_EQ(error_of([&] { r.number("c", {}, Range::closed(-1, 1)); }), "case.toml: c: must be a finite number (got -inf)");
   EXPECT_EQ(error_of([&] { r.number("d", {}); }),
             "case.toml: d: magnitude above 1e+100 is not a usable value (got 1e+300)");
+  EXPECT_EQ(error_of([&] { r.number("tiny", {}, Range::positive()); }),
+            "case.toml: tiny: magnitude below 1e-100 is not a usable value (got 1e-300)");
+  EXPECT_EQ(r.number("zero", {}, Range::non_negative()), 0.0);
   EXPECT_EQ(error_of([&] { r.numbers("e", {}); }), "case.toml: e: every entry must be a finite number (got nan)");
   EXPECT_EQ(error_of([&] { r.number_map("p"); }), "case.toml: p.h: must be a finite number (got nan)");  // W is fine
 }

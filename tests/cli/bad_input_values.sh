@@ -69,6 +69,8 @@ expect rigid_load agent "$c: load[0].group: group 'base' is clamped (boundary.ri
 expect rigid_load_compare compare "$c: load[0].group: group 'base' is clamped" "$(plate 0.01 0.02 base)"
 expect too_many_agents agent "plate2d.geo: about 8e+08 elements (estimated from the .geo's curve divisions and mesh sizes) need an estimated" \
   "$(plate 1e-5 2e-5)"
+expect wrapped_division_count agent "plate2d.geo: curve 1 would need about 5e+10 transfinite divisions" \
+  "$(plate 0.02 0.04 | sed 's/^lw = 0.04/lw = 0.04\nW = 1e9/')"
 expect too_many_segments pbd "rod2d.geo: about 1e+09 elements" "$(rod 1e9)"
 body_force_case=$(sed -e "s#\.\./#$src/#g" -e 's/^body_force = .*/body_force = [0, -1e300]/' "$src/cases/pbd_strip_fem.toml")
 expect huge_body_force compare "$c: fem.body_force: every entry magnitude above 1e+100" "$body_force_case"

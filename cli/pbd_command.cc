@@ -22,9 +22,10 @@ void add_pbd_command(CLI::App& app, Action& action) {
   cmd->callback([&action, case_file, output, check, animate] {
     action = [case_file, output, check, animate] {
       workbench::CaseFile file = read_case_file(*case_file);
-      auto study = pbd_study::load_pbd_study(file);
-      check_every_section(file);
+      auto setup = pbd_study::read_pbd_case(file);
+      check_every_section(file);  // before the mesh is built: unknown keys first
       if (*check) return checked(file, "pbd");
+      auto study = pbd_study::load_pbd_study(file, std::move(setup));
       const std::string dir = output_folder(*output, file, "pbd");
       workbench::StagedDirectory staged(dir, file.path());
       pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);

@@ -79,7 +79,11 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
         throw LoadError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
       }
     if (ext == ".geo") {
-      check_geo_mesh_size(file);
+      try {
+        check_geo_mesh_size(file);
+      } catch (const std::runtime_error& e) {  // too large for the memory limit
+        throw LoadError(e.what());
+      }
       gmsh::model::mesh::generate(gmsh::model::getDimension());
     }
     gmsh::logger::stop();
@@ -91,8 +95,6 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
         throw LoadError(name + ": node " + std::to_string(tags[i / 3]) + " has a non-finite coordinate");
   } catch (const LoadError&) {
     throw;
-  } catch (const std::runtime_error& e) {  // the size check's refusal
-    throw std::runtime_error(e.what());
   } catch (...) {
     throw std::runtime_error(name + ": " + last_error());
   }

@@ -163,6 +163,24 @@ void check_geo_mesh_size(const fs::path& file) {
     curve[tag] = {segments, length};
   }
 
+  // gmsh keeps a division count in an int: a count beyond it wraps to a few, and the transfinite
+  // surface then throws from inside an OpenMP region, which ends the process. A curve whose
+  // spacing is a million times its neighbours' is such a wrapped count.
+  double finest = INFINITY, coarsest = 0;
+  int coarse_curve = 0;
+  for (const auto& [tag, c] : curve)
+    if (sizes.curve_points.count(tag) && c.second > 0) {
+      const double spacing = c.second / c.first;
+      finest = std::min(finest, spacing);
+      if (spacing > coarsest) coarsest = spacing, coarse_curve = tag;
+    }
+  if (coarsest > 1e6 * finest) {
+    char what[200];
+    std::snprintf(what, sizeof what, "curve %d would need about %.2g transfinite divisions", coarse_curve,
+                  curve[coarse_curve].second / finest);
+    throw std::runtime_error(file.string() + ": " + what + ", beyond what gmsh can count (check the mesh parameters)");
+  }
+
   // Surfaces and volumes: their extent over the mean segment length of their curves (triangles,
   // tetrahedra: about 2 A / l^2 and 6 V / l^3; quadrangles and hexahedra fewer).
   auto edge_length = [&](const std::vector<int>& curves) {

@@ -1,3 +1,4 @@
+// Case files: TOML through typed getters that check every value (finite, in range) and every key.
 #include <workbench/case_file.h>
 
 #include <toml++/toml.h>
@@ -36,6 +37,8 @@ std::string Range::problem(double v) const {
   if (!std::isfinite(v)) return "must be a finite number (got " + format_number(v) + ")";
   if (std::abs(v) > kMaxMagnitude)
     return "magnitude above " + format_number(kMaxMagnitude) + " is not a usable value (got " + format_number(v) + ")";
+  if (v != 0 && std::abs(v) < kMinMagnitude)
+    return "magnitude below " + format_number(kMinMagnitude) + " is not a usable value (got " + format_number(v) + ")";
   const bool above_lo = lo_open ? v > lo : v >= lo, below_hi = hi_open ? v < hi : v <= hi;  // false for a NaN bound
   if (!above_lo || !below_hi) return describe() + " (got " + format_number(v) + ")";
   return "";

@@ -1,3 +1,4 @@
+// The case-file sections every model shares: mesh, material, boundary, loads, steps.
 #include <workbench/study_setup.h>
 
 #include <algorithm>
@@ -23,6 +24,8 @@ StudySetup read_study_setup(const CaseTable& root) {
   for (const auto& l : loads) {
     LoadSpec spec;
     spec.group = l.text("group", std::nullopt);
+    if (std::find(s.rigid_groups.begin(), s.rigid_groups.end(), spec.group) != s.rigid_groups.end())
+      l.fail("group", "group '" + spec.group + "' is clamped (boundary.rigid): a load on it would carry nothing");
     const std::string dir = l.text("direction", "-y", {"-x", "+x", "-y", "+y", "-z", "+z"});
     spec.sign = dir[0] == '-' ? -1 : 1;
     spec.axis = dir[1] - 'x';

@@ -118,10 +118,11 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
                                std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   const auto root = file.root();
-  auto study = pbd_study::load_pbd_study(file);  // title and [pbd]
+  auto pbd_case = pbd_study::read_pbd_case(file);  // title and [pbd]
   auto problem = fem_reference::problem_from_case(file);             // [mesh], [material], [boundary], [[load]], [fem]
   report::check_gate_names(options, pbd_metric_names(), root);
   file.reject_unknown_keys();
+  auto study = pbd_study::load_pbd_study(file, std::move(pbd_case));
   const std::string case_name = file.path().string();
 
   // The PBD rod: a straight chain along +x, clamped at s = 0.

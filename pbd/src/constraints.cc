@@ -1,3 +1,4 @@
+// The PBD constraint functions: angle (the seed's, robust atan2 form) and distance projections.
 #include <pbd/constraints.h>
 
 #include <cmath>
@@ -103,24 +104,6 @@ double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double 
   p2 += (w2 * dl) * g2;
   p3 -= (w3 * dl) * (g1 + g2);
   return dl;
-}
-
-bool seed_angle_correction(const Vec3& p1, const Vec3& p2, const Vec3& p3, double w1, double w2, double w3,
-                           double theta0, double k, Vec3& dp1, Vec3& dp2, Vec3& dp3) {
-  const double L1 = (p1 - p3).norm(), L2 = (p2 - p3).norm();
-  const Vec3 n1 = (p2 - p3) / L2, n2 = (p1 - p3) / L1;
-  const double d = n1.dot(n2);
-  const Vec3 q1 = (d * n2 - n1) / L1;
-  const Vec3 q2 = (d * n1 - n2) / L2;
-  const Vec3 q3 = -q1 - q2;
-  const double den = w1 * q1.squaredNorm() + w2 * q2.squaredNorm() + w3 * q3.squaredNorm();
-  const double root = std::sqrt(std::max(0.0, 1 - d * d));
-  if (!(root > 0) || !(den > 0)) return false;
-  const double f = -k * root * (std::acos(d) - theta0) / den;
-  dp1 = f * w1 * q1;
-  dp2 = f * w2 * q2;
-  dp3 = f * w3 * q3;
-  return true;
 }
 
 double project_distance(Vec3& pa, Vec3& pb, double wa, double wb, double rest, double alpha_tilde, double& lambda) {

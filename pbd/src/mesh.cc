@@ -1,3 +1,4 @@
+// Mesh helpers of the PBD model: generated polylines and grids, edges, and the checks of a usable mesh.
 #include <pbd/mesh.h>
 
 #include <algorithm>

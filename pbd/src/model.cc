@@ -1,3 +1,4 @@
+// Builds the PBD model from a mesh: masses, distance and seed angle constraints, colouring.
 #include <pbd/model.h>
 #include <pbd/topology.h>
 

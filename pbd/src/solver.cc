@@ -1,3 +1,5 @@
+// XPBD time stepping of a Model: substeps, Gauss-Seidel sweeps by colour, residuals, and the
+// substep rule of docs/pbd-model.md.
 #include <pbd/solver.h>
 
 #include <algorithm>
@@ -31,7 +33,6 @@ void Solver::substep(double h, const StepSettings& s) {
   const long n = long(P.size());
   const int threads = std::max(1, s.threads);
   const double keep = std::exp(-s.damping * h);
-  (void)threads;
   // Prediction (seed step 3, gravity as an acceleration).
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096)
   for (long i = 0; i < n; ++i) {
@@ -100,15 +101,40 @@ void Solver::project(double h, int threads) {
 Residuals Solver::residuals() const {
   Residuals r;
   const auto& x = model_.particles.x;
-  for (const auto& d : model_.distances)
-    r.distance = std::max(r.distance, std::abs((x[d.a] - x[d.b]).norm() - d.rest) / d.rest);
+  for (const auto& d : model_.distances) {
+    const double stretch = std::abs((x[d.a] - x[d.b]).norm() - d.rest) / d.rest;
+    r.distance = std::max(r.distance, stretch);
+    if (d.compliance == 0) r.inextensible_stretch = std::max(r.inextensible_stretch, stretch);
+  }
   const Vec3* axis = model_.axis_ptr();
   for (const auto& a : model_.angles) {
     const double theta0 = std::atan2(a.rest_sin, a.rest_cos);
     const auto g = angle_constraint_gradient(x[a.best], x[a.k], x[a.i], theta0, axis);
     r.angle = std::max(r.angle, std::abs(g.C));
+    if (a.compliance == 0) r.rigid_angle = std::max(r.rigid_angle, std::abs(g.C));
   }
   return r;
+}
+
+bool Residuals::exceeds_tolerance() const {
+  // Written so that a NaN residual counts as exceeding.
+  return !(inextensible_stretch <= kStretchTolerance) || !(rigid_angle <= kAngleTolerance);
+}
+
+int substeps_for_accuracy(const Model& model, double dt, double accuracy, int max_substeps) {
+  const auto& P = model.particles;
+  double h2 = INFINITY;  // the largest admissible substep, squared
+  for (const auto& a : model.angles) {
+    if (!(a.compliance > 0)) continue;
+    const double w = std::max({P.w[a.best], P.w[a.k], P.w[a.i]});
+    if (!(w > 0)) continue;
+    const double l = std::min((P.x[a.best] - P.x[a.i]).norm(), (P.x[a.k] - P.x[a.i]).norm());
+    h2 = std::min(h2, accuracy * l * l * a.compliance / (6 * w));
+  }
+  if (!std::isfinite(h2)) return 1;
+  const double substeps = std::ceil(dt / std::sqrt(h2));
+  if (!(substeps < max_substeps)) return max_substeps;  // also for a NaN
+  return std::max(1, int(substeps));
 }
 
 }  // namespace pbd

@@ -1,3 +1,4 @@
+// The seed's topology steps: neighbour sets and the max-angle partner of each chain.
 #include <pbd/constraints.h>
 #include <pbd/topology.h>
 

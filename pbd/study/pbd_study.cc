@@ -1,3 +1,4 @@
+// The PBD model as a workbench study: case reading, mesh and model, frames, output files.
 #include "pbd_study.h"
 
 #include <workbench/child_process.h>
@@ -39,6 +40,7 @@ std::string frame_name(int k) {
 
 PbdCase read_pbd_case(const workbench::CaseFile& file) {
   PbdCase c;
+  c.case_file = file.path();
   const auto root = file.root();
   c.title = root.text("title", "");
   const auto t = root.table("pbd");
@@ -47,7 +49,7 @@ PbdCase read_pbd_case(const workbench::CaseFile& file) {
   c.pinned_groups = t.texts("pinned", std::vector<std::string>{});
   c.frames = t.integer("frames", 100, 1, 1000000);
   c.step.dt = t.number("time_step", 0.01, Range::positive());
-  c.step.substeps = t.integer("substeps", 10, 1, 1000000);
+  c.step.substeps = t.has("substeps") ? t.integer("substeps", std::nullopt, 1, 1000000) : 0;
   c.step.iterations = t.integer("iterations", 1, 1, 100000);
   c.step.gravity = read_vector(t, "gravity", Vec3(0, -9.81, 0));
   c.step.node_force = read_vector(t, "node_force", Vec3::Zero());
@@ -77,9 +79,9 @@ PbdCase read_pbd_case(const workbench::CaseFile& file) {
   return c;
 }
 
-PbdStudy load_pbd_study(const workbench::CaseFile& file) {
+PbdStudy load_pbd_study(const workbench::CaseFile& file, PbdCase setup) {
   PbdStudy s;
-  s.setup = read_pbd_case(file);
+  s.setup = std::move(setup);
   s.mesh = pbd_io::read_mesh(s.setup.mesh_file, s.setup.mesh_parameters);
   s.pinned = pbd_io::group_nodes(s.mesh, s.setup.mesh_file, s.setup.pinned_groups);
   const auto t = file.root().table("pbd");
@@ -95,6 +97,10 @@ PbdStudy load_pbd_study(const workbench::CaseFile& file) {
     s.model = pbd::build_model(s.mesh.mesh, s.pinned, s.setup.model);
   } catch (const std::invalid_argument& e) {
     throw Error(s.setup.mesh_file.string() + ": " + e.what());
+  }
+  if (s.setup.step.substeps == 0) {
+    s.setup.step.substeps = pbd::substeps_for_accuracy(s.model, s.setup.step.dt);
+    s.setup.substeps_chosen = true;
   }
   return s;
 }
@@ -125,8 +131,9 @@ std::vector<int> chain_order(const pbd::Mesh& mesh, const std::vector<int>& pinn
     const auto &p = mesh.points[a], &q = mesh.points[b];
     return std::tie(p[0], p[1], p[2]) < std::tie(q[0], q[1], q[2]);
   };
+  // Walk from the lexicographically smaller end; reversed below when the pinned nodes lie nearer
+  // the other end, so that the order starts at the clamped end.
   if (lex(ends[1], ends[0])) start = ends[1];
-  // Start at the clamped end: the end nearest (along the chain) to a pinned node.
   std::vector<int> order{start};
   int prev = -1, cur = start;
   while (order.size() < n) {
@@ -215,6 +222,10 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
       << " angle constraints (" << model.raw_triple_count << " chains before deduplication), "
       << (model.planar ? "signed angles about z" : "unsigned angles") << ", " << study.pinned.size()
       << " pinned nodes\n";
+  const std::string substeps_text =
+      std::to_string(setup.step.substeps) + " substeps x " + std::to_string(setup.step.iterations) + " iterations per frame" +
+      (setup.substeps_chosen ? " (substeps chosen for the stiffest bending constraint, docs/pbd-model.md)" : "");
+  log << "pbd: " << substeps_text << "\n";
 
   std::vector<double> pinned_field(n, 0.0);
   for (int p : study.pinned) pinned_field[p] = 1.0;
@@ -225,6 +236,12 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   auto write_frame = [&](int frame) {
     const double time = frame * setup.step.dt;
     const auto& x = model.particles.x;
+    for (const auto& p : x)
+      if (!p.allFinite())
+        throw Error(setup.case_file.string() + ": pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged "
+                    "(a non-finite position at frame " + std::to_string(frame) + " of " + std::to_string(setup.frames) +
+                    "): the loads or the time step are too large for " + std::to_string(setup.step.substeps) +
+                    " substeps per frame");
     const auto out_mesh = output_mesh(mesh, x);
     workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
     workbench::Field v{"velocity [m/s]", 3, {}, {"x", "y", "z"}, {}};
@@ -255,8 +272,6 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
     const auto r = solver.residuals();
     diagnostics << frame << ',' << time << ',' << model.particles.kinetic_energy() << ',' << r.angle << ','
                 << r.distance << ',' << umax << '\n';
-    for (const auto& p : x)
-      if (!p.allFinite()) throw Error("pbd: non-finite position at frame " + std::to_string(frame));
   };
 
   write_frame(0);
@@ -272,6 +287,26 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   diagnostics.close();
 
   const auto& x = model.particles.x;
+  {
+    const auto r = solver.residuals();
+    std::ostringstream warning;
+    if (r.exceeds_tolerance())
+      warning << "the final constraint residuals exceed their tolerances (stretch of the inextensible edges "
+              << r.inextensible_stretch << " > " << pbd::Residuals::kStretchTolerance << " or rigid-angle violation "
+              << r.rigid_angle << " rad > " << pbd::Residuals::kAngleTolerance
+              << " rad): the result is not converged; raise pbd.substeps or pbd.iterations";
+    auto out = open_csv(dir / "summary.txt");
+    out << "pbd: " << substeps_text << "\n"
+        << "final residuals: inextensible stretch " << r.inextensible_stretch << " (tolerance "
+        << pbd::Residuals::kStretchTolerance << "), rigid angle " << r.rigid_angle << " rad (tolerance "
+        << pbd::Residuals::kAngleTolerance << " rad); all edges: stretch " << r.distance << ", largest bend " << r.angle
+        << " rad\n";
+    if (!warning.str().empty()) {
+      out << "warning: " << warning.str() << "\n";
+      log << "pbd: warning: " << warning.str() << "\n";
+    }
+    if (!out) throw Error((dir / "summary.txt").string() + ": write failed");
+  }
   {
     auto out = open_csv(dir / "nodes.csv");
     out << "node,file_node,x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m],pinned\n";

@@ -17,13 +17,15 @@
 namespace pbd_study {
 
 struct PbdCase {
+  std::filesystem::path case_file;  ///< for messages
   std::string title;
   std::filesystem::path mesh_file;
   std::map<std::string, double> mesh_parameters;
   std::vector<std::string> pinned_groups;
   std::string angle_form = "auto";  ///< auto | signed | unsigned
   pbd::ModelOptions model;
-  pbd::StepSettings step;
+  pbd::StepSettings step;  ///< substeps 0 until load_pbd_study chooses them (pbd.substeps absent)
+  bool substeps_chosen = false;  ///< substeps from pbd::substeps_for_accuracy, not from the case
   int frames = 100;
   int output_every = 1;
   std::string animation_format = "mp4";
@@ -40,11 +42,14 @@ struct PbdStudy {
   pbd::Model model;
 };
 
-/// Reads the mesh, resolves the pinned groups, chooses the angle form and builds the model.
-PbdStudy load_pbd_study(const workbench::CaseFile& file);
+/// Reads the mesh, resolves the pinned groups, chooses the angle form and builds the model from
+/// `setup` (read_pbd_case's): check the whole case file (reject_unknown_keys) before, so that no
+/// mesh is built from a case that is refused anyway.
+PbdStudy load_pbd_study(const workbench::CaseFile& file, PbdCase setup);
 
 /// Runs the frames and writes into `dir`: frames/frame_NNNNN.vtu and pbd.pvd, diagnostics.csv (per
-/// written frame), nodes.csv (final state), centreline.csv (for a single open chain of lines:
+/// written frame), nodes.csv (final state), summary.txt (substeps, final residuals against their
+/// tolerances, and a warning when they exceed them, also on `log`), centreline.csv (for a single open chain of lines:
 /// rest arc length, rest and final position, displacement; the input of a later comparison with
 /// the FEM strip). With `animate`, also render/ (CSV frames, scripts/render_frames.py's input)
 /// and animation.<mp4|gif>. Progress on `log`.

@@ -164,4 +164,15 @@ TEST(Voxelize, GroupsGoToTheNearestStaircaseFacesAndTheMshReadsBackIdentical) {
     EXPECT_EQ(a, b) << name;
   }
   fs::remove(msh);
+
+TEST(MeshImport, RefusesOverlapsIncoherentNodesAndBrokenMshFiles) {
+  // Two unit squares side by side (MSH 2.2), each file with one fault.
+  EXPECT_EQ(import_error(kData + "overlap.msh"), kData + "overlap.msh: elements 1 and 3 overlap at (0, 0)");
+  EXPECT_EQ(import_error(kData + "incoherent.msh"),
+            kData + "incoherent.msh: nodes 2 and 7 coincide at (1, 0); neighbouring agents must share nodes (Coherence)");
+  // Checked before gmsh reads the file (gmsh 4.8 crashed on the tag, took the NaN and the copy).
+  EXPECT_EQ(import_error(kData + "duplicated.msh"),
+            kData + "duplicated.msh: elements 2 and 3 are the same element (duplicated: same type, same nodes)");
+  EXPECT_EQ(import_error(kData + "nan_node.msh"), kData + "nan_node.msh: node 3 has a non-finite coordinate");
+  EXPECT_NE(import_error(kData + "negative_tag.msh").find("bad element node tag '-105'"), std::string::npos);
 }

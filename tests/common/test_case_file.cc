@@ -1,9 +1,12 @@
 // Case files: typed, range-checked keys; every mistake named with its file and key.
 #include <workbench/case_file.h>
+#include <workbench/memory_limit.h>
 #include <workbench/study_setup.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 using namespace workbench;
@@ -39,6 +42,31 @@ TEST(CaseFile, NamesFileKeyAndReason) {
             "case.toml: agent.rule_set: must be one of \"patent\", \"conserving\" (got \"other\")");
 }
 
+TEST(CaseFile, EveryGetterRefusesNonFiniteAndHugeNumbers) {
+  CaseFile f("a = nan\nb = inf\nc = -inf\nd = 1e300\ntiny = 1e-300\nzero = 0.0\ne = [1, nan]\n[p]\nh = nan\nlw = 1e200\nW = 0.2\n", "case.toml");
+  const auto r = f.root();
+  EXPECT_EQ(error_of([&] { r.number("a", {}); }), "case.toml: a: must be a finite number (got nan)");
+  EXPECT_EQ(error_of([&] { r.number("b", {}, Range::positive()); }), "case.toml: b: must be a finite number (got inf)");
+  EXPECT_EQ(error_of([&] { r.number("c", {}, Range::closed(-1, 1)); }), "case.toml: c: must be a finite number (got -inf)");
+  EXPECT_EQ(error_of([&] { r.number("d", {}); }),
+            "case.toml: d: magnitude above 1e+100 is not a usable value (got 1e+300)");
+  EXPECT_EQ(error_of([&] { r.number("tiny", {}, Range::positive()); }),
+            "case.toml: tiny: magnitude below 1e-100 is not a usable value (got 1e-300)");
+  EXPECT_EQ(r.number("zero", {}, Range::non_negative()), 0.0);
+  EXPECT_EQ(error_of([&] { r.numbers("e", {}); }), "case.toml: e: every entry must be a finite number (got nan)");
+  EXPECT_EQ(error_of([&] { r.number_map("p"); }), "case.toml: p.h: must be a finite number (got nan)");  // W is fine
+}
+
+TEST(CaseFile, RangeAdmitsNoNaNEvenWithNaNBounds) {
+  EXPECT_FALSE(Range::any().contains(std::nan("")));
+  EXPECT_FALSE(Range::closed(std::nan(""), 1).contains(0.5));
+  EXPECT_FALSE(Range::open(0, std::nan("")).contains(0.5));
+  EXPECT_TRUE(Range::open(0, 1).contains(0.5));
+  EXPECT_FALSE(Range::open(0, 1).contains(1.0));
+  EXPECT_TRUE(Range::positive().contains(1e100));
+  EXPECT_FALSE(Range::positive().contains(1.0000001e100));
+}
+
 TEST(CaseFile, RejectsUnknownKeysIncludingInsideArraysOfTables) {
   CaseFile f("[material]\nyoung = 1\nyuong = 2\n", "case.toml");
   f.root().table("material").number("young", {});
@@ -70,3 +98,24 @@ TEST(StudySetup, ReadsLoadsAndChecksGroups) {
   EXPECT_EQ(error_of([&] { check_groups_exist(f, s, {"base", "free"}); }),
             "dir/case.toml: load[0].group: group 'top' is not a physical group of dir/m.geo (it has: base, free)");
 }
+
+TEST(StudySetup, ALoadOnARigidGroupIsRefused) {
+  CaseFile f("[mesh]\nfile = \"m.geo\"\n[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"base\"\nforce = 2\n", "case.toml");
+  EXPECT_EQ(error_of([&] { read_study_setup(f.root()); }),
+            "case.toml: load[0].group: group 'base' is clamped (boundary.rigid): a load on it would carry nothing");
+}
+
+TEST(MemoryLimit, ComesFromTheEnvironmentOrTheMachine) {
+  ::unsetenv("WORKBENCH_MEMORY_LIMIT");
+  EXPECT_GT(memory_limit_bytes(), 0.5 * 1024 * 1024 * 1024);  // the machine's memory
+  ::setenv("WORKBENCH_MEMORY_LIMIT", "2", 1);
+  EXPECT_DOUBLE_EQ(memory_limit_bytes(), 2.0 * 1024 * 1024 * 1024);
+  EXPECT_NO_THROW(check_memory_estimate("m.geo", "10 elements", 2.0 * 1024 * 1024 * 1024));
+  EXPECT_EQ(error_of([] { check_memory_estimate("m.geo", "about 4e+08 elements", 3.0 * 1024 * 1024 * 1024); }),
+            "m.geo: about 4e+08 elements need an estimated 3 GiB, above the memory limit of 2 GiB "
+            "(set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)");
+  ::setenv("WORKBENCH_MEMORY_LIMIT", "lots", 1);
+  EXPECT_EQ(error_of([] { memory_limit_bytes(); }), "WORKBENCH_MEMORY_LIMIT: must be a number of GiB > 0 (got \"lots\")");
+  ::unsetenv("WORKBENCH_MEMORY_LIMIT");
+}
+

@@ -1,5 +1,7 @@
 // The angle and distance constraints: formulas against finite differences and the seed's form,
 // projections that satisfy the constraint and conserve momentum, no NaN at 180 degrees.
+#include "seed_correction.h"
+
 #include <pbd/constraints.h>
 
 #include <gtest/gtest.h>
@@ -85,7 +87,7 @@ TEST(PbdAngleConstraint, RobustProjectionEqualsTheSeedsQForm) {
     const double theta0 = 0.3 + 2.5 * double(t) / 30;
     const double w1 = wu(rng), w2 = wu(rng), w3 = wu(rng);
     Vec3 d1, d2, d3;
-    ASSERT_TRUE(pbd::seed_angle_correction(p1, p2, p3, w1, w2, w3, theta0, 1.0, d1, d2, d3));
+    ASSERT_TRUE(pbd_test::seed_angle_correction(p1, p2, p3, w1, w2, w3, theta0, 1.0, d1, d2, d3));
     const Vec3 e1 = p1 + d1, e2 = p2 + d2, e3 = p3 + d3;
     double lambda = 0;
     pbd::project_angle(p1, p2, p3, w1, w2, w3, std::cos(theta0), std::sin(theta0), 0.0, lambda, nullptr);
@@ -158,7 +160,7 @@ TEST(PbdAngleConstraint, StraightChainGivesNoNaN) {
   }
   // The seed's literal acos form has no answer there (sqrt(1 - d^2) = 0): it reports it.
   Vec3 d1, d2, d3;
-  EXPECT_FALSE(pbd::seed_angle_correction(Vec3(-1, 0, 0), Vec3(2, 0, 0), Vec3::Zero(), 1, 1, 1, 2.5, 1, d1, d2, d3));
+  EXPECT_FALSE(pbd_test::seed_angle_correction(Vec3(-1, 0, 0), Vec3(2, 0, 0), Vec3::Zero(), 1, 1, 1, 2.5, 1, d1, d2, d3));
 }
 
 TEST(PbdDistanceConstraint, ProjectionRestoresTheLength) {

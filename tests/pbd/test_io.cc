@@ -134,9 +134,9 @@ TEST(PbdStudy, CaseKeysAreCheckedAndUnknownKeysRejected) {
   auto load = [&](const std::string& body) {
     const auto f = tmp.write("c.toml", "[pbd]\nmesh = \"" + mesh + "\"\nmesh_parameters = { N = 4 }\n" + body);
     workbench::CaseFile file(f);
-    auto s = pbd_study::load_pbd_study(file);
+    auto setup = pbd_study::read_pbd_case(file);
     file.reject_unknown_keys();
-    return s;
+    return pbd_study::load_pbd_study(file, setup);
   };
   const auto s = load("pinned = [\"clamp\"]\nyoung = 2e11\nsecond_moment = 1e-12\n");
   EXPECT_TRUE(s.model.planar);
@@ -157,8 +157,9 @@ TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
                                          "\"\nmesh_parameters = { N = 8, L = 1.0 }\npinned = [\"clamp\"]\n"
                                          "frames = 6\noutput_every = 2\nbending_stiffness = 1.0\nmasses = \"lumped\"\n");
   workbench::CaseFile file(f);
-  auto study = pbd_study::load_pbd_study(file);
+  auto setup = pbd_study::read_pbd_case(file);
   file.reject_unknown_keys();
+  auto study = pbd_study::load_pbd_study(file, setup);
   std::ostringstream log;
   pbd_study::run_pbd_study(study, tmp.path / "out", false, log);
   for (const char* name : {"pbd.pvd", "diagnostics.csv", "nodes.csv", "centreline.csv", "frames/frame_00000.vtu",
@@ -176,6 +177,50 @@ TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
   double tip_uy = std::stod(rows.back().substr(rows.back().rfind(',', rows.back().rfind(',') - 1) + 1));
   EXPECT_LT(tip_uy, 0.0);  // sags
   EXPECT_NE(log.str().find("pbd: frame 6/6"), std::string::npos);
+}
+
+namespace {
+/// Runs an N = 8 rod case with `extra` [pbd] keys into tmp/out; returns the log.
+std::string run_rod_case(TempDir& tmp, const std::string& extra) {
+  const auto f = tmp.write("c.toml", "[pbd]\nmesh = \"" + (kSource / "meshes/rod2d.geo").string() +
+                                         "\"\nmesh_parameters = { N = 8, L = 1.0 }\npinned = [\"clamp\"]\n"
+                                         "frames = 20\nbending_stiffness = 1.0\nmasses = \"lumped\"\n" + extra);
+  workbench::CaseFile file(f);
+  auto setup = pbd_study::read_pbd_case(file);
+  file.reject_unknown_keys();
+  auto study = pbd_study::load_pbd_study(file, setup);
+  std::ostringstream log;
+  pbd_study::run_pbd_study(study, tmp.path / "out", false, log);
+  return log.str();
+}
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+TEST(PbdStudy, ChosenSubstepsConvergeAndAnUnderResolvedRunWarns) {
+  {
+    TempDir tmp;
+    const std::string log = run_rod_case(tmp, "gravity = [0, -25, 0]\n");
+    // N = 8, l = 0.125, lumped m = l: h = l^2 sqrt(0.01 / 12) = 4.5105e-4 s -> 0.01 / h = 22.17 -> 23.
+    EXPECT_NE(log.find("23 substeps x 1 iterations per frame (substeps chosen"), std::string::npos) << log;
+    EXPECT_EQ(log.find("warning"), std::string::npos) << log;
+    EXPECT_EQ(read_text(tmp.path / "out/summary.txt").find("warning"), std::string::npos);
+  }
+  TempDir tmp;
+  const std::string log = run_rod_case(tmp, "gravity = [0, -25, 0]\nsubsteps = 1\n");
+  EXPECT_NE(log.find("pbd: warning: the final constraint residuals exceed their tolerances"), std::string::npos) << log;
+  EXPECT_NE(read_text(tmp.path / "out/summary.txt").find("warning: the final constraint residuals"), std::string::npos);
+}
+
+TEST(PbdStudy, ADivergingRunNamesTheCaseKeys) {
+  TempDir tmp;
+  const std::string e = error_of([&] { run_rod_case(tmp, "node_force = [0, -1e90, 0]\ntime_step = 1e60\nsubsteps = 1\n"); });
+  EXPECT_EQ(e.rfind((tmp.path / "c.toml").string() + ": pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged", 0),
+            0u) << e;
 }
 
 TEST(PbdStudy, ChainOrderStartsAtThePinnedEnd) {

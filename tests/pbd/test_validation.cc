@@ -96,3 +96,51 @@ TEST(PbdValidation, ConvergenceInSubstepsAndIterations) {
   EXPECT_NEAR(e25_8, e25_4, 2e-4);
   EXPECT_NEAR(e25_8, 2.5e-3, 5e-4);
 }
+
+TEST(PbdValidation, ChosenSubstepsMatchTheElasticaAtTheDefaults) {
+  // The issue-10 rod: N = 80, L = 1, E I = 1, rho A = 1, q L^3 / E I = 25, one iteration, substeps
+  // from pbd::substeps_for_accuracy. With the old default of 10 substeps the inextensible rod
+  // stretched by 38 % (tip 1.064 from the clamp); now its tip is the elastica's.
+  const int N = 80;
+  const double g = 25, l = 1.0 / N;
+  const auto mesh = pbd::Mesh::polyline(Vec3(-l, 0, 0), Vec3(1, 0, 0), N + 1);
+  pbd::ModelOptions o;
+  o.masses = pbd::ModelOptions::Masses::Lumped;
+  o.total_mass = 1;
+  o.bending_stiffness = 1;
+  o.planar_axis = Vec3::UnitZ();
+  auto model = pbd::build_model(mesh, {0, 1}, o);
+  pbd::StepSettings s;
+  s.dt = 0.01;
+  s.iterations = 1;
+  s.gravity = Vec3(0, -g, 0);
+  s.damping = 2 * 3.516;
+  s.substeps = pbd::substeps_for_accuracy(model, s.dt);
+  pbd::Solver solver(model);
+  for (int f = 0; f < 400; ++f) solver.step(s);
+  const auto el = pbd_test::elastica_tip(g, 1, 1);
+  const Vec3 tip = model.particles.x.back();
+  const double err = (tip.head<2>() - Vec3(el.x, el.y, 0).head<2>()).norm();
+  const auto r = solver.residuals();
+  std::printf("substeps %d: tip (%.5f, %.5f) elastica (%.5f, %.5f) distance %.3e, stretch %.2e\n", s.substeps, tip[0],
+              tip[1], el.x, el.y, err, r.inextensible_stretch);
+  // The rule, h^2 = 0.01 m l^2 alpha / 6: the tightest constraints are the clamp's (alpha = l / 2,
+  // half its edges inside the clamp; m = l) and the tip's (alpha = l, its end node m = l / 2), both
+  // h = l^2 sqrt(0.01 / 12) = 4.5105e-6 s: 0.01 / h = 2217.03 -> 2218 substeps.
+  EXPECT_EQ(s.substeps, 2218);
+  EXPECT_LT(err, 1.5e-3);  // measured 7.4e-4 (7011 substeps, accuracy 1e-3: 1.8e-4, the N = 80 error)
+  EXPECT_FALSE(r.exceeds_tolerance());
+  EXPECT_LT(r.inextensible_stretch, 1e-5);
+
+  // The old default, 10 substeps: the residual check must say so.
+  auto coarse = pbd::build_model(mesh, {0, 1}, o);
+  pbd::Solver coarse_solver(coarse);
+  s.substeps = 10;
+  for (int f = 0; f < 400; ++f) coarse_solver.step(s);
+  const auto rc = coarse_solver.residuals();
+  const double reach = (coarse.particles.x.back() - coarse.particles.x[1]).norm();
+  std::printf("10 substeps: tip %.4f from the clamp, stretch %.3f\n", reach, rc.inextensible_stretch);
+  EXPECT_GT(reach, 1.0);  // longer than the inextensible rod: silently wrong before the check
+  EXPECT_GT(rc.inextensible_stretch, 0.3);
+  EXPECT_TRUE(rc.exceeds_tolerance());
+}

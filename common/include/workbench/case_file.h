@@ -27,11 +27,13 @@ class table;
 
 namespace workbench {
 
-/// An interval of admissible values, each end open or closed. No range admits NaN, an infinity
-/// or a magnitude above kMaxMagnitude: every quantity is in SI units, where such a value is a
-/// typo, and a product of three of them must stay finite.
+/// An interval of admissible values, each end open or closed. No range admits NaN, an infinity,
+/// or a non-zero magnitude above kMaxMagnitude or below kMinMagnitude: every quantity is in SI
+/// units, where such a value is a typo, and a product or quotient of three of them must stay
+/// finite and non-zero.
 struct Range {
   static constexpr double kMaxMagnitude = 1e100;
+  static constexpr double kMinMagnitude = 1e-100;
   double lo = -kMaxMagnitude, hi = kMaxMagnitude;
   bool lo_open = false, hi_open = false;
   static Range any() { return {}; }

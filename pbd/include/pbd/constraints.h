@@ -1,7 +1,8 @@
 #pragma once
 // Constraint functions of the PBD angle bending model (CN104268305A) and the distance (stretch)
 // constraint, as free functions in the style of Jan Bender's PositionBasedDynamics: each takes
-// positions and inverse masses and returns position corrections; nothing here owns state.
+// positions and inverse masses and moves the positions in place (the projections return the
+// multiplier's increment); nothing here owns state.
 //
 // Angle constraint on the seed's chain [v_best, v_k, v_i] with p1 = v_best, p2 = v_k, p3 = v_i
 // (the vertex): theta = the angle between the edges p1 - p3 and p2 - p3, C = theta - theta0.
@@ -51,13 +52,6 @@ AngleGradient angle_constraint_gradient(const Vec3& p1, const Vec3& p2, const Ve
 /// alpha_tilde = 0 this is the plain PBD projection with stiffness 1. Returns dlambda (0 when skipped).
 double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double w3, double rest_cos,
                      double rest_sin, double alpha_tilde, double& lambda, const Vec3* axis);
-
-/// The seed's PBD correction (CN104268305A step 4d, reconstructed as in Mueller et al. 2007,
-/// appendix A) in its q notation with stiffness k: dp_j = -k w_j sqrt(1-d^2) (acos d - theta0) q_j
-/// / sum_m w_m |q_m|^2. Literal (acos form, NaN at d = -1): kept only as the reference the
-/// robust form is tested against. Returns false where sqrt(1-d^2) or the denominator vanish.
-bool seed_angle_correction(const Vec3& p1, const Vec3& p2, const Vec3& p3, double w1, double w2, double w3,
-                           double theta0, double k, Vec3& dp1, Vec3& dp2, Vec3& dp3);
 
 /// One XPBD projection of a distance constraint, in place; returns dlambda.
 double project_distance(Vec3& pa, Vec3& pb, double wa, double wb, double rest, double alpha_tilde, double& lambda);

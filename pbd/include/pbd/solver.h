@@ -22,9 +22,27 @@ struct StepSettings {
 
 /// Largest constraint violations of the current positions.
 struct Residuals {
-  double angle = 0;     ///< max |C| [rad]
-  double distance = 0;  ///< max |l - l0| / l0
+  double angle = 0;     ///< max |C| [rad] over every angle constraint (a compliant one's C is its bend)
+  double distance = 0;  ///< max |l - l0| / l0 over every distance constraint
+  double rigid_angle = 0;          ///< max |C| [rad] over the rigid (compliance 0) angle constraints
+  double inextensible_stretch = 0;  ///< max |l - l0| / l0 over the inextensible (compliance 0) edges
+  /// True when a constraint that should hold exactly is violated beyond the tolerances below
+  /// (a compliant constraint's C is physical, not an error, so it is not counted).
+  bool exceeds_tolerance() const;
+  static constexpr double kStretchTolerance = 1e-3;  ///< relative
+  static constexpr double kAngleTolerance = 1e-3;    ///< [rad]
 };
+
+/// Relative error of a compliant angle constraint's steady state left by one Gauss-Seidel sweep
+/// per substep that substeps_for_accuracy() aims at (docs/pbd-model.md, "Choosing substeps").
+constexpr double kSubstepAccuracy = 1e-2;
+
+/// The substeps per frame of length `dt` that resolve the stiffest compliant angle constraint:
+/// one sweep per substep leaves its steady state too soft by 6 h^2 / (m l^2 alpha) (m the
+/// vertex's mass, l the shorter edge, alpha the compliance; for a rod 6 (h/T)^2 N^4 with
+/// T = sqrt(rho A L^4 / E I)), so h = sqrt(accuracy m l^2 alpha / 6). 1 when no angle constraint is
+/// compliant; at most `max_substeps`.
+int substeps_for_accuracy(const Model& model, double dt, double accuracy = kSubstepAccuracy, int max_substeps = 1000000);
 
 class Solver {
  public:

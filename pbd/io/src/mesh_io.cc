@@ -1,11 +1,16 @@
+// PBD mesh input: gmsh (.geo/.msh through the shared session), Wavefront OBJ and VTK .vtu, each
+// checked (pbd::mesh_problem) and every problem one line.
 #include <pbd_io/mesh_io.h>
 
 #include <gmsh.h>
 #include <gmsh_session.h>
 #include <workbench/error.h>
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkExecutive.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
@@ -151,13 +156,35 @@ LoadedMesh read_obj(const fs::path& file) {
   return out;
 }
 
+/// Catches VTK's errors while a file is read, so that its multi-line log stays off the terminal
+/// (every problem is one line of ours), and remembers whether there was one. VTK passes an error
+/// to an object's ErrorEvent observer instead of printing it.
+class VtkErrors {
+ public:
+  explicit VtkErrors(vtkXMLUnstructuredGridReader* reader) {
+    callback_->SetClientData(&failed_);
+    callback_->SetCallback([](vtkObject*, unsigned long, void* failed, void*) { *static_cast<bool*>(failed) = true; });
+    reader->AddObserver(vtkCommand::ErrorEvent, callback_);
+    reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, callback_);
+    reader->SetReaderErrorObserver(callback_);
+    reader->SetParserErrorObserver(callback_);
+  }
+  bool failed() const { return failed_; }
+
+ private:
+  bool failed_ = false;
+  vtkNew<vtkCallbackCommand> callback_;
+};
+
 LoadedMesh read_vtu(const fs::path& file) {
   vtkNew<vtkXMLUnstructuredGridReader> reader;
+  VtkErrors errors(reader);
   if (!reader->CanReadFile(file.string().c_str())) fail(file, "is not a VTK XML unstructured grid");
   reader->SetFileName(file.string().c_str());
   reader->Update();
   vtkUnstructuredGrid* grid = reader->GetOutput();
-  if (!grid || reader->GetErrorCode() != 0) fail(file, "VTK could not read it");
+  if (!grid || reader->GetErrorCode() != 0 || errors.failed())
+    fail(file, "VTK could not read it (a truncated or malformed VTK XML file)");
   LoadedMesh out;
   const vtkIdType n = grid->GetNumberOfPoints();
   for (vtkIdType i = 0; i < n; ++i) {

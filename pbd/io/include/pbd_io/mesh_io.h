@@ -22,7 +22,7 @@ struct LoadedMesh {
 LoadedMesh read_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters = {});
 
 /// The nodes of the named groups; "file: group 'x' does not exist (it has: ...)" for a missing
-/// one, "file: group 'x' has no nodes" for an empty one. `what` names the key that asked for it.
+/// one, "file: group 'x' has no nodes" for an empty one.
 std::vector<int> group_nodes(const LoadedMesh& mesh, const std::filesystem::path& file,
                              const std::vector<std::string>& groups);
 

@@ -23,18 +23,21 @@ void add_fem_command(CLI::App& app, Action& action) {
       const auto problem = fem_reference::problem_from_case(file);
       check_every_section(file);
       const std::string dir = output->empty() ? "out/" + file.path().stem().string() + "/fem" : *output;
-      // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
+      // Rank 0 owns the staged folder; every rank writes its VTU piece into it. Steps that may fail
+      // on rank 0 alone are collective: a failure ends every rank with the same message.
       const bool root = fem_reference::mpi_rank() == 0;
       std::optional<workbench::StagedDirectory> staged;
-      if (root) staged.emplace(dir);
+      fem_reference::mpi_collective([&] {
+        if (root) staged.emplace(dir);
+      });
       const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
       const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
-      if (root) fem_reference::write_fem_csv(result, path);
-      fem_reference::mpi_barrier();
-      if (root) {
+      fem_reference::mpi_collective([&] {
+        if (!root) return;
+        fem_reference::write_fem_csv(result, path);
         staged->commit();
         std::cerr << "fem: wrote " << staged->target().string() << "\n";
-      }
+      });
       return 0;
     };
   });

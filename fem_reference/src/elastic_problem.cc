@@ -244,6 +244,25 @@ std::string mpi_broadcast(const std::string& text) {
   if (mpi_size() == 1) return text;
   return Utilities::MPI::broadcast(MPI_COMM_WORLD, text, 0);
 }
+void mpi_collective(const std::function<void()>& step) {
+  std::string message;
+  bool failed = false;
+  try {
+    step();
+  } catch (const std::exception& e) {
+    message = e.what();
+    failed = true;
+  }
+  if (mpi_size() > 1) {
+    // The lowest failing rank (size if none) tells every rank its message.
+    const unsigned size = unsigned(mpi_size());
+    const unsigned first = Utilities::MPI::min(failed ? unsigned(mpi_rank()) : size, MPI_COMM_WORLD);
+    if (first == size) return;
+    message = Utilities::MPI::broadcast(MPI_COMM_WORLD, message, first);
+    failed = true;
+  }
+  if (failed) throw Error(message);
+}
 
 // ------------------------------------------------------------------------------------------------
 // The problem
@@ -296,6 +315,10 @@ class ElasticProblem {
            (problem_.options.solver == SolverKind::Mg || problem_.options.solver == SolverKind::Auto);
   }
   std::vector<int> constrained_components(const Support& s) const;
+  /// Throws (on every rank) unless `finite` holds on every rank: "<file>: <key>: <what> is not
+  /// finite ...", the key being the one most likely responsible (material.young, or the load when
+  /// it is itself beyond double precision's reach).
+  void require_finite(bool finite, const std::string& what) const;
   void say(const std::string& line) const {
     if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) *log_ << "fem: " << line << std::endl;
   }
@@ -358,6 +381,34 @@ ElasticProblem<dim>::ElasticProblem(const FemProblem& problem, const PlainMesh& 
     mode_centre_[a] = 0.5 * (lo[a] + hi[a]);
     mode_size_ = std::max(mode_size_, hi[a] - lo[a]);
   }
+}
+
+bool all_finite(const TrilinosWrappers::MPI::Vector& v) {
+  for (const double x : v) if (!std::isfinite(x)) return false;
+  return true;
+}
+
+bool all_finite(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+template <int dim>
+void ElasticProblem<dim>::require_finite(bool finite, const std::string& what) const {
+  if (Utilities::MPI::min(int(finite), comm_) == 1) return;
+  double load = 0;
+  for (const auto& t : problem_.tractions)
+    for (double f : t.force) load = std::max(load, std::abs(f));
+  for (const auto& p : problem_.point_forces)
+    for (double f : p.force) load = std::max(load, std::abs(f));
+  double body = 0;
+  for (double b : problem_.body_force) body = std::max(body, std::abs(b));
+  // Loads beyond 1e150 overflow on their own; else the stiffness (young) is out of range.
+  const std::string key = !(body <= 1e150) ? "fem.body_force" : !(load <= 1e150) ? "load" : "material.young";
+  std::ostringstream s;
+  s << problem_.name << ": " << key << ": the " << what
+    << " is not finite (it overflows double precision) with material.young = " << problem_.young
+    << " Pa and loads up to " << std::max(load, body) << " (N, N/m^3); give values in SI units (Pa, N) within a sane range";
+  throw Error(s.str());
 }
 
 template <int dim>
@@ -737,6 +788,7 @@ void ElasticProblem<dim>::solve() {
       outcome = solve_mg(*mapping_, dof_handler_, constraints_, boundaries, rhs_, solution_, s,
                          [&](const char* what) { profile(what, t); });
     } catch (const SolverControl::NoConvergence& e) {
+      require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "geometric multigrid", e));
     }
     result_.solver = outcome.solver;
@@ -785,6 +837,7 @@ void ElasticProblem<dim>::solve() {
     try {
       cg.solve(matrix_, solution_, rhs_, amg);
     } catch (const SolverControl::NoConvergence& e) {
+      require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "AMG", e));
     }
     profile("CG", t);
@@ -1061,13 +1114,17 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
        << result_.setup_seconds << " s";
   say(line.str());
 
+  require_finite(std::isfinite(lambda_) && std::isfinite(mu_) && std::isfinite(lambda_solid_), "stiffness (Lame coefficients)");
   t = std::chrono::steady_clock::now();
   assemble_system();
+  require_finite(all_finite(rhs_), "load vector");
+  if (!use_mg_) require_finite(std::isfinite(matrix_.linfty_norm()), "stiffness matrix");
   result_.assemble_seconds = seconds_since(t);
   say("assembled in " + std::to_string(result_.assemble_seconds) + " s");
 
   t = std::chrono::steady_clock::now();
   solve();
+  require_finite(all_finite(solution_) && std::isfinite(result_.residual), "displacement");
   result_.solve_seconds = seconds_since(t);
   {
     std::ostringstream s;
@@ -1094,7 +1151,18 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   postprocess();
   compute_errors();
   result_.applied = applied_;
-  if (!output_dir.empty() && problem_.options.write_vtu) write_vtu(output_dir);
+  {
+    bool finite = all_finite(result_.node_displacement) && all_finite(result_.cell_centres);
+    for (const auto* v : {&result_.sigma_x, &result_.sigma_y, &result_.sigma_z, &result_.tau_xy, &result_.tau_yz,
+                          &result_.tau_xz, &result_.von_mises})
+      finite = finite && all_finite(*v);
+    for (const auto& g : result_.reactions)
+      for (double f : g.force) finite = finite && std::isfinite(f);
+    for (const auto& cell_field : cell_fields_)
+      for (float x : cell_field) finite = finite && std::isfinite(x);
+    require_finite(finite, "stress, displacement or reaction");
+  }
+  if (!output_dir.empty() && problem_.options.write_vtu) mpi_collective([&] { write_vtu(output_dir); });
   result_.output_seconds = seconds_since(t);
   {
     std::ostringstream s;

@@ -6,6 +6,8 @@
 // No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
 #pragma once
 
+#include <fem_reference/fem.h>
+
 #include <deal.II/base/types.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/component_mask.h>
@@ -27,7 +29,7 @@ struct MgSettings {
   double lambda = 0, mu = 0;  ///< Lame coefficients of the bilinear form (lambda* in plane stress)
   double tolerance = 1e-10;   ///< relative to ||rhs||
   int max_iterations = 2000;
-  long direct_limit = 50000;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
+  long direct_limit = FemOptions{}.direct_limit;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
   int smoother_degree = 4;    ///< Chebyshev degree of pre- and post-smoothing
 };
 
@@ -42,7 +44,7 @@ using MgBoundaries = std::vector<std::pair<std::set<dealii::types::boundary_id>,
 
 /// Whether a sparse direct factorisation of n DoFs is cheap: its expected work, by nested-dissection
 /// estimates n^(3/2) in 2D and n^2 in 3D (separators of n^(1/2) and n^(2/3) DoFs), is at most that of
-/// a 2D problem of `direct_limit` DoFs. In 3D that is direct_limit^(3/4) DoFs (3 344 for 50 000):
+/// a 2D problem of `direct_limit` DoFs. In 3D that is direct_limit^(3/4) DoFs (1 682 for 20 000):
 /// beyond it a 3D factorisation fills in so much that KLU takes tens of seconds where AMG takes a
 /// fraction of one (docs/performance.md, the solver sweep).
 bool direct_is_fast(double n_dofs, int dim, long direct_limit);

@@ -90,8 +90,6 @@ void check_problem(const FemProblem& p, const PlainMesh& mesh) {
                   " (it has: " + have_groups(mesh) + ")");
     if (it->second.empty()) throw Error(p.name + ": " + role + ": group '" + group + "' has no faces in " + mesh_name);
   };
-  if (p.supports.empty())
-    throw Error(p.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
   for (const auto& s : p.supports) {
     const std::string role = s.kind == SupportKind::Clamped   ? "boundary.rigid"
                              : s.kind == SupportKind::Roller ? "boundary.rollers"

@@ -19,12 +19,14 @@
 
 #include <workbench/error.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -292,9 +294,9 @@ class ElasticProblem {
   /// finite ...", the key being the one most likely responsible (material.young, or the load when
   /// it is itself beyond double precision's reach).
   void require_finite(bool finite, const std::string& what) const;
-  void say(const std::string& line) const {
-    if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) *log_ << "fem: " << line << std::endl;
-  }
+  void say(const std::string& line) { pcout_ << "fem: " << line << std::endl; }
+  /// Wall seconds spent in a TimerOutput section of run().
+  double seconds(const char* phase) const { return timer_.get_summary_data(TimerOutput::total_wall_time).at(phase); }
 
   MPI_Comm comm_ = MPI_COMM_WORLD;
   const FemProblem& problem_;
@@ -303,6 +305,9 @@ class ElasticProblem {
   std::array<double, 3> mode_centre_{};
   double mode_size_ = 1;
   std::ostream* log_;
+  std::ostream null_stream_{nullptr};  // pcout_'s target without a log (writes nothing)
+  ConditionalOStream pcout_{log_ ? *log_ : null_stream_, log_ && Utilities::MPI::this_mpi_process(comm_) == 0};
+  TimerOutput timer_{pcout_, TimerOutput::never, TimerOutput::wall_times};  // phases of run()
   const int degree_;
   bool direct_ = false;  // the solver, decided in setup_system
   bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
@@ -1047,7 +1052,7 @@ void ElasticProblem<dim>::write_vtu(const fs::path& dir) {
 
 template <int dim>
 FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
-  auto t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("setup");
   make_grid();
   setup_system();
   result_.dim = dim;
@@ -1058,7 +1063,8 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   result_.n_dofs = dof_handler_.n_dofs();
   result_.n_active_cells = tria_->n_global_active_cells();
   check_rigid_motion();
-  result_.setup_seconds = seconds_since(t);
+  timer_.leave_subsection("setup");
+  result_.setup_seconds = seconds("setup");
   std::ostringstream line;
   line << result_.n_dofs << " DoFs, " << result_.n_active_cells << " cells (" << (mesh_.simplex ? "P" : "Q") << degree_
        << ", " << result_.model << ", " << result_.ranks << " rank" << (result_.ranks > 1 ? "s" : "") << "), setup "
@@ -1066,17 +1072,19 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   say(line.str());
 
   require_finite(std::isfinite(lambda_) && std::isfinite(mu_) && std::isfinite(lambda_solid_), "stiffness (Lame coefficients)");
-  t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("assemble");
   assemble_system();
   require_finite(all_finite(rhs_), "load vector");
   if (!use_mg_) require_finite(std::isfinite(matrix_.linfty_norm()), "stiffness matrix");
-  result_.assemble_seconds = seconds_since(t);
+  timer_.leave_subsection("assemble");
+  result_.assemble_seconds = seconds("assemble");
   say("assembled in " + std::to_string(result_.assemble_seconds) + " s");
 
-  t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("solve");
   solve();
   require_finite(all_finite(solution_) && std::isfinite(result_.residual), "displacement");
-  result_.solve_seconds = seconds_since(t);
+  timer_.leave_subsection("solve");
+  result_.solve_seconds = seconds("solve");
   {
     std::ostringstream s;
     s << "solved with " << result_.solver << ": " << result_.iterations << " iterations, relative residual "
@@ -1097,7 +1105,7 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
     say(s.str() + ": the rounding floor of this ill-conditioned system (u solves K u = f to rounding)");
   }
 
-  t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("output");
   compute_reactions();
   postprocess();
   compute_errors();
@@ -1113,8 +1121,16 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
       for (float x : cell_field) finite = finite && std::isfinite(x);
     require_finite(finite, "stress, displacement or reaction");
   }
-  if (!output_dir.empty() && problem_.options.write_vtu) mpi_collective([&] { write_vtu(output_dir); });
-  result_.output_seconds = seconds_since(t);
+  if (!output_dir.empty() && problem_.options.write_vtu)
+    mpi_collective([&] {
+      try {
+        write_vtu(output_dir);
+      } catch (const ExceptionBase& e) {  // one line, as solve_on_mesh makes of the others
+        throw Error(problem_.name + ": " + output_dir.string() + ": deal.II: " + one_line(e));
+      }
+    });
+  timer_.leave_subsection("output");
+  result_.output_seconds = seconds("output");
   {
     std::ostringstream s;
     s.precision(6);

@@ -26,18 +26,21 @@ void add_fem_command(CLI::App& app, Action& action) {
       check_every_section(file);
       if (*check) return checked(file, "fem");
       const std::string dir = output_folder(*output, file, "fem");
-      // Rank 0 owns the staged folder; every rank writes its VTU piece into it.
+      // Rank 0 owns the staged folder; every rank writes its VTU piece into it. Steps that may fail
+      // on rank 0 alone are collective: a failure ends every rank with the same message.
       const bool root = fem_reference::mpi_rank() == 0;
       std::optional<workbench::StagedDirectory> staged;
-      if (root) staged.emplace(dir, file.path());
+      fem_reference::mpi_collective([&] {
+        if (root) staged.emplace(dir, file.path());
+      });
       const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
       const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
-      if (root) fem_reference::write_fem_csv(result, path);
-      fem_reference::mpi_barrier();
-      if (root) {
+      fem_reference::mpi_collective([&] {
+        if (!root) return;
+        fem_reference::write_fem_csv(result, path);
         staged->commit();
         std::cerr << "fem: wrote " << staged->target().string() << "\n";
-      }
+      });
       return 0;
     };
   });

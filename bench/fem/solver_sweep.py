@@ -4,10 +4,11 @@
 2D and 3D, Q1 and Q2, 1e3 to 4e6 DoFs, on unit squares/cubes (fem_bench --sweep): unrefined meshes
 ("flat", where multigrid has one level) and coarse meshes refined 2-4 times. Every configuration runs
 auto, and each explicit solver (direct, amg, mg) where it can finish; each run is its own process,
-pinned to one core (taskset -c 1), once, with a time limit (a run past it counts as "> limit").
-The measure is the CPU time of the whole solve_fem (setup, assembly, solve, postprocessing).
+pinned to one core (taskset -c 1), once (runs under a second: the fastest of three), with a wall-clock limit (a run past it counts as "> limit";
+on a loaded machine that can be a run of a fraction of the limit in CPU time). The measure is the
+CPU time of the whole solve_fem (setup, assembly, solve, postprocessing).
 
-  /usr/bin/python3 bench/fem/solver_sweep.py [build-dir] [--quick]   # table for docs/performance.md
+  /usr/bin/python3 bench/fem/solver_sweep.py [build-dir] [--quick] [--only=dim,degree,cells,refine]
 """
 import json
 import subprocess
@@ -52,6 +53,18 @@ QUICK = [c for c in CONFIGS if c[2] * 2 ** c[3] <= (224 if c[0] == 2 else 20)]
 
 
 def run(bench, dim, degree, cells, refine, solver):
+    """The fastest of up to 3 runs (a run under a second is repeated: on a shared machine one short
+    run can take 3x its CPU time), as run_once."""
+    best = run_once(bench, dim, degree, cells, refine, solver)
+    for _ in range(2):
+        if best[0] is None or best[0] > 1.0:
+            break
+        again = run_once(bench, dim, degree, cells, refine, solver)
+        best = min(best, again, key=lambda r: r[0])
+    return best
+
+
+def run_once(bench, dim, degree, cells, refine, solver):
     """One Sweep run: (cpu seconds or None past the limit, label, dofs, iterations)."""
     arg = f"--sweep={dim},{degree},{cells},{refine},{SOLVERS[solver]}"
     with tempfile.NamedTemporaryFile(suffix=".json") as out:
@@ -75,15 +88,19 @@ def main():
     build = Path(args[0] if args else "build")
     bench = str(build / "bench" / "fem" / "fem_bench")
     configs = QUICK if "--quick" in sys.argv else CONFIGS
+    only = [a[7:] for a in sys.argv if a.startswith("--only=")]
+    if only:
+        configs = [c for c in configs if ",".join(map(str, c[:4])) in only]
     print("| dim | Q | mesh | DoFs | direct [s] | amg [s] | mg [s] | auto picks | auto [s] | auto / best |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     worst = 0.0
     for dim, degree, cells, refine, others in configs:
-        times = {}
+        times, dofs = {}, 0
         for solver in others:
-            cpu, label, dofs, its = run(bench, dim, degree, cells, refine, solver)
-            times[solver] = cpu
-        auto_cpu, label, dofs, its = run(bench, dim, degree, cells, refine, "auto")
+            cpu, _, n, _ = run(bench, dim, degree, cells, refine, solver)
+            times[solver], dofs = cpu, max(dofs, n)
+        auto_cpu, label, n, its = run(bench, dim, degree, cells, refine, "auto")
+        dofs = max(dofs, n)
         finished = [t for t in times.values() if t is not None] + ([auto_cpu] if auto_cpu else [])
         best = min(finished) if finished else None
         ratio = auto_cpu / best if auto_cpu and best else None

@@ -20,12 +20,14 @@
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -51,6 +53,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <Eigen/Eigenvalues>
 #include <p4est_base.h>
 #include <sc.h>
 
@@ -158,42 +161,6 @@ std::string one_line(const ExceptionBase& e) {
   return out;
 }
 
-/// Eigenvalues and eigenvectors of a small symmetric matrix (cyclic Jacobi).
-void symmetric_eigen(std::vector<double> a, int n, std::vector<double>& values, std::vector<double>& vectors) {
-  vectors.assign(n * n, 0.0);
-  for (int i = 0; i < n; ++i) vectors[i * n + i] = 1;
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) off += a[p * n + q] * a[p * n + q];
-    if (off < 1e-300) break;
-    for (int p = 0; p < n; ++p)
-      for (int q = p + 1; q < n; ++q) {
-        if (std::abs(a[p * n + q]) < 1e-300) continue;
-        const double theta = (a[q * n + q] - a[p * n + p]) / (2 * a[p * n + q]);
-        const double t = (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < n; ++k) {
-          const double akp = a[k * n + p], akq = a[k * n + q];
-          a[k * n + p] = c * akp - s * akq;
-          a[k * n + q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < n; ++k) {
-          const double apk = a[p * n + k], aqk = a[q * n + k];
-          a[p * n + k] = c * apk - s * aqk;
-          a[q * n + k] = s * apk + c * aqk;
-        }
-        for (int k = 0; k < n; ++k) {
-          const double vkp = vectors[k * n + p], vkq = vectors[k * n + q];
-          vectors[k * n + p] = c * vkp - s * vkq;
-          vectors[k * n + q] = s * vkp + c * vkq;
-        }
-      }
-  }
-  values.resize(n);
-  for (int i = 0; i < n; ++i) values[i] = a[i * n + i];
-}
-
 /// A plain vector function as a deal.II Function (values and, if given, gradients).
 template <int dim>
 class PlainFunction : public Function<dim> {
@@ -243,6 +210,25 @@ void mpi_barrier() {
 std::string mpi_broadcast(const std::string& text) {
   if (mpi_size() == 1) return text;
   return Utilities::MPI::broadcast(MPI_COMM_WORLD, text, 0);
+}
+void mpi_collective(const std::function<void()>& step) {
+  std::string message;
+  bool failed = false;
+  try {
+    step();
+  } catch (const std::exception& e) {
+    message = e.what();
+    failed = true;
+  }
+  if (mpi_size() > 1) {
+    // The lowest failing rank (size if none) tells every rank its message.
+    const unsigned size = unsigned(mpi_size());
+    const unsigned first = Utilities::MPI::min(failed ? unsigned(mpi_rank()) : size, MPI_COMM_WORLD);
+    if (first == size) return;
+    message = Utilities::MPI::broadcast(MPI_COMM_WORLD, message, first);
+    failed = true;
+  }
+  if (failed) throw Error(message);
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -296,9 +282,21 @@ class ElasticProblem {
            (problem_.options.solver == SolverKind::Mg || problem_.options.solver == SolverKind::Auto);
   }
   std::vector<int> constrained_components(const Support& s) const;
-  void say(const std::string& line) const {
-    if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) *log_ << "fem: " << line << std::endl;
+  /// Whether faces with boundary id `id` belong to group `g` (index into groups_).
+  bool carries(types::boundary_id id, int g) const {
+    return id > 0 && id < groups_of_id_.size() &&
+           std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(g)) > 0;
   }
+  bool has_body_force() const {
+    return problem_.body_force_function || problem_.body_force != std::array<double, 3>{};
+  }
+  /// Throws (on every rank) unless `finite` holds on every rank: "<file>: <key>: <what> is not
+  /// finite ...", the key being the one most likely responsible (material.young, or the load when
+  /// it is itself beyond double precision's reach).
+  void require_finite(bool finite, const std::string& what) const;
+  void say(const std::string& line) { pcout_ << "fem: " << line << std::endl; }
+  /// Wall seconds spent in a TimerOutput section of run().
+  double seconds(const char* phase) const { return timer_.get_summary_data(TimerOutput::total_wall_time).at(phase); }
 
   MPI_Comm comm_ = MPI_COMM_WORLD;
   const FemProblem& problem_;
@@ -307,6 +305,9 @@ class ElasticProblem {
   std::array<double, 3> mode_centre_{};
   double mode_size_ = 1;
   std::ostream* log_;
+  std::ostream null_stream_{nullptr};  // pcout_'s target without a log (writes nothing)
+  ConditionalOStream pcout_{log_ ? *log_ : null_stream_, log_ && Utilities::MPI::this_mpi_process(comm_) == 0};
+  TimerOutput timer_{pcout_, TimerOutput::never, TimerOutput::wall_times};  // phases of run()
   const int degree_;
   bool direct_ = false;  // the solver, decided in setup_system
   bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
@@ -358,6 +359,34 @@ ElasticProblem<dim>::ElasticProblem(const FemProblem& problem, const PlainMesh& 
     mode_centre_[a] = 0.5 * (lo[a] + hi[a]);
     mode_size_ = std::max(mode_size_, hi[a] - lo[a]);
   }
+}
+
+bool all_finite(const TrilinosWrappers::MPI::Vector& v) {
+  for (const double x : v) if (!std::isfinite(x)) return false;
+  return true;
+}
+
+bool all_finite(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+template <int dim>
+void ElasticProblem<dim>::require_finite(bool finite, const std::string& what) const {
+  if (Utilities::MPI::min(int(finite), comm_) == 1) return;
+  double load = 0;
+  for (const auto& t : problem_.tractions)
+    for (double f : t.force) load = std::max(load, std::abs(f));
+  for (const auto& p : problem_.point_forces)
+    for (double f : p.force) load = std::max(load, std::abs(f));
+  double body = 0;
+  for (double b : problem_.body_force) body = std::max(body, std::abs(b));
+  // Loads beyond 1e150 overflow on their own; else the stiffness (young) is out of range.
+  const std::string key = !(body <= 1e150) ? "fem.body_force" : !(load <= 1e150) ? "load" : "material.young";
+  std::ostringstream s;
+  s << problem_.name << ": " << key << ": the " << what
+    << " is not finite (it overflows double precision) with material.young = " << problem_.young
+    << " Pa and loads up to " << std::max(load, body) << " (N, N/m^3); give values in SI units (Pa, N) within a sane range";
+  throw Error(s.str());
 }
 
 template <int dim>
@@ -474,7 +503,7 @@ void ElasticProblem<dim>::setup_system() {
     else
       g = std::make_unique<Functions::ZeroFunction<dim>>(dim);
     for (types::boundary_id id = 1; id < groups_of_id_.size(); ++id)
-      if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s])))
+      if (carries(id, support_group_[s]))
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, id, *g, constraints_, mask);
   }
   constraints_.close();
@@ -482,14 +511,12 @@ void ElasticProblem<dim>::setup_system() {
 
   const auto& o = problem_.options;
   // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
-  // else multigrid when its coarse mesh (about n_dofs / 2^(dim refine) DoFs) is, else ML on the
-  // whole problem (a large coarse mesh, or an unrefined one where multigrid has a single level).
-  const double coarse_dofs = double(dof_handler_.n_dofs()) / std::pow(2.0, dim * o.refine);
+  // else multigrid on refined meshes (its coarse level by KLU or, when large, one ML cycle: in 3D
+  // 4x faster than ML on the whole problem, the solver sweep), else ML (on an unrefined mesh
+  // multigrid would have a single level).
   direct_ = o.solver == SolverKind::Direct ||
             (o.solver == SolverKind::Auto && direct_is_fast(double(dof_handler_.n_dofs()), dim, o.direct_limit));
-  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
-                             (o.solver == SolverKind::Auto && !direct_ && o.refine > 0 &&
-                              direct_is_fast(coarse_dofs, dim, o.direct_limit)));
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || (o.solver == SolverKind::Auto && !direct_ && o.refine > 0));
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);
@@ -513,9 +540,8 @@ void ElasticProblem<dim>::check_rigid_motion() const {
     for (unsigned f = 0; f < cell->n_faces(); ++f) {
       if (!cell->face(f)->at_boundary()) continue;
       const auto id = cell->face(f)->boundary_id();
-      if (id == 0 || id >= groups_of_id_.size()) continue;
       for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
-        if (!std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s]))) continue;
+        if (!carries(id, support_group_[s])) continue;
         for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) {
           double x[3];
           to_mode_frame(cell->face(f)->vertex(v), x);
@@ -530,10 +556,10 @@ void ElasticProblem<dim>::check_rigid_motion() const {
     }
   }
   Utilities::MPI::sum(gram, comm_, gram);
-  std::vector<double> values, vectors;
-  symmetric_eigen(gram, n_modes, values, vectors);
-  double top = 0;
-  for (double v : values) top = std::max(top, v);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Eigen::Map<const Eigen::MatrixXd>(gram.data(), n_modes, n_modes));
+  const Eigen::VectorXd& values = eigen.eigenvalues();
+  const Eigen::MatrixXd& vectors = eigen.eigenvectors();
+  const double top = std::max(values.maxCoeff(), 0.0);
   const char* names2[3] = {"translation along x", "translation along y", "rotation about z"};
   const char* names3[6] = {"translation along x", "translation along y", "translation along z",
                            "rotation about x",    "rotation about y",    "rotation about z"};
@@ -541,7 +567,7 @@ void ElasticProblem<dim>::check_rigid_motion() const {
     if (!(values[k] > 1e-10 * top) || top == 0) {
       int dominant = 0;
       for (int i = 0; i < n_modes; ++i)
-        if (std::abs(vectors[i * n_modes + k]) > std::abs(vectors[dominant * n_modes + k])) dominant = i;
+        if (std::abs(vectors(i, k)) > std::abs(vectors(dominant, k))) dominant = i;
       throw Error(problem_.name + ": the supports leave the body free to move rigidly (" +
                   (dim == 2 ? names2[dominant] : names3[dominant]) +
                   "): no unique solution; add a rigid group or rollers that hold it");
@@ -560,8 +586,7 @@ void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cel
   std::vector<Tensor<1, dim>> grads(n);
   std::vector<unsigned> comp(n);
   for (unsigned i = 0; i < n; ++i) comp[i] = fe_->system_to_component_index(i).first;
-  const bool body = problem_.body_force_function || problem_.body_force[0] != 0 || problem_.body_force[1] != 0 ||
-                    problem_.body_force[2] != 0;
+  const bool body = has_body_force();
   for (unsigned q = 0; q < nq; ++q) {
     const double JxW = fe_values.JxW(q);
     for (unsigned i = 0; i < n && with_matrix; ++i) grads[i] = fe_values.shape_grad(i, q);
@@ -571,9 +596,7 @@ void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cel
       for (unsigned j = 0; j <= i; ++j) {
         const unsigned cj = comp[j];
         const Tensor<1, dim>& gj = grads[j];
-        double v = lambda_ * gi[ci] * gj[cj] + mu_ * gi[cj] * gj[ci];
-        if (ci == cj) v += mu_ * (gi * gj);
-        cell_matrix(i, j) += v * JxW;
+        cell_matrix(i, j) += elastic_entry<dim>(gi, gj, ci, cj, lambda_, mu_) * JxW;
       }
     }
     if (body) {
@@ -594,10 +617,9 @@ void ElasticProblem<dim>::cell_system(const typename DoFHandler<dim>::active_cel
   for (unsigned f = 0; f < cell->n_faces(); ++f) {
     if (!cell->face(f)->at_boundary()) continue;
     const auto id = cell->face(f)->boundary_id();
-    if (id == 0 || id >= groups_of_id_.size()) continue;
     bool reinit = false;
     for (std::size_t t = 0; t < traction_group_.size(); ++t) {
-      if (!std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(traction_group_[t]))) continue;
+      if (!carries(id, traction_group_[t])) continue;
       if (!reinit) fe_face_values.reinit(cell, f);
       reinit = true;
       const auto& traction = problem_.tractions[t];
@@ -630,10 +652,9 @@ void ElasticProblem<dim>::assemble_system() {
     for (unsigned f = 0; f < cell->n_faces(); ++f) {
       if (!cell->face(f)->at_boundary()) continue;
       const auto id = cell->face(f)->boundary_id();
-      if (id == 0 || id >= groups_of_id_.size()) continue;
       bool reinit = false;
       for (std::size_t t = 0; t < traction_group_.size(); ++t)
-        if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(traction_group_[t]))) {
+        if (carries(id, traction_group_[t])) {
           if (!reinit) fe_face_values.reinit(cell, f);
           reinit = true;
           for (unsigned q = 0; q < fe_face_values.n_quadrature_points; ++q) area[t] += fe_face_values.JxW(q);
@@ -650,8 +671,7 @@ void ElasticProblem<dim>::assemble_system() {
   Vector<double> cell_rhs(n);
   std::vector<types::global_dof_index> dofs(n);
   std::array<double, 3> applied{};
-  const bool body = problem_.body_force_function || problem_.body_force[0] != 0 || problem_.body_force[1] != 0 ||
-                    problem_.body_force[2] != 0;
+  const bool body = has_body_force();
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     cell->get_dof_indices(dofs);
@@ -723,13 +743,15 @@ void ElasticProblem<dim>::solve() {
     s.tolerance = o.tolerance;
     s.max_iterations = o.max_iterations;
     s.direct_limit = o.direct_limit;
+    s.mode_centre = mode_centre_;
+    s.mode_size = mode_size_;
     MgBoundaries boundaries;
     for (std::size_t k = 0; k < problem_.supports.size(); ++k) {
       ComponentMask mask(dim, false);
       for (int c : constrained_components(problem_.supports[k])) mask.set(c, true);
       std::set<types::boundary_id> ids;
       for (types::boundary_id id = 1; id < groups_of_id_.size(); ++id)
-        if (std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[k]))) ids.insert(id);
+        if (carries(id, support_group_[k])) ids.insert(id);
       if (!ids.empty()) boundaries.emplace_back(ids, mask);
     }
     MgOutcome outcome;
@@ -737,6 +759,7 @@ void ElasticProblem<dim>::solve() {
       outcome = solve_mg(*mapping_, dof_handler_, constraints_, boundaries, rhs_, solution_, s,
                          [&](const char* what) { profile(what, t); });
     } catch (const SolverControl::NoConvergence& e) {
+      require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "geometric multigrid", e));
     }
     result_.solver = outcome.solver;
@@ -755,27 +778,14 @@ void ElasticProblem<dim>::solve() {
   } else {
     // ML smoothed aggregation with the rigid body modes as near-null space.
     auto t = std::chrono::steady_clock::now();
-    const int n_modes = dim == 2 ? 3 : 6;
-    const std::size_t n_local = owned_.n_elements();
-    std::vector<double> modes(n_local * n_modes, 0.0);
-    {
-      Quadrature<dim> support_points(fe_->get_unit_support_points());
-      FEValues<dim> fe_values(*mapping_, *fe_, support_points, update_quadrature_points);
-      std::vector<types::global_dof_index> dofs(fe_->n_dofs_per_cell());
-      for (const auto& cell : dof_handler_.active_cell_iterators()) {
-        if (!cell->is_locally_owned()) continue;
-        fe_values.reinit(cell);
-        cell->get_dof_indices(dofs);
-        for (unsigned i = 0; i < dofs.size(); ++i) {
-          if (!owned_.is_element(dofs[i])) continue;
-          const std::size_t row = owned_.index_within_set(dofs[i]);
-          const unsigned c = fe_->system_to_component_index(i).first;
-          double x[3];
-          to_mode_frame(fe_values.quadrature_point(i), x);
-          set_rigid_body_modes(dim, x, c, row, n_local, modes);
-        }
-      }
-    }
+    std::vector<double> modes = rigid_body_modes<dim>(
+        *mapping_, *fe_, dof_handler_.active_cell_iterators(),
+        [](const auto& cell, std::vector<types::global_dof_index>& dofs) {
+          if (!cell->is_locally_owned()) return false;
+          cell->get_dof_indices(dofs);
+          return true;
+        },
+        owned_, mode_centre_, mode_size_);
     profile("rigid body modes", t);
     TrilinosWrappers::PreconditionAMG amg;
     initialize_elasticity_ml(amg, matrix_, dim, degree_, modes);
@@ -785,6 +795,7 @@ void ElasticProblem<dim>::solve() {
     try {
       cg.solve(matrix_, solution_, rhs_, amg);
     } catch (const SolverControl::NoConvergence& e) {
+      require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "AMG", e));
     }
     profile("CG", t);
@@ -873,9 +884,7 @@ void ElasticProblem<dim>::compute_reactions() {
       for (unsigned f = 0; f < cell->n_faces(); ++f) {
         if (!cell->face(f)->at_boundary()) continue;
         const auto id = cell->face(f)->boundary_id();
-        if (id == 0 || id >= groups_of_id_.size() ||
-            !std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(support_group_[s])))
-          continue;
+        if (!carries(id, support_group_[s])) continue;
         face_dofs.resize(fe_->n_dofs_per_face(f));
         cell->face(f)->get_dof_indices(face_dofs);
         for (unsigned i = 0; i < face_dofs.size(); ++i) {
@@ -901,7 +910,7 @@ void ElasticProblem<dim>::compute_reactions() {
 template <int dim>
 void ElasticProblem<dim>::postprocess() {
   const std::size_t n_el = mesh_.cell_count();
-  constexpr int K = 11;  // volume, centre x y z, sx sy sz txy tyz txz, von Mises (unused)
+  constexpr int K = 10;  // volume, centre x y z, sx sy sz txy tyz txz
   std::vector<double> acc(n_el * K, 0.0);
   FEValues<dim> fe_values(*mapping_, *fe_, *quadrature_, update_gradients | update_quadrature_points | update_JxW_values);
   const FEValuesExtractors::Vector displacement(0);
@@ -1063,7 +1072,7 @@ void ElasticProblem<dim>::write_vtu(const fs::path& dir) {
 
 template <int dim>
 FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
-  auto t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("setup");
   make_grid();
   setup_system();
   result_.dim = dim;
@@ -1074,21 +1083,28 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   result_.n_dofs = dof_handler_.n_dofs();
   result_.n_active_cells = tria_->n_global_active_cells();
   check_rigid_motion();
-  result_.setup_seconds = seconds_since(t);
+  timer_.leave_subsection("setup");
+  result_.setup_seconds = seconds("setup");
   std::ostringstream line;
   line << result_.n_dofs << " DoFs, " << result_.n_active_cells << " cells (" << (mesh_.simplex ? "P" : "Q") << degree_
        << ", " << result_.model << ", " << result_.ranks << " rank" << (result_.ranks > 1 ? "s" : "") << "), setup "
        << result_.setup_seconds << " s";
   say(line.str());
 
-  t = std::chrono::steady_clock::now();
+  require_finite(std::isfinite(lambda_) && std::isfinite(mu_) && std::isfinite(lambda_solid_), "stiffness (Lame coefficients)");
+  timer_.enter_subsection("assemble");
   assemble_system();
-  result_.assemble_seconds = seconds_since(t);
+  require_finite(all_finite(rhs_), "load vector");
+  if (!use_mg_) require_finite(std::isfinite(matrix_.linfty_norm()), "stiffness matrix");
+  timer_.leave_subsection("assemble");
+  result_.assemble_seconds = seconds("assemble");
   say("assembled in " + std::to_string(result_.assemble_seconds) + " s");
 
-  t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("solve");
   solve();
-  result_.solve_seconds = seconds_since(t);
+  require_finite(all_finite(solution_) && std::isfinite(result_.residual), "displacement");
+  timer_.leave_subsection("solve");
+  result_.solve_seconds = seconds("solve");
   {
     std::ostringstream s;
     s << "solved with " << result_.solver << ": " << result_.iterations << " iterations, relative residual "
@@ -1109,13 +1125,32 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
     say(s.str() + ": the rounding floor of this ill-conditioned system (u solves K u = f to rounding)");
   }
 
-  t = std::chrono::steady_clock::now();
+  timer_.enter_subsection("output");
   compute_reactions();
   postprocess();
   compute_errors();
   result_.applied = applied_;
-  if (!output_dir.empty() && problem_.options.write_vtu) write_vtu(output_dir);
-  result_.output_seconds = seconds_since(t);
+  {
+    bool finite = all_finite(result_.node_displacement) && all_finite(result_.cell_centres);
+    for (const auto* v : {&result_.sigma_x, &result_.sigma_y, &result_.sigma_z, &result_.tau_xy, &result_.tau_yz,
+                          &result_.tau_xz, &result_.von_mises})
+      finite = finite && all_finite(*v);
+    for (const auto& g : result_.reactions)
+      for (double f : g.force) finite = finite && std::isfinite(f);
+    for (const auto& cell_field : cell_fields_)
+      for (float x : cell_field) finite = finite && std::isfinite(x);
+    require_finite(finite, "stress, displacement or reaction");
+  }
+  if (!output_dir.empty() && problem_.options.write_vtu)
+    mpi_collective([&] {
+      try {
+        write_vtu(output_dir);
+      } catch (const ExceptionBase& e) {  // one line, as solve_on_mesh makes of the others
+        throw Error(problem_.name + ": " + output_dir.string() + ": deal.II: " + one_line(e));
+      }
+    });
+  timer_.leave_subsection("output");
+  result_.output_seconds = seconds("output");
   {
     std::ostringstream s;
     s.precision(6);

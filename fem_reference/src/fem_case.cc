@@ -29,7 +29,7 @@ FemSection read_fem_section(const workbench::CaseTable& root) {
              : solver == "direct" ? SolverKind::Direct
              : solver == "mg"     ? SolverKind::Mg
                                   : SolverKind::Amg;
-  o.direct_limit = t.integer("direct_limit", 50000, 0, 2000000000);
+  o.direct_limit = t.integer("direct_limit", FemOptions{}.direct_limit, 0, 2000000000);
   o.tolerance = t.number("tolerance", 1e-10, Range{0.0, 1e-2, true, false});
   o.max_iterations = t.integer("max_iterations", 2000, 1, 1000000);
   o.refine = t.integer("refine", 0, 0, 10);
@@ -91,8 +91,6 @@ void check_problem(const FemProblem& p, const PlainMesh& mesh) {
                   " (it has: " + have_groups(mesh) + ")");
     if (it->second.empty()) throw Error(p.name + ": " + role + ": group '" + group + "' has no faces in " + mesh_name);
   };
-  if (p.supports.empty())
-    throw Error(p.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
   for (const auto& s : p.supports) {
     const std::string role = s.kind == SupportKind::Clamped   ? "boundary.rigid"
                              : s.kind == SupportKind::Roller ? "boundary.rollers"
@@ -121,6 +119,10 @@ void check_problem(const FemProblem& p, const PlainMesh& mesh) {
   }
   if (mesh.dim == 2 && p.body_force[2] != 0)
     throw Error(p.name + ": fem.body_force: a 2D mesh takes 2 components, got a z component");
+  if (mesh.simplex && p.options.solver == SolverKind::Mg)
+    throw Error(p.name + ": fem.solver: \"mg\" (geometric multigrid) needs a quadrilateral/hexahedral mesh; " +
+                mesh.source + " has " + (mesh.dim == 2 ? "triangles" : "tetrahedra") +
+                " (use \"amg\" or \"auto\", or Transfinite + Recombine in the .geo)");
   if (mesh.simplex && mpi_size() > 1)
     throw Error(p.name + ": " + mesh.source + ": has " + (mesh.dim == 2 ? "triangles" : "tetrahedra") +
                 "; a distributed (MPI) run needs a quadrilateral/hexahedral mesh (Transfinite + Recombine in the .geo)");

@@ -153,9 +153,7 @@ class CellMatrixOperator : public Subscriptor {
         for (unsigned i = 0; i < n_; ++i)
           for (unsigned j = 0; j < n_; ++j) {
             const unsigned ci = comp[i], cj = comp[j];
-            double v = lambda * grads[i][ci] * grads[j][cj] + mu * grads[i][cj] * grads[j][ci];
-            if (ci == cj) v += mu * (grads[i] * grads[j]);
-            m[i * n_ + j] += v * JxW;
+            m[i * n_ + j] += elastic_entry<dim>(grads[i], grads[j], ci, cj, lambda, mu) * JxW;
           }
       }
       for (unsigned i = 0; i < n_; ++i)
@@ -287,37 +285,14 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
       name = "KLU";
     } else {
       // ML with the rigid body modes of the coarse mesh as near-null space (as the "amg" solver).
-      const IndexSet& owned0 = dof.locally_owned_mg_dofs(0);
-      const int n_modes = dim == 2 ? 3 : 6;
-      const std::size_t n_local = owned0.n_elements();
-      modes_.assign(n_local * n_modes, 0.0);
-      Point<dim> lo, hi;
-      for (int a = 0; a < dim; ++a) lo[a] = 1e308, hi[a] = -1e308;
-      for (const auto& cell : dof.get_triangulation().cell_iterators_on_level(0))
-        for (unsigned v = 0; v < cell->n_vertices(); ++v)
-          for (int a = 0; a < dim; ++a) {
-            lo[a] = std::min(lo[a], cell->vertex(v)[a]);
-            hi[a] = std::max(hi[a], cell->vertex(v)[a]);
-          }
-      double size = 0;
-      for (int a = 0; a < dim; ++a) size = std::max(size, hi[a] - lo[a]);
-      const auto& fe = dof.get_fe();
-      Quadrature<dim> support(fe.get_unit_support_points());
-      FEValues<dim> fe_values(mapping, fe, support, update_quadrature_points);
-      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-      for (const auto& cell : dof.mg_cell_iterators_on_level(0)) {
-        if (!cell->is_locally_owned_on_level()) continue;
-        fe_values.reinit(cell);
-        cell->get_mg_dof_indices(dofs);
-        for (unsigned i = 0; i < dofs.size(); ++i) {
-          if (!owned0.is_element(dofs[i])) continue;
-          const std::size_t row = owned0.index_within_set(dofs[i]);
-          const unsigned c = fe.system_to_component_index(i).first;
-          double x[3] = {0, 0, 0};
-          for (int a = 0; a < dim; ++a) x[a] = (fe_values.quadrature_point(i)[a] - 0.5 * (lo[a] + hi[a])) / size;
-          set_rigid_body_modes(dim, x, c, row, n_local, modes_);
-        }
-      }
+      modes_ = rigid_body_modes<dim>(
+          mapping, dof.get_fe(), dof.mg_cell_iterators_on_level(0),
+          [](const auto& cell, std::vector<types::global_dof_index>& dofs) {
+            if (!cell->is_locally_owned_on_level()) return false;
+            cell->get_mg_dof_indices(dofs);
+            return true;
+          },
+          dof.locally_owned_mg_dofs(0), s.mode_centre, s.mode_size);
       amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
       initialize_elasticity_ml(*amg_, matrix_, dim, degree, modes_);
       name = "ML AMG cycle";

@@ -540,10 +540,15 @@ TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
   const auto r = run_case(write_case("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
   EXPECT_EQ(r.solver.rfind("cg+gmg (matrix-free", 0), 0u) << r.solver;
   EXPECT_LT(r.residual, 1e-10);  // the default tolerance
-  // Coarse mesh above direct_limit: ML on the whole problem instead.
-  const auto ml = run_case(write_case("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 500")));
+  // Coarse mesh above direct_limit: still multigrid, its coarse level one ML cycle.
+  const auto ml_coarse =
+      run_case(write_case("mg_auto_ml_coarse.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 500")));
+  EXPECT_NE(ml_coarse.solver.find("coarse ML AMG cycle"), std::string::npos) << ml_coarse.solver;
+  EXPECT_LT(relative_difference(r, ml_coarse), 1e-8);
+  // An unrefined mesh above direct_limit (multigrid would have a single level): ML on the whole problem.
+  const auto ml = run_case(write_case("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "direct_limit = 500")));
+  EXPECT_EQ(ml.n_dofs, 882u);
   EXPECT_EQ(ml.solver, "cg+amg (ML)");
-  EXPECT_LT(relative_difference(r, ml), 1e-8);
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -35,8 +35,9 @@ struct FemOptions {
   int degree = 1;                       ///< polynomial degree 1 or 2
   Model model = Model::PlaneStress;
   SolverKind solver = SolverKind::Auto;
-  long direct_limit = 50000;            ///< Auto: direct solver up to this many DoFs, else CG + multigrid
-                                        ///< (geometric on quads/hexes, ML AMG on triangles/tetrahedra)
+  long direct_limit = 20000;            ///< Auto: direct solver up to this many DoFs in 2D (in 3D up to
+                                        ///< direct_limit^(3/4): the same factorisation work), else CG +
+                                        ///< multigrid (geometric on refined quads/hexes, else ML AMG)
   double tolerance = 1e-10;             ///< CG: stop at ||K u - f|| <= tolerance * ||f||
   int max_iterations = 2000;
   int refine = 0;                       ///< global refinements of the gmsh mesh
@@ -175,5 +176,9 @@ int mpi_size();
 void mpi_barrier();
 /// Broadcasts a string from rank 0.
 std::string mpi_broadcast(const std::string& text);
+/// Runs `step` on every rank (collective: every rank calls it); if it throws on any rank, every rank
+/// throws the same workbench::Error (the message of the lowest failing rank), so no rank is left
+/// waiting in a later collective. For steps that may fail on one rank only (files, folders).
+void mpi_collective(const std::function<void()>& step);
 
 }  // namespace fem_reference

@@ -3,13 +3,15 @@
 
     /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01]
 
-Reads OUT_DIR/{lines,cells,nodes,steps}.csv (written by `workbench compare`) and writes
-OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed, fig11_displacement
-(.png and .pdf) and agent_steps.gif. 3D studies are drawn in the slice through the load centre.
+Reads OUT_DIR/{lines,cells,nodes,steps}.csv and lines.json (written by `workbench compare`) and
+writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed,
+fig11_displacement (.png and .pdf) and agent_steps.gif. Lines are named by their coordinates and
+described in the legends; 3D studies are drawn in the slice through the first load's centre.
 Uses Debian's python3-matplotlib and python3-numpy only; call it with /usr/bin/python3.
 """
 import argparse
 import csv
+import json
 import os
 import sys
 
@@ -39,18 +41,16 @@ def save(fig, out, name):
     plt.close(fig)
 
 
-def line_groups(lines):
-    names = list(dict.fromkeys(lines["line"]))
-    return [n for n in names if n == "vertical"], [n for n in names if n != "vertical"]
+def line_groups(meta):
+    """The lines along a load (and the user's) and the lines across a load, as lines.json lists them."""
+    along = [m for m in meta if m["kind"] in ("along", "user")]
+    across = [m for m in meta if m["kind"] == "across"]
+    return along, across
 
 
 def line_data(lines, model, name):
     sel = (lines["model"] == model) & (lines["line"] == name)
     return {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line")}
-
-
-def depth_label(name):
-    return f"depth {float(name.split('_')[1]):g} H"
 
 
 def main():
@@ -64,15 +64,19 @@ def main():
     title = args.title
 
     lines = read_csv(os.path.join(args.dir, "lines.csv"))
+    with open(os.path.join(args.dir, "lines.json")) as f:
+        meta = json.load(f)
     cells = read_csv(os.path.join(args.dir, "cells.csv"))
     nodes = read_csv(os.path.join(args.dir, "nodes.csv"))
     steps = read_csv(os.path.join(args.dir, "steps.csv"))
-    vertical, horizontal = line_groups(lines)
-    y_top = num(nodes["y"]).max()
+    along, across = line_groups(meta)
+    groups = ((along, "along the loads"), (across, "across the loads"))
+    slice_note = ""
 
-    # 3D: keep the slice through the load centre (the vertical line's z).
+    # 3D: keep the slice through the first load's centre (its along line's z).
     if "z" in cells:
-        zc = num(lines["z"])[0]
+        zc = along[0]["from"][2]
+        slice_note = f", slice z = {1e3 * zc:.4g} mm"
         cz = num(cells["z"])
         keep = np.isclose(cz, cz[np.argmin(abs(cz - zc))])
         cells = {k: v[keep] for k, v in cells.items()}
@@ -82,47 +86,55 @@ def main():
         step_keep = np.isin(steps["cell"], cells["cell"])
         steps = {k: v[step_keep] for k, v in steps.items()}
 
-    # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines.
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharey="row", constrained_layout=True)
+    def legend(ax):
+        ax.legend(fontsize=6, loc="best")
+        ax.grid(alpha=0.3)
+
+    # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines, masked where |FEM| is small
+    # against the line's own maximum (a ratio blows up at a sign change), and beside it the signed
+    # error over the line's maximum |FEM|, which does not.
+    fig, axes = plt.subplots(2, 4, figsize=(20, 8), constrained_layout=True)
     for row, comp in enumerate(("sigma_x", "sigma_y")):
-        for col, group in enumerate((vertical, horizontal)):
-            ax = axes[row, col]
-            for name in group:
-                a, f = line_data(lines, "agent", name), line_data(lines, "fem", name)
+        for col, (group, what) in enumerate(groups):
+            ax_r, ax_e = axes[row, 2 * col], axes[row, 2 * col + 1]
+            for m in group:
+                a, f = line_data(lines, "agent", m["name"]), line_data(lines, "fem", m["name"])
                 ref = f[comp]
-                valid = np.abs(ref) >= args.mask * np.abs(ref).max() if np.abs(ref).max() > 0 else ref != ref
+                scale = np.abs(ref).max()
+                valid = np.abs(ref) >= args.mask * scale if scale > 0 else np.zeros(len(ref), bool)
                 ratio = np.where(valid, a[comp] / np.where(valid, ref, 1.0), np.nan)
-                if name == "vertical":
-                    ax.plot(1e3 * (y_top - a["y"]), ratio, "o-", ms=2, label="under the load")
-                else:
-                    ax.plot(1e3 * a["x"], ratio, "-", label=depth_label(name))
-            ax.axhline(1.0, color="k", lw=0.8)
-            ax.set_xlabel("depth below the top [mm]" if col == 0 else "x [mm]")
-            ax.set_ylabel(f"{comp} agent / FEM [-]")
-            ax.set_title(("vertical line under the load" if col == 0 else "horizontal lines") + f": {comp} ratio")
-            ax.legend(fontsize=8)
-            ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 8 - ratio of agent to FEM stress ({title}); masked where |FEM| < {args.mask:g} max|FEM|")
+                s_mm = 1e3 * a["arc_length"]
+                ax_r.plot(s_mm, ratio, "o-", ms=2, label=m["description"])
+                ax_e.plot(s_mm, (a[comp] - ref) / (scale if scale > 0 else 1.0), "-", label=m["description"])
+            ax_r.axhline(1.0, color="k", lw=0.8)
+            ax_e.axhline(0.0, color="k", lw=0.8)
+            for ax in (ax_r, ax_e):
+                ax.set_xlabel("distance along the line from its start [mm]")
+            ax_r.set_ylabel(f"{comp} agent / FEM [-]")
+            ax_e.set_ylabel(f"({comp} agent - FEM) / max|FEM| on the line [-]")
+            ax_r.set_title(f"{what}: {comp} ratio")
+            ax_e.set_title(f"{what}: {comp} signed error")
+            legend(ax_r)
+            legend(ax_e)
+    fig.suptitle(f"Fig. 8 - agent against FEM stress ({title}{slice_note}); ratio masked where |FEM| < "
+                 f"{args.mask:g} of the line's max|FEM|")
     save(fig, out, "fig8_ratio")
 
     # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
+    fig, axes = plt.subplots(2, 2, figsize=(12, 8), constrained_layout=True)
     for row, comp in enumerate(("sigma_x", "sigma_y")):
-        for col, group in enumerate((vertical, horizontal)):
+        for col, (group, what) in enumerate(groups):
             ax = axes[row, col]
-            for i, name in enumerate(group):
-                colour = f"C{i}"
+            for i, m in enumerate(group):
                 for model, style in (("fem", "-"), ("agent", "--")):
-                    d = line_data(lines, model, name)
-                    s = 1e3 * (y_top - d["y"]) if name == "vertical" else 1e3 * d["x"]
-                    label = ("FEM" if model == "fem" else "agent") + ("" if name == "vertical" else f", {depth_label(name)}")
-                    ax.plot(s, d[comp] / 1e3, style, color=colour, label=label)
-            ax.set_xlabel("depth below the top [mm]" if col == 0 else "x [mm]")
+                    d = line_data(lines, model, m["name"])
+                    label = ("FEM, " if model == "fem" else "agent, ") + m["description"]
+                    ax.plot(1e3 * d["arc_length"], d[comp] / 1e3, style, color=f"C{i}", label=label)
+            ax.set_xlabel("distance along the line from its start [mm]")
             ax.set_ylabel(f"{comp} [kPa]")
-            ax.set_title(("vertical line under the load" if col == 0 else "horizontal lines") + f": {comp}")
-            ax.legend(fontsize=7)
-            ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title})")
+            ax.set_title(f"{what}: {comp}")
+            legend(ax)
+    fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
     save(fig, out, "fig9_stress_lines")
 
     x, y = num(cells["x"]), num(cells["y"])
@@ -148,7 +160,7 @@ def main():
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
             fig.colorbar(im, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
-    fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title})")
+    fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
     save(fig, out, "fig9_stress_maps")
 
     # Fig. 10: deformed shape, (a) FEM and (b) agents, one magnification for both.
@@ -173,25 +185,26 @@ def main():
         ax.set_title(f"{label}, |u|max = {np.hypot(U, V).max():.3g} m")
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
-    fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed) ({title})")
+    h_mm = 1e3 * (X[0, 1] - X[0, 0])
+    fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
+                 f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
     save(fig, out, "fig10_deformed")
 
-    # Fig. 11: displacement of both models along the lines.
-    fig, axes = plt.subplots(1, 3, figsize=(15, 5), constrained_layout=True)
-    panels = ((axes[0], vertical, "u_y"), (axes[1], horizontal, "u_y"), (axes[2], horizontal, "u_x"))
-    for ax, group, comp in panels:
-        for i, name in enumerate(group):
-            for model, style in (("fem", "-"), ("agent", "--")):
-                d = line_data(lines, model, name)
-                s = 1e3 * (y_top - d["y"]) if name == "vertical" else 1e3 * d["x"]
-                label = ("FEM" if model == "fem" else "agent") + ("" if name == "vertical" else f", {depth_label(name)}")
-                ax.plot(s, 1e9 * d[comp], style, color=f"C{i}", label=label)
-        ax.set_xlabel("depth below the top [mm]" if group is vertical else "x [mm]")
-        ax.set_ylabel(f"{comp} [nm]")
-        ax.set_title(("vertical line under the load" if group is vertical else "horizontal lines") + f": {comp}")
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title})")
+    # Fig. 11: displacement of both models along the lines, both components.
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9), constrained_layout=True)
+    for col, (group, what) in enumerate(groups):
+        for row, comp in enumerate(("u_y", "u_x")):
+            ax = axes[row, col]
+            for i, m in enumerate(group):
+                for model, style in (("fem", "-"), ("agent", "--")):
+                    d = line_data(lines, model, m["name"])
+                    label = ("FEM, " if model == "fem" else "agent, ") + m["description"]
+                    ax.plot(1e3 * d["arc_length"], 1e9 * d[comp], style, color=f"C{i}", label=label)
+            ax.set_xlabel("distance along the line from its start [mm]")
+            ax.set_ylabel(f"{comp} [nm]")
+            ax.set_title(f"{what}: {comp}")
+            legend(ax)
+    fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title}{slice_note})")
     save(fig, out, "fig11_displacement")
 
     # The seed's animation: the agents' sigma_y as the load rises step by step.

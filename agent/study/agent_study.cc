@@ -192,7 +192,7 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
 
 }  // namespace
 
-void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
+std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
   agent::Material material{study.setup.young, study.setup.poisson};
   agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules);
   const auto mesh = output_mesh(study);
@@ -201,10 +201,11 @@ void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostr
   auto diagnostics = open_csv(dir / "agent_diagnostics.csv");
   diagnostics << "step,load_factor,agents_generated,agent_updates,applied,rigid_reaction,passed_out,dropped,"
                  "lateral_reaction,lateral_passed_out,lateral_dropped\n";
-  AgentState state;
+  std::vector<AgentState> states;
   for (int k = 1; k <= steps; ++k) {
     const double factor = double(k) / steps;
-    state = evaluate(study, model, factor);
+    states.push_back(evaluate(study, model, factor));
+    const auto& state = states.back();
     check_finite(state.face_forces, "face force");
     check_finite(state.displacement, "displacement");
     char name[64];
@@ -221,8 +222,9 @@ void write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostr
   }
   if (!diagnostics) throw Error((dir / "agent_diagnostics.csv").string() + ": write failed");
   workbench::write_pvd(dir / "agent.pvd", series);
-  write_cells_csv(dir / "agent_cells.csv", study, state);
-  write_nodes_csv(dir / "agent_nodes.csv", study, state, mesh);
+  write_cells_csv(dir / "agent_cells.csv", study, states.back());
+  write_nodes_csv(dir / "agent_nodes.csv", study, states.back(), mesh);
+  return states;
 }
 
 }  // namespace agent_study

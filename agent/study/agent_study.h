@@ -42,8 +42,9 @@ struct AgentState {
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
 
 /// Writes agent_step_NNN.vtu per step, agent.pvd, agent_cells.csv and agent_nodes.csv (full
-/// load) and agent_diagnostics.csv (per step) into `dir`, reporting progress on `log`.
-void write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
+/// load) and agent_diagnostics.csv (per step) into `dir`, reporting progress on `log`. Returns the
+/// state at each step (the last is the full load), so that nobody solves them again.
+std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
 
 /// The grid as an output mesh: all nodes, cells in the mesh's element order.
 workbench::OutputMesh output_mesh(const AgentStudy& study);

@@ -46,15 +46,8 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
     s.sigma_y = l2_error(component(agent.sigma, 2, 1), component(c.reference.sigma, 2, 1));
     s.displacement = l2_error(agent.u, c.reference.u);
   } else {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    double total = 0;
-    for (const auto& l : c.study.loads) {
-      centre += l.force * grid.centre(l.cell);
-      total += l.force;
-    }
-    centre /= total;
     std::vector<double> a[3], r[3];
-    for (const auto& line : standard_lines(grid, centre, w.depths))
+    for (const auto& line : load_lines(grid, load_frames(c.study.mesh, c.study.setup.loads), w.depths))
       for (int i = 0; i < line.samples; ++i) {
         const Eigen::Vector3d p = line.point(i);
         for (int f = 0; f < 2; ++f) {
@@ -86,7 +79,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   for (const auto& c : cases) {
     agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, k, rules);
     const auto state = agent_study::evaluate(c.study, model, 1.0);
-    Score s = score_case(c, agent_on_grid(c.study, state), w);
+    Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
     if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
     total += c.weight * s.objective;
     if (per_case) per_case->push_back(s);

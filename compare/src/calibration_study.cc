@@ -141,7 +141,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving FEM once\n"
         << std::flush;
     const auto fem = fem_reference::solve_fem(problem);
-    c.reference = fem_on_grid(c.study, fem, case_file.path().string());
+    c.reference = fem_on_grid(c.study.mesh, fem, case_file.path().string());
     c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }

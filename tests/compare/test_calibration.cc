@@ -36,7 +36,7 @@ CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& t
   c.study = agent_study::load_agent_study(file);
   agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
                             agent::RuleSet::Conserving);
-  c.reference = agent_on_grid(c.study, agent_study::evaluate(c.study, model, 1.0));
+  c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
   return c;
 }
 

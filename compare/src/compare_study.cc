@@ -32,7 +32,7 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
     o.mask = t.number("mask", o.mask, workbench::Range{0.0, 1.0, false, true});
     const auto r = t.table("reference");
     o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
-    o.reference.refine = r.integer("refine", o.reference.refine, 0, 4);
+    if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
     o.far_distance_mm = t.number("far_distance_mm", o.far_distance_mm, workbench::Range::non_negative());
     o.min_reaction_share = t.number("min_reaction_share", o.min_reaction_share, workbench::Range::closed(0.0, 1.0));
     for (const auto& line : t.tables("line")) {
@@ -111,11 +111,13 @@ struct AgentCompareInput {
   std::vector<Line> lines;  ///< each load's lines, then the user's
   NearLoad near;            ///< cells and nodes left out of the far field
   double far_distance = 0;  ///< [m]
+  ReferenceOptions reference;  ///< resolved for the mesh's dimension
 };
 
 AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptions& options) {
-  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0};
+  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
   const auto& grid = in.study.mesh.grid;
+  in.reference = options.reference.resolved(grid.dim);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
   in.lines = load_lines(grid, in.loads, options.depths);
   for (std::size_t i = 0; i < options.lines.size(); ++i)
@@ -347,9 +349,9 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
-  json["reference"] = {{"description", options.reference.describe()},
-                       {"degree", options.reference.degree},
-                       {"refine", options.reference.refine},
+  json["reference"] = {{"description", in.reference.describe()},
+                       {"degree", in.reference.degree},
+                       {"refine", in.reference.refine},
                        {"dofs", fem.n_dofs},
                        {"estimate", reference.estimate.describe()},
                        {"estimate_dofs", reference.estimate_dofs},
@@ -379,7 +381,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
   // 3. The FEM reference at two levels (its output in dir/fem).
   t = std::chrono::steady_clock::now();
-  const auto reference = solve_reference(in.problem, options.reference, in.study.mesh, dir, log);
+  const auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
   const double fem_seconds = seconds_since(t);
 
   // 4. Everything on the agent grid and along the lines.
@@ -421,7 +423,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
   // 8. The gate, summary.json / summary.txt / junit.xml.
   const std::vector<std::string> notes{
-      "reference: " + options.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
+      "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
           " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
           " DoFs) against it",
       "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +

@@ -35,7 +35,9 @@ GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState&
 /// mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the agents' own mesh.
 struct ReferenceOptions {
   int degree = 2;
-  int refine = 1;
+  int refine = -1;  ///< -1 (the default): 1 in 2D, 0 in 3D (a refined 3D mesh costs 8 times more)
+  /// These options with the default refinement resolved for a `dim`-dimensional mesh.
+  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0}; }
   /// The level beside the reference for its error estimate: one refinement coarser; on the agents'
   /// own mesh Q1 for Q2, and for Q1 itself one refinement finer.
   ReferenceOptions estimate() const {

@@ -76,10 +76,26 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
                  const ObjectiveWeights& w, std::vector<Score>* per_case) {
   double total = 0;
   if (per_case) per_case->clear();
-  for (const auto& c : cases) {
-    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, k, rules);
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const auto& c = cases[ci];
+    agent::Coefficients kc = k;  // the held coefficients are each case's own
+    const auto& own = c.study.coefficients;
+    double* fitted[5] = {&kc.alpha1, &kc.alpha2, &kc.alpha3, &kc.beta, &kc.gamma};
+    const double held[5] = {own.alpha1, own.alpha2, own.alpha3, own.beta, own.gamma};
+    for (int i = 0; i < 5; ++i)
+      if (w.held_from_case[i]) *fitted[i] = held[i];
+    kc.poisson_decay = kc.alpha2;
+    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules);
     const auto state = agent_study::evaluate(c.study, model, 1.0);
     Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
+    const auto& d = state.diagnostics;
+    s.reaction_share = d.applied > 0 ? d.rigid_reaction / d.applied : 0.0;
+    s.reach = double(d.agents_generated) / double(c.study.mesh.cell_of_element.size());
+    s.equilibrium_dev = d.applied > 0 ? std::abs(d.rigid_reaction - d.applied) / d.applied : 0.0;
+    if (w.keep_load && ci < w.equilibrium_ceiling.size() && s.equilibrium_dev > w.equilibrium_ceiling[ci]) {
+      s.load_refused = true;
+      s.objective = 1e30;
+    }
     if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
     total += c.weight * s.objective;
     if (per_case) per_case->push_back(s);
@@ -87,8 +103,11 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   return total;
 }
 
-CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& o,
+CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress) {
+  // The load balance at the start is what every fitted point must keep (keep_load).
+  CalibrationOptions o = options;
+  o.weights.equilibrium_ceiling.clear();
   std::vector<int> free;
   for (int i = 0; i < 5; ++i)
     if (o.parameters[i].free) free.push_back(i);
@@ -117,6 +136,8 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   CalibrationResult result;
   result.start = coefficients_from(start_values);
   result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before);
+  if (o.weights.keep_load)
+    for (const auto& s : result.before) o.weights.equilibrium_ceiling.push_back(s.equilibrium_dev + kLoadTolerance);
   std::vector<double> best_f(starts.size(), INFINITY);
   std::vector<std::vector<double>> best_x = starts;
   std::vector<long> evaluations(starts.size(), 0);

@@ -26,6 +26,7 @@ struct Plan {
   bool cross_validate = true;
   std::vector<fs::path> case_files;
   std::vector<double> case_weights;
+  std::array<bool, 5> start_given{};  ///< else the start is the first case's own [agent] value
 };
 
 Plan read_plan(const workbench::CaseFile& file) {
@@ -50,6 +51,7 @@ Plan read_plan(const workbench::CaseFile& file) {
     w.fail("sigma_y", "at least one of sigma_x, sigma_y, displacement must have a positive weight");
   o.weights.lines = w.text("scope", "body", {"body", "lines"}) == "lines";
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
+  o.weights.keep_load = t.flag("keep_load", true);
 
   const auto cases = t.tables("case");
   if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
@@ -72,10 +74,11 @@ Plan read_plan(const workbench::CaseFile& file) {
     // alpha2 keeps a small floor by default: the conserving split needs alpha2 + alpha3 > 0.
     param.lo = p.number("min", name == "alpha2" ? 0.01 : 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
     param.hi = p.number("max", gamma ? 10 * seed_values[4] : 1.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    plan.start_given[i] = p.has("start");
     param.start = p.number("start", seed_values[i], gamma ? Range::non_negative() : Range::closed(0, 1));
     if (param.free && !(param.lo < param.hi))
       p.fail("max", "must be greater than min (" + std::to_string(param.lo) + ")");
-    if (param.free && (param.start < param.lo || param.start > param.hi))
+    if (param.free && plan.start_given[i] && (param.start < param.lo || param.start > param.hi))
       p.fail("start", "must lie within [min, max]");
     n_free += param.free;
   }
@@ -135,17 +138,35 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     c.name = plan.case_files[i].stem().string();
     c.study = agent_study::load_agent_study(case_file);
     auto problem = fem_reference::problem_from_case(case_file);
-    if (read_compare_options(case_file.root()).model != "agent")
+    const auto compare_options = read_compare_options(case_file.root());
+    if (compare_options.model != "agent")
       case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
     case_file.reject_unknown_keys();
-    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving FEM once\n"
-        << std::flush;
+    // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
+    const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
+    problem.options.degree = reference.degree;
+    problem.options.refine = reference.refine;
+    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving the reference ("
+        << reference.describe() << ") once\n" << std::flush;
     const auto fem = fem_reference::solve_fem(problem);
     c.reference = fem_on_grid(c.study.mesh, fem, case_file.path().string());
     c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }
 
+  // Start from the first case's own coefficients, and hold each case's own where not fitted,
+  // unless the calibration file gives a start.
+  for (int i = 0; i < 5; ++i) {
+    if (plan.start_given[i]) continue;
+    auto& p = plan.options.parameters[i];
+    const auto& k = cases.front().study.coefficients;
+    const double own[5] = {k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma};
+    p.start = own[i];
+    plan.options.weights.held_from_case[i] = !p.free;
+    if (p.free && (p.start < p.lo || p.start > p.hi))
+      file.root().table("calibrate").table(p.name).fail(
+          "start", "the first case's own value " + std::to_string(p.start) + " lies outside [min, max]: give a start");
+  }
   const auto& o = plan.options;
   log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
   auto result = calibrate(cases, o, &log);
@@ -191,7 +212,31 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
       << std::setw(12) << result.after[i].sigma_x << std::setw(14) << result.before[i].sigma_y << std::setw(12)
       << result.after[i].sigma_y << std::setw(12) << result.before[i].displacement << std::setw(12)
       << result.after[i].displacement << "\n";
+  r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
+    << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
+    << "reach before" << std::setw(10) << "after" << "\n";
+  std::vector<std::string> warnings;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto &b = result.before[i], &a = result.after[i];
+    r << std::left << std::setw(28) << cases[i].name << std::right << std::setw(22) << b.equilibrium_dev
+      << std::setw(10) << a.equilibrium_dev << std::setw(22) << b.reaction_share << std::setw(10) << a.reaction_share
+      << std::setw(14) << b.reach << std::setw(10) << a.reach << "\n";
+    if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
+      warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + cases[i].name +
+                         ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
+                         std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
+    if (a.equilibrium_dev > 0.1)
+      warnings.push_back("calibrate: WARNING: " + cases[i].name + ": the rigid reaction is " +
+                         std::to_string(a.reaction_share) + " of the applied load after the fit");
+  }
+  r << "load balance: " << (o.weights.keep_load ? "kept (calibrate.keep_load): no case may end with a larger "
+                                                 "equilibrium_dev than at the start"
+                                               : "not constrained (calibrate.keep_load = false)")
+    << "\n";
+  for (const auto& w : warnings) r << w << "\n";
   r << "\nsensitivity at the optimum (objective with the coefficient moved by 10 % of its range):\n";
+  if (o.weights.keep_load)
+    r << "(2e+30: the move is refused, it would lose load; with calibrate.keep_load = false it is scored)\n";
   for (const auto& s : result.sensitivity)
     r << "  " << std::left << std::setw(8) << s.name << std::right << " -: " << std::setw(10) << s.objective_minus
       << "  +: " << std::setw(10) << s.objective_plus << "  curvature " << std::setw(10) << s.curvature << "  "
@@ -227,7 +272,12 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   for (std::size_t i = 0; i < cases.size(); ++i)
     j["cases"][cases[i].name] = {
         {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
-        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}}};
+        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}},
+        {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
+        {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
+        {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
+  j["keep_load"] = o.weights.keep_load;
+  j["warnings"] = warnings;
   for (const auto& s : result.sensitivity)
     j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
   for (const auto& f : folds)

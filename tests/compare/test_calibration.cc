@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <unistd.h>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -15,8 +16,13 @@ namespace {
 
 const std::string kSource = WORKBENCH_SOURCE_DIR;
 
+/// This process's own scratch folder (ctest runs the tests of this file in parallel processes).
+fs::path scratch() {
+  return fs::temp_directory_path() / ("workbench_calibration_test_" + std::to_string(::getpid()));
+}
+
 fs::path write(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "workbench_calibration_test";
+  const fs::path dir = scratch();
   fs::create_directories(dir);
   std::ofstream(dir / name) << text;
   return dir / name;
@@ -29,13 +35,13 @@ std::string plate_case(const std::string& xc = "0.1") {
 }
 
 /// A load case whose reference is the agent model itself with coefficients `truth`.
-CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth) {
+CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth,
+                             agent::RuleSet rules = agent::RuleSet::Conserving) {
   workbench::CaseFile file(write("plate_" + xc + ".toml", plate_case(xc)));
   CalibrationCase c;
   c.name = "plate_" + xc;
   c.study = agent_study::load_agent_study(file);
-  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
-                            agent::RuleSet::Conserving);
+  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth, rules);
   c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
   return c;
 }
@@ -52,13 +58,15 @@ CalibrationOptions options() {
   o.seed = 7;
   o.max_evaluations = 600;
   o.tolerance = 1e-12;
+  o.weights.keep_load = false;  // the targets below lose more load than the start: tested on its own
   return o;
 }
 
 std::string error_of(const std::string& text) {
   try {
     workbench::CaseFile file(write("calibration.toml", text));
-    compare::run_calibration(file, fs::temp_directory_path() / "workbench_calibration_out", *new std::ostringstream);
+    std::ostringstream log;
+    compare::run_calibration(file, scratch() / "out", log);
   } catch (const workbench::Error& e) {
     return e.what();
   }
@@ -138,4 +146,25 @@ TEST(Calibration, RefusesBadCalibrationFiles) {
             std::string::npos);
   EXPECT_NE(error_of(base + "[calibrate.objective]\nsigma_y = 0\ndisplacement = 0\n").find("positive weight"),
             std::string::npos);
+}
+
+TEST(Calibration, NeverEndsWithMoreLoadLostThanItStartedUnlessAllowed) {
+  // Off-centre load near a free side: a target with wider friction spreading (alpha3 = 0.6) passes
+  // more of the load out through the free sides than the start (alpha3 = 0.25) does.
+  const auto truth = coefficients_from({0.5, 0.3, 0.6, 0.6, 1e-9});
+  const std::vector<CalibrationCase> cases{agent_target("0.05", truth)};
+  auto o = options();
+  std::vector<Score> at_truth;
+  objective(cases, truth, o.rules, o.weights, &at_truth);
+  o.weights.keep_load = true;
+  const auto kept = calibrate(cases, o);
+  ASSERT_GT(at_truth[0].equilibrium_dev, kept.before[0].equilibrium_dev + 0.01);  // the target loses more load
+  EXPECT_LE(kept.after[0].equilibrium_dev, kept.before[0].equilibrium_dev + kLoadTolerance);
+  EXPECT_LE(kept.objective_best, kept.objective_start);
+  // Allowed to lose load, the same fit finds the target, and with it the larger loss.
+  o.weights.keep_load = false;
+  const auto free = calibrate(cases, o);
+  EXPECT_NEAR(free.best.alpha3, 0.6, 2e-3);
+  EXPECT_NEAR(free.after[0].equilibrium_dev, at_truth[0].equilibrium_dev, 1e-3);
+  EXPECT_LT(free.objective_best, kept.objective_best);
 }

@@ -25,6 +25,17 @@ agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
   return k;
 }
 
+agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
+                             const std::array<bool, 5>& held) {
+  agent::Coefficients k = fitted;
+  double* out[5] = {&k.alpha1, &k.alpha2, &k.alpha3, &k.beta, &k.gamma};
+  const double theirs[5] = {own.alpha1, own.alpha2, own.alpha3, own.beta, own.gamma};
+  for (int i = 0; i < 5; ++i)
+    if (held[i]) *out[i] = theirs[i];
+  k.poisson_decay = k.alpha2;
+  return k;
+}
+
 namespace {
 
 double l2_error(const std::vector<double>& model, const std::vector<double>& reference) {
@@ -78,13 +89,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   if (per_case) per_case->clear();
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const auto& c = cases[ci];
-    agent::Coefficients kc = k;  // the held coefficients are each case's own
-    const auto& own = c.study.coefficients;
-    double* fitted[5] = {&kc.alpha1, &kc.alpha2, &kc.alpha3, &kc.beta, &kc.gamma};
-    const double held[5] = {own.alpha1, own.alpha2, own.alpha3, own.beta, own.gamma};
-    for (int i = 0; i < 5; ++i)
-      if (w.held_from_case[i]) *fitted[i] = held[i];
-    kc.poisson_decay = kc.alpha2;
+    const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
     agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules);
     const auto state = agent_study::evaluate(c.study, model, 1.0);
     Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);

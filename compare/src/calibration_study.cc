@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -96,24 +97,125 @@ std::ofstream open_out(const fs::path& file) {
   return out;
 }
 
+/// The shortest decimal text that reads back as exactly `v`.
+std::string shortest(double v) {
+  char text[64];
+  const auto r = std::to_chars(text, text + sizeof text, v);
+  std::string s(text, r.ptr);
+  if (s.find_first_of(".eE") == std::string::npos && s.find("inf") == std::string::npos && s.find("nan") == std::string::npos)
+    s += ".0";  // a TOML float, not an integer
+  return s;
+}
+
+/// A TOML basic string.
+std::string quoted(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  return q + "\"";
+}
+
+/// The table a line opens ("agent" for "[agent]  # ..."), or "" if it opens none.
+std::string table_of(const std::string& line) {
+  const auto a = line.find_first_not_of(" \t");
+  if (a == std::string::npos || line[a] != '[') return "";
+  const bool array = line.compare(a, 2, "[[") == 0;
+  const auto b = line.find(array ? "]]" : "]", a);
+  if (b == std::string::npos) return "";
+  std::string name = line.substr(a + (array ? 2 : 1), b - a - (array ? 2 : 1));
+  name.erase(0, name.find_first_not_of(" \t"));
+  name.erase(name.find_last_not_of(" \t") + 1);
+  return name;
+}
+
+/// The key a `key = value` line sets, or "".
+std::string key_of(const std::string& line) {
+  const auto a = line.find_first_not_of(" \t");
+  const auto eq = line.find('=');
+  if (a == std::string::npos || eq == std::string::npos || line[a] == '#' || line[a] == '[') return "";
+  std::string key = line.substr(a, eq - a);
+  key.erase(key.find_last_not_of(" \t") + 1);
+  return key;
+}
+
+/// `line` with its value replaced by `value`, the comment after it kept.
+std::string set_value(const std::string& line, const std::string& value) {
+  const auto eq = line.find('=');
+  auto comment = line.find('#', eq);
+  if (comment != std::string::npos && line.find('"', eq) < comment) comment = line.find('#', line.find('"', line.find('"', eq) + 1));
+  const std::string tail = comment == std::string::npos ? "" : "  " + line.substr(comment);
+  return line.substr(0, eq) + "= " + value + tail;
+}
+
+}  // namespace
+
+std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
+                              agent::RuleSet rules) {
+  const toml::table original = toml::parse(text);
+  std::vector<std::pair<std::string, std::string>> wanted{
+      {"rule_set", rules == agent::RuleSet::Patent ? "\"patent\"" : "\"conserving\""},
+      {"alpha1", shortest(k.alpha1)}, {"alpha2", shortest(k.alpha2)}, {"alpha3", shortest(k.alpha3)},
+      {"beta", shortest(k.beta)}, {"gamma", shortest(k.gamma)}, {"poisson_decay", shortest(k.poisson_decay)}};
+  const double values[] = {0, k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma, k.poisson_decay};
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  std::vector<bool> done(wanted.size(), false);
+  std::string table;
+  int agent_end = -1;  // index after the last line of [agent]
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    if (const auto t = table_of(lines[n]); !t.empty()) {
+      table = t;
+      continue;
+    }
+    const auto key = key_of(lines[n]);
+    if (table == "mesh" && key == "file")
+      if (auto file = original["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
+        lines[n] = set_value(lines[n], quoted(fs::absolute(case_dir / *file).lexically_normal().string()));
+    if (table != "agent") continue;
+    agent_end = int(n) + 1;
+    for (std::size_t w = 0; w < wanted.size(); ++w) {
+      if (key != wanted[w].first) continue;
+      done[w] = true;
+      const auto old = original["agent"][key];
+      const bool same = w == 0 ? old.value<std::string>() == std::optional<std::string>(
+                                                                  rules == agent::RuleSet::Patent ? "patent" : "conserving")
+                               : old.value<double>() == std::optional<double>(values[w]);
+      if (!same) lines[n] = set_value(lines[n], wanted[w].second);
+    }
+  }
+  std::vector<std::string> missing;
+  for (std::size_t w = 0; w < wanted.size(); ++w)
+    if (!done[w]) missing.push_back(wanted[w].first + " = " + wanted[w].second);
+  if (agent_end < 0) {
+    if (!missing.empty()) lines.push_back("\n[agent]");
+    agent_end = int(lines.size());
+  }
+  lines.insert(lines.begin() + agent_end, missing.begin(), missing.end());
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  // What was written must read back as exactly the fitted values.
+  const toml::table check = toml::parse(out);
+  for (std::size_t w = 1; w < wanted.size(); ++w)
+    if (check["agent"][wanted[w].first].value<double>() != std::optional<double>(values[w]))
+      throw Error("calibrate: the calibrated case does not read back " + wanted[w].first + " = " + wanted[w].second);
+  return out;
+}
+
+namespace {
+
 /// The case file again, with the fitted [agent] coefficients and an absolute mesh path.
 void write_calibrated_case(const fs::path& original, const fs::path& target, const agent::Coefficients& k,
                            agent::RuleSet rules, const std::string& note) {
-  toml::table t = toml::parse_file(original.string());
-  if (auto* mesh = t["mesh"].as_table())
-    if (auto file = (*mesh)["file"].value<std::string>(); file && fs::path(*file).is_relative())
-      mesh->insert_or_assign("file", fs::absolute(original.parent_path() / *file).lexically_normal().string());
-  if (!t["agent"].as_table()) t.insert_or_assign("agent", toml::table{});
-  auto& a = *t["agent"].as_table();
-  a.insert_or_assign("rule_set", rules == agent::RuleSet::Patent ? "patent" : "conserving");
-  a.insert_or_assign("alpha1", k.alpha1);
-  a.insert_or_assign("alpha2", k.alpha2);
-  a.insert_or_assign("alpha3", k.alpha3);
-  a.insert_or_assign("beta", k.beta);
-  a.insert_or_assign("gamma", k.gamma);
-  a.insert_or_assign("poisson_decay", k.poisson_decay);
-  auto out = open_out(target);
-  out << "# " << note << "\n" << t << "\n";
+  std::ifstream in(original);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string out = with_coefficients(text.str(), original.parent_path(), k, rules);
+  auto file = open_out(target);
+  file << "# " << note << "\n" << out;
+  file.close();
+  if (!file) throw Error(target.string() + ": write failed");
 }
 
 std::string coefficient_row(const agent::Coefficients& k) {
@@ -286,7 +388,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
 
   fs::create_directories(dir / "calibrated");
   for (std::size_t i = 0; i < cases.size(); ++i)
-    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"), result.best, o.rules,
+    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
+                          for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
                           "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
                               std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
   return result;

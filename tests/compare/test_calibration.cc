@@ -168,3 +168,21 @@ TEST(Calibration, NeverEndsWithMoreLoadLostThanItStartedUnlessAllowed) {
   EXPECT_NEAR(free.after[0].equilibrium_dev, at_truth[0].equilibrium_dev, 1e-3);
   EXPECT_LT(free.objective_best, kept.objective_best);
 }
+
+TEST(Calibration, CalibratedCaseKeepsTheOriginalsTextAndWritesNumbersShortestExact) {
+  const std::string original =
+      "# The plate, commented\ntitle = \"p\"\n[mesh]\nfile = \"../meshes/plate2d.geo\"  # relative\n"
+      "[agent]\nrule_set = \"conserving\"\nalpha2 = 0.5       # kept comment\ngamma = 1e-4  # held\n"
+      "[compare]\nmask = 0.01\n";
+  agent::Coefficients k = coefficients_from({0.5, 0.3, 0.1 + 0.2, 0.5, 1e-4});  // alpha3: 0.30000000000000004
+  const auto text = with_coefficients(original, "/cases", k, agent::RuleSet::Conserving);
+  EXPECT_NE(text.find("# The plate, commented\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("alpha2 = 0.3  # kept comment\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("gamma = 1e-4  # held\n"), std::string::npos) << text;  // unchanged: untouched
+  EXPECT_NE(text.find("alpha3 = 0.30000000000000004\n"), std::string::npos) << text;  // shortest that reads back exactly
+  EXPECT_NE(text.find("poisson_decay = 0.3\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("file = \"/meshes/plate2d.geo\"  # relative\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("[compare]\nmask = 0.01\n"), std::string::npos) << text;
+  // Keys added inside [agent], before [compare].
+  EXPECT_LT(text.find("beta = 0.5"), text.find("[compare]"));
+}

@@ -94,4 +94,8 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
 /// Coefficients from a parameter vector (alpha1..gamma); poisson_decay follows alpha2.
 agent::Coefficients coefficients_from(const std::array<double, 5>& values);
 
+/// A case's coefficients: the fitted ones, with those `held` taken from the case's `own`.
+agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
+                             const std::array<bool, 5>& held);
+
 }  // namespace compare

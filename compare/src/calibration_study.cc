@@ -174,7 +174,7 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
       if (auto file = original["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
         lines[n] = set_value(lines[n], quoted(fs::absolute(case_dir / *file).lexically_normal().string()));
     if (table != "agent") continue;
-    agent_end = int(n) + 1;
+    if (lines[n].find_first_not_of(" \t") != std::string::npos) agent_end = int(n) + 1;  // after its last line
     for (std::size_t w = 0; w < wanted.size(); ++w) {
       if (key != wanted[w].first) continue;
       done[w] = true;

@@ -1,3 +1,4 @@
+// Calibration of the agent transfer coefficients: the objective, BOBYQA from seeded starts in parallel, sensitivity.
 #include <compare/calibration.h>
 #include <compare/metrics.h>
 
@@ -40,12 +41,6 @@ namespace {
 
 double l2_error(const std::vector<double>& model, const std::vector<double>& reference) {
   return relative_errors(model, reference).rel_l2;
-}
-
-std::vector<double> component(const std::vector<double>& v, int comps, int c) {
-  std::vector<double> out(v.size() / comps);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
-  return out;
 }
 
 Score score_case(const CalibrationCase& c, const GridFields& agent, const ObjectiveWeights& w) {

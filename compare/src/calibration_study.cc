@@ -1,3 +1,4 @@
+// The calibration as a workbench study: the calibration file, each case's reference, the report and the calibrated case files.
 #include <compare/calibration_study.h>
 #include <compare/compare_study.h>
 

@@ -2,6 +2,7 @@
 // on the same body, in named steps: read, run the agent model, solve the reference, sample,
 // score, write, draw, summarise.
 #include <compare/compare_study.h>
+#include <compare/pbd_compare.h>
 #include <compare/reference.h>
 
 #include "report.h"
@@ -60,13 +61,6 @@ const char* kFields[] = {"sigma_x", "sigma_y", "displacement"};
 
 using report::open_out;
 using report::seconds_since;
-
-/// Component `c` of an interleaved field with `comps` values per entry.
-std::vector<double> component(const std::vector<double>& v, int comps, int c) {
-  std::vector<double> out(v.size() / comps);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
-  return out;
-}
 
 /// The entries of `v` (comps per entry) where `keep` is set.
 std::vector<double> select(const std::vector<double>& v, int comps, const std::vector<char>& keep) {

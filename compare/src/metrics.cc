@@ -211,6 +211,12 @@ NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench:
   return out;
 }
 
+std::vector<double> component(const std::vector<double>& v, int comps, int c) {
+  std::vector<double> out(v.size() / comps);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
+  return out;
+}
+
 Errors relative_errors(const std::vector<double>& model, const std::vector<double>& reference) {
   double diff2 = 0, ref2 = 0, diff_max = 0, ref_max = 0;
   for (std::size_t i = 0; i < reference.size(); ++i) {

@@ -1,3 +1,4 @@
+// What both comparisons share: the gate, summary.json / summary.txt / junit.xml, the FEM run and the figure script.
 #include "report.h"
 
 #include <workbench/error.h>

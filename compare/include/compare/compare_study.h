@@ -70,8 +70,4 @@ struct CompareOutcome {
 /// gate keys naming no metric of the chosen model) before running anything.
 CompareOutcome run_compare(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);
 
-/// The PBD comparison (model = "pbd"); run_compare calls it after reading `options`.
-CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options,
-                               const std::filesystem::path& dir, std::ostream& log);
-
 }  // namespace compare

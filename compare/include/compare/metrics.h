@@ -70,6 +70,9 @@ struct NearLoad {
 };
 NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench::LoadSpec>& loads, double distance);
 
+/// Component `c` of an interleaved field with `comps` values per entry.
+std::vector<double> component(const std::vector<double>& v, int comps, int c);
+
 /// ||model - reference|| / ||reference|| in the 2-norm and the max-norm (0 when both are 0).
 struct Errors {
   double rel_l2 = 0;

@@ -51,7 +51,10 @@ Plan read_plan(const workbench::CaseFile& file) {
   o.weights.displacement = w.number("displacement", 1.0, Range::non_negative());
   if (o.weights.sigma_x + o.weights.sigma_y + o.weights.displacement <= 0)
     w.fail("sigma_y", "at least one of sigma_x, sigma_y, displacement must have a positive weight");
-  o.weights.lines = w.text("scope", "body", {"body", "lines"}) == "lines";
+  const std::string scope = w.text("scope", "body", {"body", "far", "lines"});
+  o.weights.lines = scope == "lines";
+  o.weights.far = scope == "far";
+  o.weights.far_distance_mm = w.number("far_distance_mm", 0.0, Range::non_negative());
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
   o.weights.keep_load = t.flag("keep_load", true);
 
@@ -304,7 +307,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     << seconds << " s)\n\n";
   r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x)^2 + " << o.weights.sigma_y
     << " e(sigma_y)^2 + " << o.weights.displacement << " e(u)^2), e = relative L2 error over the "
-    << (o.weights.lines ? "sample lines" : "body") << "\n\n";
+    << (o.weights.lines ? "sample lines" : o.weights.far ? "far field" : "body") << "\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
   r << std::left << std::setw(28) << "case" << std::right << std::setw(12) << "e(sx) before" << std::setw(12) << "after"

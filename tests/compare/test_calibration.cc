@@ -2,6 +2,7 @@
 // is reproducible, and refuses bad calibration files.
 #include <compare/calibration.h>
 #include <compare/calibration_study.h>
+#include <compare/metrics.h>
 
 #include <gtest/gtest.h>
 
@@ -185,4 +186,26 @@ TEST(Calibration, CalibratedCaseKeepsTheOriginalsTextAndWritesNumbersShortestExa
   EXPECT_NE(text.find("[compare]\nmask = 0.01\n"), std::string::npos) << text;
   // Keys added inside [agent], before [compare].
   EXPECT_LT(text.find("beta = 0.5"), text.find("[compare]"));
+}
+
+TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
+  // A target that differs from the start only near the patch: doubling the reference's stress and
+  // displacement within 30 mm of the loaded face changes the body error, not the far field's.
+  const agent::Coefficients truth = coefficients_from({0.5, 0.3, 0.35, 0.6, 1e-9});
+  auto c = agent_target("0.1", truth);
+  auto w = options().weights;
+  w.far = true;
+  w.far_distance_mm = 30;
+  std::vector<Score> before;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &before);
+  EXPECT_LT(before[0].objective, 1e-20);  // the agent model against itself
+  const auto near = near_load(c.study.mesh, c.study.setup.loads, 0.03);
+  for (std::size_t cell = 0; cell < near.cells.size(); ++cell)
+    if (near.cells[cell]) c.reference.sigma[2 * cell + 1] *= 2;
+  std::vector<Score> far, body;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &far);
+  EXPECT_LT(far[0].sigma_y, 1e-12);
+  w.far = false;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &body);
+  EXPECT_GT(body[0].sigma_y, 0.1);
 }

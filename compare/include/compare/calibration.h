@@ -28,6 +28,8 @@ struct ObjectiveWeights {
   double sigma_x = 0.0, sigma_y = 1.0, displacement = 1.0;
   bool lines = false;
   std::vector<double> depths{0.25, 0.5, 0.75};  ///< the lines across each load, when `lines`
+  bool far = false;              ///< over the far field (docs/compare.md) instead of the body
+  double far_distance_mm = 0;    ///< far: what is closer to a loaded face is left out; 0: 5 agent sizes
   /// The load-balance constraint (on by default): a point where a case's equilibrium deviation
   /// |rigid reaction - applied| / applied exceeds `equilibrium_ceiling[case]` is refused (objective 1e30).
   bool keep_load = true;

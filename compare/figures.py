@@ -3,15 +3,19 @@
 
     /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01]
 
-Reads OUT_DIR/{lines,cells,nodes,steps}.csv (written by `workbench compare`) and writes
-OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed, fig11_displacement
-(.png and .pdf) and agent_steps.gif. 3D studies are drawn in the slice through the load centre.
+Reads OUT_DIR/{lines,cells,nodes,steps}.csv and lines.json (written by `workbench compare`) and
+writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed,
+fig11_displacement (.png and .pdf) and agent_steps.gif. Lines are named by their coordinates and
+described in the legends; 3D studies are drawn in the slice through the first load's centre.
 Uses Debian's python3-matplotlib and python3-numpy only; call it with /usr/bin/python3.
 """
 import argparse
 import csv
+import json
+import multiprocessing
 import os
 import sys
+import time
 
 import matplotlib
 
@@ -21,16 +25,37 @@ import numpy as np  # noqa: E402
 from matplotlib import animation  # noqa: E402
 
 
+def column_name(header):
+    """A CSV column's name without its unit ("sigma_y [Pa]" -> "sigma_y")."""
+    return header.split(" [")[0].strip()
+
+
 def read_csv(path):
+    with open(path, newline="") as f:
+        header = [column_name(h) for h in f.readline().strip().split(",")]
+        try:  # all-numeric files (cells, nodes, steps): numpy's C reader, much faster than csv
+            data = np.loadtxt(f, delimiter=",", ndmin=2)
+            if len(data) == 0:
+                sys.exit(f"{path}: no rows")
+            return {k: data[:, i] for i, k in enumerate(header)}
+        except ValueError:
+            pass
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows:
         sys.exit(f"{path}: no rows")
-    return {k.split(" [")[0]: np.array([r[k] for r in rows]) for k in rows[0]}  # "sigma_y [Pa]" -> "sigma_y"
+    columns = {}
+    for k in rows[0]:
+        column = np.array([r[k] for r in rows])
+        try:
+            columns[column_name(k)] = column.astype(float)
+        except ValueError:
+            columns[column_name(k)] = column
+    return columns
 
 
 def num(a):
-    return a.astype(float)
+    return a.astype(float) if a.dtype.kind != "f" else a
 
 
 def progress(text):
@@ -41,23 +66,21 @@ def progress(text):
 
 def save(fig, out, name):
     for ext in ("png", "pdf"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150, bbox_inches="tight")
+        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150)  # constrained layout: no "tight" redraw
     plt.close(fig)
     progress(f"{name} drawn")
 
 
-def line_groups(lines):
-    names = list(dict.fromkeys(lines["line"]))
-    return [n for n in names if n == "vertical"], [n for n in names if n != "vertical"]
+def line_groups(meta):
+    """The lines along a load (and the user's) and the lines across a load, as lines.json lists them."""
+    along = [m for m in meta if m["kind"] in ("along", "user")]
+    across = [m for m in meta if m["kind"] == "across"]
+    return along, across
 
 
 def line_data(lines, model, name):
     sel = (lines["model"] == model) & (lines["line"] == name)
     return {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line")}
-
-
-def depth_label(name):
-    return f"depth {float(name.split('_')[1]):g} H"
 
 
 def main():
@@ -71,15 +94,19 @@ def main():
     title = args.title
 
     lines = read_csv(os.path.join(args.dir, "lines.csv"))
+    with open(os.path.join(args.dir, "lines.json")) as f:
+        meta = json.load(f)
     cells = read_csv(os.path.join(args.dir, "cells.csv"))
     nodes = read_csv(os.path.join(args.dir, "nodes.csv"))
     steps = read_csv(os.path.join(args.dir, "steps.csv"))
-    vertical, horizontal = line_groups(lines)
-    y_top = num(nodes["y"]).max()
+    along, across = line_groups(meta)
+    groups = ((along, "along the loads"), (across, "across the loads"))
+    slice_note = ""
 
-    # 3D: keep the slice through the load centre (the vertical line's z).
+    # 3D: keep the slice through the first load's centre (its along line's z).
     if "z" in cells:
-        zc = num(lines["z"])[0]
+        zc = along[0]["from"][2]
+        slice_note = f", slice z = {1e3 * zc:.4g} mm"
         cz = num(cells["z"])
         keep = np.isclose(cz, cz[np.argmin(abs(cz - zc))])
         cells = {k: v[keep] for k, v in cells.items()}
@@ -89,48 +116,58 @@ def main():
         step_keep = np.isin(steps["cell"], cells["cell"])
         steps = {k: v[step_keep] for k, v in steps.items()}
 
-    # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines.
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharey="row", constrained_layout=True)
-    for row, comp in enumerate(("sigma_x", "sigma_y")):
-        for col, group in enumerate((vertical, horizontal)):
-            ax = axes[row, col]
-            for name in group:
-                a, f = line_data(lines, "agent", name), line_data(lines, "fem", name)
-                ref = f[comp]
-                valid = np.abs(ref) >= args.mask * np.abs(ref).max() if np.abs(ref).max() > 0 else ref != ref
-                ratio = np.where(valid, a[comp] / np.where(valid, ref, 1.0), np.nan)
-                if name == "vertical":
-                    ax.plot(1e3 * (y_top - a["y"]), ratio, "o-", ms=2, label="under the load")
-                else:
-                    ax.plot(1e3 * a["x"], ratio, "-", label=depth_label(name))
-            ax.axhline(1.0, color="k", lw=0.8)
-            ax.set_xlabel("depth below the top [mm]" if col == 0 else "x [mm]")
-            ax.set_ylabel(f"{comp} agent / FEM [-]")
-            ax.set_title(("vertical line under the load" if col == 0 else "horizontal lines") + f": {comp} ratio")
-            ax.legend(fontsize=8)
-            ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 8 - ratio of agent to FEM stress ({title}); masked where |FEM| < {args.mask:g} max|FEM|")
-    save(fig, out, "fig8_ratio")
+    def legend(ax):
+        ax.legend(fontsize=6, loc="best")
+        ax.grid(alpha=0.3)
 
-    # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8), constrained_layout=True)
-    for row, comp in enumerate(("sigma_x", "sigma_y")):
-        for col, group in enumerate((vertical, horizontal)):
-            ax = axes[row, col]
-            for i, name in enumerate(group):
-                colour = f"C{i}"
-                for model, style in (("fem", "-"), ("agent", "--")):
-                    d = line_data(lines, model, name)
-                    s = 1e3 * (y_top - d["y"]) if name == "vertical" else 1e3 * d["x"]
-                    label = ("FEM" if model == "fem" else "agent") + ("" if name == "vertical" else f", {depth_label(name)}")
-                    ax.plot(s, d[comp] / 1e3, style, color=colour, label=label)
-            ax.set_xlabel("depth below the top [mm]" if col == 0 else "x [mm]")
-            ax.set_ylabel(f"{comp} [kPa]")
-            ax.set_title(("vertical line under the load" if col == 0 else "horizontal lines") + f": {comp}")
-            ax.legend(fontsize=7)
-            ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title})")
-    save(fig, out, "fig9_stress_lines")
+    def fig8():
+        # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines, masked where |FEM| is small
+        # against the line's own maximum (a ratio blows up at a sign change), and beside it the signed
+        # error over the line's maximum |FEM|, which does not.
+        fig, axes = plt.subplots(2, 4, figsize=(20, 8), constrained_layout=True)
+        for row, comp in enumerate(("sigma_x", "sigma_y")):
+            for col, (group, what) in enumerate(groups):
+                ax_r, ax_e = axes[row, 2 * col], axes[row, 2 * col + 1]
+                for m in group:
+                    a, f = line_data(lines, "agent", m["name"]), line_data(lines, "fem", m["name"])
+                    ref = f[comp]
+                    scale = np.abs(ref).max()
+                    valid = np.abs(ref) >= args.mask * scale if scale > 0 else np.zeros(len(ref), bool)
+                    ratio = np.where(valid, a[comp] / np.where(valid, ref, 1.0), np.nan)
+                    s_mm = 1e3 * a["arc_length"]
+                    ax_r.plot(s_mm, ratio, "o-", ms=2, label=m["description"])
+                    ax_e.plot(s_mm, (a[comp] - ref) / (scale if scale > 0 else 1.0), "-", label=m["description"])
+                ax_r.axhline(1.0, color="k", lw=0.8)
+                ax_e.axhline(0.0, color="k", lw=0.8)
+                for ax in (ax_r, ax_e):
+                    ax.set_xlabel("distance along the line from its start [mm]")
+                ax_r.set_ylabel(f"{comp} agent / FEM [-]")
+                ax_e.set_ylabel(f"({comp} agent - FEM) / max|FEM| on the line [-]")
+                ax_r.set_title(f"{what}: {comp} ratio")
+                ax_e.set_title(f"{what}: {comp} signed error")
+                legend(ax_r)
+                legend(ax_e)
+        fig.suptitle(f"Fig. 8 - agent against FEM stress ({title}{slice_note}); ratio masked where |FEM| < "
+                     f"{args.mask:g} of the line's max|FEM|")
+        save(fig, out, "fig8_ratio")
+
+    def fig9_lines():
+        # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
+        fig, axes = plt.subplots(2, 2, figsize=(12, 8), constrained_layout=True)
+        for row, comp in enumerate(("sigma_x", "sigma_y")):
+            for col, (group, what) in enumerate(groups):
+                ax = axes[row, col]
+                for i, m in enumerate(group):
+                    for model, style in (("fem", "-"), ("agent", "--")):
+                        d = line_data(lines, model, m["name"])
+                        label = ("FEM, " if model == "fem" else "agent, ") + m["description"]
+                        ax.plot(1e3 * d["arc_length"], d[comp] / 1e3, style, color=f"C{i}", label=label)
+                ax.set_xlabel("distance along the line from its start [mm]")
+                ax.set_ylabel(f"{comp} [kPa]")
+                ax.set_title(f"{what}: {comp}")
+                legend(ax)
+        fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
+        save(fig, out, "fig9_stress_lines")
 
     x, y = num(cells["x"]), num(cells["y"])
     xs, ys = np.unique(x), np.unique(y)
@@ -143,93 +180,119 @@ def main():
 
     extent = [1e3 * (xs[0] - (xs[1] - xs[0]) / 2), 1e3 * (xs[-1] + (xs[1] - xs[0]) / 2),
               1e3 * (ys[0] - (ys[1] - ys[0]) / 2), 1e3 * (ys[-1] + (ys[1] - ys[0]) / 2)]
-    fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
-    for row, comp in enumerate(("sigma_x", "sigma_y")):
-        f = num(cells[f"fem_{comp}"])
-        lim = np.percentile(np.abs(f), 99) or 1.0
-        for col, model in enumerate(("fem", "agent")):
-            ax = axes[row, col]
-            im = ax.imshow(grid_of(num(cells[f"{model}_{comp}"])) / 1e3, origin="lower", extent=extent, cmap="RdBu_r",
-                           vmin=-lim / 1e3, vmax=lim / 1e3)
-            ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}")
+    def fig9_maps():
+        fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
+        for row, comp in enumerate(("sigma_x", "sigma_y")):
+            f = num(cells[f"fem_{comp}"])
+            lim = np.percentile(np.abs(f), 99) or 1.0
+            for col, model in enumerate(("fem", "agent")):
+                ax = axes[row, col]
+                im = ax.imshow(grid_of(num(cells[f"{model}_{comp}"])) / 1e3, origin="lower", extent=extent, cmap="RdBu_r",
+                               vmin=-lim / 1e3, vmax=lim / 1e3)
+                ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}")
+                ax.set_xlabel("x [mm]")
+                ax.set_ylabel("y [mm]")
+                fig.colorbar(im, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
+        fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
+        save(fig, out, "fig9_stress_maps")
+
+    def fig10():
+        # Fig. 10: deformed shape, (a) FEM and (b) agents, one magnification for both.
+        nx_, ny_ = int(num(nodes["i"]).max()) + 1, int(num(nodes["j"]).max()) + 1
+        X = num(nodes["x"]).reshape(ny_, nx_)
+        Y = num(nodes["y"]).reshape(ny_, nx_)
+        span = max(X.max() - X.min(), Y.max() - Y.min())
+        u_max = max(np.abs(num(nodes["fem_u_x"])).max(), np.abs(num(nodes["fem_u_y"])).max(),
+                    np.abs(num(nodes["agent_u_x"])).max(), np.abs(num(nodes["agent_u_y"])).max(), 1e-300)
+        magnification = 0.1 * span / u_max
+        every = max(1, (nx_ - 1) // 25)
+        fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True)
+        for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
+            U = num(nodes[f"{model}_u_x"]).reshape(ny_, nx_)
+            V = num(nodes[f"{model}_u_y"]).reshape(ny_, nx_)
+            Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
+            ax.plot(1e3 * X[:, ::every], 1e3 * Y[:, ::every], color="0.85", lw=0.5)
+            ax.plot(1e3 * X[::every, :].T, 1e3 * Y[::every, :].T, color="0.85", lw=0.5)
+            ax.plot(Xd[:, ::every], Yd[:, ::every], color="C0", lw=0.6)
+            ax.plot(Xd[::every, :].T, Yd[::every, :].T, color="C0", lw=0.6)
+            ax.set_aspect("equal")
+            ax.set_title(f"{label}, |u|max = {np.hypot(U, V).max():.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-            fig.colorbar(im, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
-    fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title})")
-    save(fig, out, "fig9_stress_maps")
+        h_mm = 1e3 * (X[0, 1] - X[0, 0])
+        fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
+                     f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
+        save(fig, out, "fig10_deformed")
 
-    # Fig. 10: deformed shape, (a) FEM and (b) agents, one magnification for both.
-    nx_, ny_ = int(num(nodes["i"]).max()) + 1, int(num(nodes["j"]).max()) + 1
-    X = num(nodes["x"]).reshape(ny_, nx_)
-    Y = num(nodes["y"]).reshape(ny_, nx_)
-    span = max(X.max() - X.min(), Y.max() - Y.min())
-    u_max = max(np.abs(num(nodes["fem_u_x"])).max(), np.abs(num(nodes["fem_u_y"])).max(),
-                np.abs(num(nodes["agent_u_x"])).max(), np.abs(num(nodes["agent_u_y"])).max(), 1e-300)
-    magnification = 0.1 * span / u_max
-    every = max(1, (nx_ - 1) // 25)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True)
-    for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
-        U = num(nodes[f"{model}_u_x"]).reshape(ny_, nx_)
-        V = num(nodes[f"{model}_u_y"]).reshape(ny_, nx_)
-        Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
-        ax.plot(1e3 * X[:, ::every], 1e3 * Y[:, ::every], color="0.85", lw=0.5)
-        ax.plot(1e3 * X[::every, :].T, 1e3 * Y[::every, :].T, color="0.85", lw=0.5)
-        ax.plot(Xd[:, ::every], Yd[:, ::every], color="C0", lw=0.6)
-        ax.plot(Xd[::every, :].T, Yd[::every, :].T, color="C0", lw=0.6)
-        ax.set_aspect("equal")
-        ax.set_title(f"{label}, |u|max = {np.hypot(U, V).max():.3g} m")
+    def fig11():
+        # Fig. 11: displacement of both models along the lines, both components.
+        fig, axes = plt.subplots(2, 2, figsize=(12, 9), constrained_layout=True)
+        for col, (group, what) in enumerate(groups):
+            for row, comp in enumerate(("u_y", "u_x")):
+                ax = axes[row, col]
+                for i, m in enumerate(group):
+                    for model, style in (("fem", "-"), ("agent", "--")):
+                        d = line_data(lines, model, m["name"])
+                        label = ("FEM, " if model == "fem" else "agent, ") + m["description"]
+                        ax.plot(1e3 * d["arc_length"], 1e9 * d[comp], style, color=f"C{i}", label=label)
+                ax.set_xlabel("distance along the line from its start [mm]")
+                ax.set_ylabel(f"{comp} [nm]")
+                ax.set_title(f"{what}: {comp}")
+                legend(ax)
+        fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title}{slice_note})")
+        save(fig, out, "fig11_displacement")
+
+    def animation_gif():
+        # The seed's animation: the agents' sigma_y as the load rises step by step.
+        step_ids = np.unique(num(steps["step"]).astype(int))
+        sy = num(steps["sigma_y"])
+        lim = max(np.abs(sy).max(), 1e-300)
+        cell_index = {c: k for k, c in enumerate(cells["cell"])}
+        order = np.array([cell_index[c] for c in steps["cell"]])
+        fig, ax = plt.subplots(figsize=(6, 5.5))
+        # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey.
+        cmap = plt.get_cmap("magma_r").copy()
+        cmap.set_bad("0.85")
+        image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+        fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached)")
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
-    fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed) ({title})")
-    save(fig, out, "fig10_deformed")
+        label = ax.set_title("")
 
-    # Fig. 11: displacement of both models along the lines.
-    fig, axes = plt.subplots(1, 3, figsize=(15, 5), constrained_layout=True)
-    panels = ((axes[0], vertical, "u_y"), (axes[1], horizontal, "u_y"), (axes[2], horizontal, "u_x"))
-    for ax, group, comp in panels:
-        for i, name in enumerate(group):
-            for model, style in (("fem", "-"), ("agent", "--")):
-                d = line_data(lines, model, name)
-                s = 1e3 * (y_top - d["y"]) if name == "vertical" else 1e3 * d["x"]
-                label = ("FEM" if model == "fem" else "agent") + ("" if name == "vertical" else f", {depth_label(name)}")
-                ax.plot(s, 1e9 * d[comp], style, color=f"C{i}", label=label)
-        ax.set_xlabel("depth below the top [mm]" if group is vertical else "x [mm]")
-        ax.set_ylabel(f"{comp} [nm]")
-        ax.set_title(("vertical line under the load" if group is vertical else "horizontal lines") + f": {comp}")
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-    fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title})")
-    save(fig, out, "fig11_displacement")
+        def frame(k):
+            sel = steps["step"].astype(int) == step_ids[k]
+            values = np.full(len(x), np.nan)
+            values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
+            image.set_data(grid_of(values))
+            label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
+            return image, label
 
-    # The seed's animation: the agents' sigma_y as the load rises step by step.
-    step_ids = np.unique(num(steps["step"]).astype(int))
-    sy = num(steps["sigma_y"])
-    lim = max(np.abs(sy).max(), 1e-300)
-    cell_index = {c: k for k, c in enumerate(cells["cell"])}
-    order = np.array([cell_index[c] for c in steps["cell"]])
-    fig, ax = plt.subplots(figsize=(6, 5.5))
-    # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey.
-    cmap = plt.get_cmap("magma_r").copy()
-    cmap.set_bad("0.85")
-    image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
-    fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached)")
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    label = ax.set_title("")
-
-    def frame(k):
-        sel = steps["step"].astype(int) == step_ids[k]
-        values = np.full(len(x), np.nan)
-        values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
-        image.set_data(grid_of(values))
-        label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
-        return image, label
-
-    progress(f"rendering agent_steps.gif ({len(step_ids)} load steps)")
-    anim = animation.FuncAnimation(fig, frame, frames=len(step_ids), blit=False)
-    anim.save(os.path.join(out, "agent_steps.gif"), writer=animation.PillowWriter(fps=4))
-    plt.close(fig)
+        anim = animation.FuncAnimation(fig, frame, frames=len(step_ids), blit=False)
+        anim.save(os.path.join(out, "agent_steps.gif"), writer=animation.PillowWriter(fps=4))
+        plt.close(fig)
+    print(f"figures: read the data in {time.process_time():.2f} s CPU (with the imports)", flush=True)
+    # The figures are independent: drawn in two processes (forked, sharing the data read above),
+    # which halves the wall time on two cores (docs/performance.md).
+    jobs = ((fig8, fig9_lines, fig11), (fig9_maps, fig10, animation_gif))
+    if os.cpu_count() and os.cpu_count() > 1:
+        procs = [multiprocessing.get_context("fork").Process(target=run_all, args=(j,)) for j in jobs]
+        for proc in procs:
+            proc.start()
+        for proc in procs:
+            proc.join()
+        if any(proc.exitcode != 0 for proc in procs):
+            sys.exit("figures: a drawing process failed")
+    else:
+        for j in jobs:
+            run_all(j)
     print(f"figures: wrote {out}")
+
+
+def run_all(figures):
+    for draw in figures:
+        start = time.process_time()
+        draw()
+        print(f"figures: {draw.__name__} {time.process_time() - start:.2f} s CPU", flush=True)
 
 
 if __name__ == "__main__":

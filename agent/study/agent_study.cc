@@ -248,7 +248,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
 
 }  // namespace
 
-std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
+std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
   agent::Material material{study.setup.young, study.setup.poisson};
   agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules);
   const auto mesh = output_mesh(study);
@@ -257,10 +257,11 @@ std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::
   auto diagnostics = open_csv(dir / "agent_diagnostics.csv");
   diagnostics << "step,load_factor [-],agents_generated,agent_updates,applied [N],rigid_reaction [N],passed_out [N],"
                  "dropped [N],lost [N],lateral_reaction [N],lateral_passed_out [N],lateral_dropped [N]\n";
-  AgentState state;
+  std::vector<AgentState> states;
   for (int k = 1; k <= steps; ++k) {
     const double factor = double(k) / steps;
-    state = evaluate(study, model, factor);
+    states.push_back(evaluate(study, model, factor));
+    const auto& state = states.back();
     check_finite(state.face_forces, "face force");
     check_finite(state.displacement, "displacement");
     char name[64];
@@ -277,13 +278,13 @@ std::vector<std::string> write_agent_outputs(const AgentStudy& study, const fs::
         << d.lost << " N\n";
   }
   diagnostics.close();
-  const auto warnings = load_balance_warnings(state.diagnostics);
+  const auto warnings = load_balance_warnings(states.back().diagnostics);
   for (const auto& w : warnings) log << "agent: warning: " << w << "\n";
-  write_summary(dir / "agent_summary.json", study, state.diagnostics, warnings);
+  write_summary(dir / "agent_summary.json", study, states.back().diagnostics, warnings);
   workbench::write_pvd(dir / "agent.pvd", series);
-  write_cells_csv(dir / "agent_cells.csv", study, state);
-  write_nodes_csv(dir / "agent_nodes.csv", study, state, mesh);
-  return warnings;
+  write_cells_csv(dir / "agent_cells.csv", study, states.back());
+  write_nodes_csv(dir / "agent_nodes.csv", study, states.back(), mesh);
+  return states;
 }
 
 }  // namespace agent_study

@@ -56,8 +56,9 @@ Eigen::Vector3d load_vector(const AgentStudy& study, double factor);
 
 /// Writes agent_step_NNN.vtu per step, agent.pvd, agent_cells.csv and agent_nodes.csv (full
 /// load), agent_diagnostics.csv (per step) and agent_summary.json (the full load's balance and
-/// warnings) into `dir`, reporting progress and warnings on `log`. Returns the warnings.
-std::vector<std::string> write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
+/// warnings) into `dir`, reporting progress and warnings on `log`. Returns the state at each step
+/// (the last is the full load), so that nobody solves them again.
+std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const std::filesystem::path& dir, std::ostream& log);
 
 /// The grid as an output mesh: all nodes, cells in the mesh's element order.
 workbench::OutputMesh output_mesh(const AgentStudy& study);

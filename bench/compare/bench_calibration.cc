@@ -16,7 +16,7 @@ compare::CalibrationCase seed_plate() {
   c.name = "seed_plate";
   c.study = agent_study::load_agent_study(file);
   const auto fem = fem_reference::solve_fem(fem_reference::problem_from_case(file));
-  c.reference = compare::fem_on_grid(c.study, fem, "seed_plate");
+  c.reference = compare::fem_on_grid(c.study.mesh, fem, "seed_plate");
   return c;
 }
 

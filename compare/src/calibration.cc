@@ -1,3 +1,4 @@
+// Calibration of the agent transfer coefficients: the objective, BOBYQA from seeded starts in parallel, sensitivity.
 #include <compare/calibration.h>
 #include <compare/metrics.h>
 
@@ -24,36 +25,54 @@ agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
   return k;
 }
 
+agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
+                             const std::array<bool, 5>& held) {
+  agent::Coefficients k = fitted;
+  double* out[5] = {&k.alpha1, &k.alpha2, &k.alpha3, &k.beta, &k.gamma};
+  const double theirs[5] = {own.alpha1, own.alpha2, own.alpha3, own.beta, own.gamma};
+  for (int i = 0; i < 5; ++i)
+    if (held[i]) *out[i] = theirs[i];
+  k.poisson_decay = own.poisson_decay;  // a case's own value is held; unset, it follows alpha2
+  return k;
+}
+
 namespace {
 
 double l2_error(const std::vector<double>& model, const std::vector<double>& reference) {
   return relative_errors(model, reference).rel_l2;
 }
 
-std::vector<double> component(const std::vector<double>& v, int comps, int c) {
-  std::vector<double> out(v.size() / comps);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
-  return out;
-}
-
 Score score_case(const CalibrationCase& c, const GridFields& agent, const ObjectiveWeights& w) {
   const auto& grid = c.study.mesh.grid;
   const int dim = grid.dim;
   Score s;
-  if (!w.lines) {
+  if (w.far) {  // the far field of docs/compare.md: what is at least the distance from every loaded face
+    const auto& mesh = c.study.mesh;
+    const auto near = near_load(mesh, c.study.setup.loads,
+                                w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
+    std::vector<double> a[3], r[3];
+    for (std::size_t cell = 0; cell < grid.count(); ++cell)
+      if (!near.cells[cell])
+        for (int f = 0; f < 2; ++f) {
+          a[f].push_back(agent.sigma[2 * cell + f]);
+          r[f].push_back(c.reference.sigma[2 * cell + f]);
+        }
+    for (std::size_t n = 0; n < grid.node_count(); ++n)
+      if (!near.nodes[n])
+        for (int comp = 0; comp < dim; ++comp) {
+          a[2].push_back(agent.u[n * dim + comp]);
+          r[2].push_back(c.reference.u[n * dim + comp]);
+        }
+    s.sigma_x = l2_error(a[0], r[0]);
+    s.sigma_y = l2_error(a[1], r[1]);
+    s.displacement = l2_error(a[2], r[2]);
+  } else if (!w.lines) {
     s.sigma_x = l2_error(component(agent.sigma, 2, 0), component(c.reference.sigma, 2, 0));
     s.sigma_y = l2_error(component(agent.sigma, 2, 1), component(c.reference.sigma, 2, 1));
     s.displacement = l2_error(agent.u, c.reference.u);
   } else {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    double total = 0;
-    for (const auto& l : c.study.loads) {
-      centre += l.force * grid.centre(l.cell);
-      total += l.force;
-    }
-    centre /= total;
     std::vector<double> a[3], r[3];
-    for (const auto& line : standard_lines(grid, centre, w.depths))
+    for (const auto& line : load_lines(grid, load_frames(c.study.mesh, c.study.setup.loads), w.depths))
       for (int i = 0; i < line.samples; ++i) {
         const Eigen::Vector3d p = line.point(i);
         for (int f = 0; f < 2; ++f) {
@@ -82,10 +101,20 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
                  const ObjectiveWeights& w, std::vector<Score>* per_case) {
   double total = 0;
   if (per_case) per_case->clear();
-  for (const auto& c : cases) {
-    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, k, rules);
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const auto& c = cases[ci];
+    const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
+    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules);
     const auto state = agent_study::evaluate(c.study, model, 1.0);
-    Score s = score_case(c, agent_on_grid(c.study, state), w);
+    Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
+    const auto& d = state.diagnostics;
+    s.reaction_share = d.applied > 0 ? d.rigid_reaction / d.applied : 0.0;
+    s.reach = double(d.agents_generated) / double(c.study.mesh.cell_of_element.size());
+    s.equilibrium_dev = d.applied > 0 ? std::abs(d.rigid_reaction - d.applied) / d.applied : 0.0;
+    if (w.keep_load && ci < w.equilibrium_ceiling.size() && s.equilibrium_dev > w.equilibrium_ceiling[ci]) {
+      s.load_refused = true;
+      s.objective = 1e30;
+    }
     if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
     total += c.weight * s.objective;
     if (per_case) per_case->push_back(s);
@@ -93,8 +122,11 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   return total;
 }
 
-CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& o,
+CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress) {
+  // The load balance at the start is what every fitted point must keep (keep_load).
+  CalibrationOptions o = options;
+  o.weights.equilibrium_ceiling.clear();
   std::vector<int> free;
   for (int i = 0; i < 5; ++i)
     if (o.parameters[i].free) free.push_back(i);
@@ -123,6 +155,8 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   CalibrationResult result;
   result.start = coefficients_from(start_values);
   result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before);
+  if (o.weights.keep_load)
+    for (const auto& s : result.before) o.weights.equilibrium_ceiling.push_back(s.equilibrium_dev + kLoadTolerance);
   std::vector<double> best_f(starts.size(), INFINITY);
   std::vector<std::vector<double>> best_x = starts;
   std::vector<long> evaluations(starts.size(), 0);

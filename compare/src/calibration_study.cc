@@ -1,3 +1,4 @@
+// The calibration as a workbench study: the calibration file, each case's reference, the report and the calibrated case files.
 #include <compare/calibration_study.h>
 #include <compare/compare_study.h>
 
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -26,6 +28,7 @@ struct Plan {
   bool cross_validate = true;
   std::vector<fs::path> case_files;
   std::vector<double> case_weights;
+  std::array<bool, 5> start_given{};  ///< else the start is the first case's own [agent] value
 };
 
 Plan read_plan(const workbench::CaseFile& file) {
@@ -48,8 +51,12 @@ Plan read_plan(const workbench::CaseFile& file) {
   o.weights.displacement = w.number("displacement", 1.0, Range::non_negative());
   if (o.weights.sigma_x + o.weights.sigma_y + o.weights.displacement <= 0)
     w.fail("sigma_y", "at least one of sigma_x, sigma_y, displacement must have a positive weight");
-  o.weights.lines = w.text("scope", "body", {"body", "lines"}) == "lines";
+  const std::string scope = w.text("scope", "body", {"body", "far", "lines"});
+  o.weights.lines = scope == "lines";
+  o.weights.far = scope == "far";
+  o.weights.far_distance_mm = w.number("far_distance_mm", 0.0, Range::non_negative());
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
+  o.weights.keep_load = t.flag("keep_load", true);
 
   const auto cases = t.tables("case");
   if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
@@ -59,8 +66,7 @@ Plan read_plan(const workbench::CaseFile& file) {
   }
   // Defaults for the coefficients: the seed's values, free except gamma (and alpha1, which the
   // conserving rule set does not use).
-  const agent::Coefficients seed;  // the library's defaults
-  const std::array<double, 5> seed_values{seed.alpha1, seed.alpha2, seed.alpha3, seed.beta, seed.gamma};
+  const std::array<double, 5> seed_values{0.5, 0.5, 0.25, 0.5, 1e-3};
   int n_free = 0;
   for (int i = 0; i < 5; ++i) {
     const std::string name = kCoefficientNames[i];
@@ -73,10 +79,11 @@ Plan read_plan(const workbench::CaseFile& file) {
     // alpha2 keeps a small floor by default: the conserving split needs alpha2 + alpha3 > 0.
     param.lo = p.number("min", name == "alpha2" ? 0.01 : 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
     param.hi = p.number("max", gamma ? 10 * seed_values[4] : 1.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    plan.start_given[i] = p.has("start");
     param.start = p.number("start", seed_values[i], gamma ? Range::non_negative() : Range::closed(0, 1));
     if (param.free && !(param.lo < param.hi))
       p.fail("max", "must be greater than min (" + std::to_string(param.lo) + ")");
-    if (param.free && (param.start < param.lo || param.start > param.hi))
+    if (param.free && plan.start_given[i] && (param.start < param.lo || param.start > param.hi))
       p.fail("start", "must lie within [min, max]");
     n_free += param.free;
   }
@@ -94,24 +101,125 @@ std::ofstream open_out(const fs::path& file) {
   return out;
 }
 
+/// The shortest decimal text that reads back as exactly `v`.
+std::string shortest(double v) {
+  char text[64];
+  const auto r = std::to_chars(text, text + sizeof text, v);
+  std::string s(text, r.ptr);
+  if (s.find_first_of(".eE") == std::string::npos && s.find("inf") == std::string::npos && s.find("nan") == std::string::npos)
+    s += ".0";  // a TOML float, not an integer
+  return s;
+}
+
+/// A TOML basic string.
+std::string quoted(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  return q + "\"";
+}
+
+/// The table a line opens ("agent" for "[agent]  # ..."), or "" if it opens none.
+std::string table_of(const std::string& line) {
+  const auto a = line.find_first_not_of(" \t");
+  if (a == std::string::npos || line[a] != '[') return "";
+  const bool array = line.compare(a, 2, "[[") == 0;
+  const auto b = line.find(array ? "]]" : "]", a);
+  if (b == std::string::npos) return "";
+  std::string name = line.substr(a + (array ? 2 : 1), b - a - (array ? 2 : 1));
+  name.erase(0, name.find_first_not_of(" \t"));
+  name.erase(name.find_last_not_of(" \t") + 1);
+  return name;
+}
+
+/// The key a `key = value` line sets, or "".
+std::string key_of(const std::string& line) {
+  const auto a = line.find_first_not_of(" \t");
+  const auto eq = line.find('=');
+  if (a == std::string::npos || eq == std::string::npos || line[a] == '#' || line[a] == '[') return "";
+  std::string key = line.substr(a, eq - a);
+  key.erase(key.find_last_not_of(" \t") + 1);
+  return key;
+}
+
+/// `line` with its value replaced by `value`, the comment after it kept.
+std::string set_value(const std::string& line, const std::string& value) {
+  const auto eq = line.find('=');
+  auto comment = line.find('#', eq);
+  if (comment != std::string::npos && line.find('"', eq) < comment) comment = line.find('#', line.find('"', line.find('"', eq) + 1));
+  const std::string tail = comment == std::string::npos ? "" : "  " + line.substr(comment);
+  return line.substr(0, eq) + "= " + value + tail;
+}
+
+}  // namespace
+
+std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
+                              agent::RuleSet rules) {
+  const toml::table original = toml::parse(text);
+  std::vector<std::pair<std::string, std::string>> wanted{
+      {"rule_set", rules == agent::RuleSet::Patent ? "\"patent\"" : "\"conserving\""},
+      {"alpha1", shortest(k.alpha1)}, {"alpha2", shortest(k.alpha2)}, {"alpha3", shortest(k.alpha3)},
+      {"beta", shortest(k.beta)}, {"gamma", shortest(k.gamma)}, {"poisson_decay", shortest(k.decay())}};
+  const double values[] = {0, k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma, k.decay()};
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  std::vector<bool> done(wanted.size(), false);
+  std::string table;
+  int agent_end = -1;  // index after the last line of [agent]
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    if (const auto t = table_of(lines[n]); !t.empty()) {
+      table = t;
+      continue;
+    }
+    const auto key = key_of(lines[n]);
+    if (table == "mesh" && key == "file")
+      if (auto file = original["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
+        lines[n] = set_value(lines[n], quoted(fs::absolute(case_dir / *file).lexically_normal().string()));
+    if (table != "agent") continue;
+    if (lines[n].find_first_not_of(" \t") != std::string::npos) agent_end = int(n) + 1;  // after its last line
+    for (std::size_t w = 0; w < wanted.size(); ++w) {
+      if (key != wanted[w].first) continue;
+      done[w] = true;
+      const auto old = original["agent"][key];
+      const bool same = w == 0 ? old.value<std::string>() == std::optional<std::string>(
+                                                                  rules == agent::RuleSet::Patent ? "patent" : "conserving")
+                               : old.value<double>() == std::optional<double>(values[w]);
+      if (!same) lines[n] = set_value(lines[n], wanted[w].second);
+    }
+  }
+  std::vector<std::string> missing;
+  for (std::size_t w = 0; w < wanted.size(); ++w)
+    if (!done[w]) missing.push_back(wanted[w].first + " = " + wanted[w].second);
+  if (agent_end < 0) {
+    if (!missing.empty()) lines.push_back("\n[agent]");
+    agent_end = int(lines.size());
+  }
+  lines.insert(lines.begin() + agent_end, missing.begin(), missing.end());
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  // What was written must read back as exactly the fitted values.
+  const toml::table check = toml::parse(out);
+  for (std::size_t w = 1; w < wanted.size(); ++w)
+    if (check["agent"][wanted[w].first].value<double>() != std::optional<double>(values[w]))
+      throw Error("calibrate: the calibrated case does not read back " + wanted[w].first + " = " + wanted[w].second);
+  return out;
+}
+
+namespace {
+
 /// The case file again, with the fitted [agent] coefficients and an absolute mesh path.
 void write_calibrated_case(const fs::path& original, const fs::path& target, const agent::Coefficients& k,
                            agent::RuleSet rules, const std::string& note) {
-  toml::table t = toml::parse_file(original.string());
-  if (auto* mesh = t["mesh"].as_table())
-    if (auto file = (*mesh)["file"].value<std::string>(); file && fs::path(*file).is_relative())
-      mesh->insert_or_assign("file", fs::absolute(original.parent_path() / *file).lexically_normal().string());
-  if (!t["agent"].as_table()) t.insert_or_assign("agent", toml::table{});
-  auto& a = *t["agent"].as_table();
-  a.insert_or_assign("rule_set", rules == agent::RuleSet::Patent ? "patent" : "conserving");
-  a.insert_or_assign("alpha1", k.alpha1);
-  a.insert_or_assign("alpha2", k.alpha2);
-  a.insert_or_assign("alpha3", k.alpha3);
-  a.insert_or_assign("beta", k.beta);
-  a.insert_or_assign("gamma", k.gamma);
-  a.insert_or_assign("poisson_decay", k.decay());
-  auto out = open_out(target);
-  out << "# " << note << "\n" << t << "\n";
+  std::ifstream in(original);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string out = with_coefficients(text.str(), original.parent_path(), k, rules);
+  auto file = open_out(target);
+  file << "# " << note << "\n" << out;
+  file.close();
+  if (!file) throw Error(target.string() + ": write failed");
 }
 
 std::string coefficient_row(const agent::Coefficients& k) {
@@ -136,17 +244,35 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     c.name = plan.case_files[i].stem().string();
     c.study = agent_study::load_agent_study(case_file);
     auto problem = fem_reference::problem_from_case(case_file);
-    if (read_compare_options(case_file.root()).model != "agent")
+    const auto compare_options = read_compare_options(case_file.root());
+    if (compare_options.model != "agent")
       case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
     case_file.reject_unknown_keys();
-    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving FEM once\n"
-        << std::flush;
+    // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
+    const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
+    problem.options.degree = reference.degree;
+    problem.options.refine = reference.refine;
+    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving the reference ("
+        << reference.describe() << ") once\n" << std::flush;
     const auto fem = fem_reference::solve_fem(problem);
-    c.reference = fem_on_grid(c.study, fem, case_file.path().string());
+    c.reference = fem_on_grid(c.study.mesh, fem, case_file.path().string());
     c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }
 
+  // Start from the first case's own coefficients, and hold each case's own where not fitted,
+  // unless the calibration file gives a start.
+  for (int i = 0; i < 5; ++i) {
+    if (plan.start_given[i]) continue;
+    auto& p = plan.options.parameters[i];
+    const auto& k = cases.front().study.coefficients;
+    const double own[5] = {k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma};
+    p.start = own[i];
+    plan.options.weights.held_from_case[i] = !p.free;
+    if (p.free && (p.start < p.lo || p.start > p.hi))
+      file.root().table("calibrate").table(p.name).fail(
+          "start", "the first case's own value " + std::to_string(p.start) + " lies outside [min, max]: give a start");
+  }
   const auto& o = plan.options;
   log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
   auto result = calibrate(cases, o, &log);
@@ -181,7 +307,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     << seconds << " s)\n\n";
   r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x)^2 + " << o.weights.sigma_y
     << " e(sigma_y)^2 + " << o.weights.displacement << " e(u)^2), e = relative L2 error over the "
-    << (o.weights.lines ? "sample lines" : "body") << "\n\n";
+    << (o.weights.lines ? "sample lines" : o.weights.far ? "far field" : "body") << "\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
   r << std::left << std::setw(28) << "case" << std::right << std::setw(12) << "e(sx) before" << std::setw(12) << "after"
@@ -192,7 +318,31 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
       << std::setw(12) << result.after[i].sigma_x << std::setw(14) << result.before[i].sigma_y << std::setw(12)
       << result.after[i].sigma_y << std::setw(12) << result.before[i].displacement << std::setw(12)
       << result.after[i].displacement << "\n";
+  r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
+    << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
+    << "reach before" << std::setw(10) << "after" << "\n";
+  std::vector<std::string> warnings;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto &b = result.before[i], &a = result.after[i];
+    r << std::left << std::setw(28) << cases[i].name << std::right << std::setw(22) << b.equilibrium_dev
+      << std::setw(10) << a.equilibrium_dev << std::setw(22) << b.reaction_share << std::setw(10) << a.reaction_share
+      << std::setw(14) << b.reach << std::setw(10) << a.reach << "\n";
+    if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
+      warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + cases[i].name +
+                         ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
+                         std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
+    if (a.equilibrium_dev > 0.1)
+      warnings.push_back("calibrate: WARNING: " + cases[i].name + ": the rigid reaction is " +
+                         std::to_string(a.reaction_share) + " of the applied load after the fit");
+  }
+  r << "load balance: " << (o.weights.keep_load ? "kept (calibrate.keep_load): no case may end with a larger "
+                                                 "equilibrium_dev than at the start"
+                                               : "not constrained (calibrate.keep_load = false)")
+    << "\n";
+  for (const auto& w : warnings) r << w << "\n";
   r << "\nsensitivity at the optimum (objective with the coefficient moved by 10 % of its range):\n";
+  if (o.weights.keep_load)
+    r << "(2e+30: the move is refused, it would lose load; with calibrate.keep_load = false it is scored)\n";
   for (const auto& s : result.sensitivity)
     r << "  " << std::left << std::setw(8) << s.name << std::right << " -: " << std::setw(10) << s.objective_minus
       << "  +: " << std::setw(10) << s.objective_plus << "  curvature " << std::setw(10) << s.curvature << "  "
@@ -228,7 +378,12 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   for (std::size_t i = 0; i < cases.size(); ++i)
     j["cases"][cases[i].name] = {
         {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
-        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}}};
+        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}},
+        {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
+        {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
+        {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
+  j["keep_load"] = o.weights.keep_load;
+  j["warnings"] = warnings;
   for (const auto& s : result.sensitivity)
     j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
   for (const auto& f : folds)
@@ -237,7 +392,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
 
   fs::create_directories(dir / "calibrated");
   for (std::size_t i = 0; i < cases.size(); ++i)
-    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"), result.best, o.rules,
+    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
+                          for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
                           "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
                               std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
   return result;

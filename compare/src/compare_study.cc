@@ -1,4 +1,8 @@
+// The agent comparison (docs/compare.md): the agent method against the converged FEM reference
+// on the same body, in named steps: read, run the agent model, solve the reference, sample,
+// score, write, draw, summarise.
 #include <compare/compare_study.h>
+#include <compare/pbd_compare.h>
 #include <compare/reference.h>
 
 #include "report.h"
@@ -13,11 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <iomanip>
 #include <ostream>
-#include <sstream>
 
 namespace compare {
 
@@ -31,6 +31,22 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
   if (o.model == "agent") {  // the PBD comparison has no sample lines nor ratios: its case rejects these keys
     o.depths = t.numbers("depths", o.depths, workbench::Range::open(0.0, 1.0));
     o.mask = t.number("mask", o.mask, workbench::Range{0.0, 1.0, false, true});
+    const auto r = t.table("reference");
+    o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
+    if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
+    o.far_distance_mm = t.number("far_distance_mm", o.far_distance_mm, workbench::Range::non_negative());
+    o.min_reaction_share = t.number("min_reaction_share", o.min_reaction_share, workbench::Range::closed(0.0, 1.0));
+    for (const auto& line : t.tables("line")) {
+      std::array<Eigen::Vector3d, 2> ends{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+      const char* keys[] = {"from", "to"};
+      for (int e = 0; e < 2; ++e) {
+        const auto p = line.numbers(keys[e], std::nullopt);
+        if (p.size() < 2 || p.size() > 3) line.fail(keys[e], "a point is 2 or 3 coordinates [m]");
+        for (std::size_t a = 0; a < p.size(); ++a) ends[e][a] = p[a];
+      }
+      if ((ends[1] - ends[0]).norm() == 0) line.fail("to", "the line's ends are the same point");
+      o.lines.push_back(ends);
+    }
   }
   o.gate = t.number_map("gate");
   for (const auto& [name, limit] : o.gate)
@@ -43,73 +59,20 @@ namespace {
 
 const char* kFields[] = {"sigma_x", "sigma_y", "displacement"};
 
-std::string line_name(double depth) {
-  std::ostringstream s;
-  s << "depth_" << depth;
-  return s.str();
-}
-
 using report::open_out;
 using report::seconds_since;
 
-}  // namespace
-
-GridFields fem_on_grid(const agent_study::AgentStudy& study, const fem_reference::FemResult& fem,
-                       const std::string& case_name) {
-  const auto& grid = study.mesh.grid;
-  const int dim = grid.dim;
-  if (fem.cell_count() != study.mesh.cell_of_element.size() || fem.dim != dim)
-    throw Error(case_name + ": the FEM and agent meshes differ (" + std::to_string(fem.cell_count()) + " against " +
-                std::to_string(study.mesh.cell_of_element.size()) + " cells)");
-  GridFields out;
-  out.sigma.assign(grid.count() * 2, 0.0);
-  for (std::size_t e = 0; e < fem.cell_count(); ++e) {
-    const std::size_t cell = study.mesh.cell_of_element[e];
-    const Eigen::Vector3d c = grid.centre(cell);
-    for (int a = 0; a < dim; ++a)
-      if (std::abs(c[a] - fem.cell_centres[3 * e + a]) > 1e-6 * grid.size[a])
-        throw Error(case_name + ": FEM element " + std::to_string(e) + " is not where agent " + std::to_string(cell) +
-                    " is (meshes generated differently)");
-    out.sigma[2 * cell] = fem.sigma_x[e];
-    out.sigma[2 * cell + 1] = fem.sigma_y[e];
-  }
-  out.u.assign(grid.node_count() * dim, 0.0);
-  std::vector<char> found(grid.node_count(), 0);
-  for (std::size_t n = 0; n < fem.node_count(); ++n) {
-    int p[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) p[a] = int(std::lround((fem.node_points[3 * n + a] - grid.origin[a]) / grid.size[a]));
-    const std::size_t node = grid.node_index(p[0], p[1], p[2]);
-    for (int a = 0; a < dim; ++a) out.u[node * dim + a] = fem.node_displacement[n * dim + a];
-    found[node] = 1;
-  }
-  // Every corner of an agent needs a FEM node (nodes of the box that touch only air have none).
-  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
-    if (grid.is_air(cell)) continue;
-    const auto c = grid.coords(cell);
-    for (int corner = 0; corner < (1 << dim); ++corner)
-      if (!found[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + ((corner >> 2) & 1))])
-        throw Error(case_name + ": FEM nodes do not cover the agent grid's nodes");
-  }
+/// The entries of `v` (comps per entry) where `keep` is set.
+std::vector<double> select(const std::vector<double>& v, int comps, const std::vector<char>& keep) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) out.insert(out.end(), v.begin() + i * comps, v.begin() + (i + 1) * comps);
   return out;
 }
 
-GridFields agent_on_grid(const agent_study::AgentStudy& study, const agent_study::AgentState& state) {
-  const auto& grid = study.mesh.grid;
-  GridFields out;
-  out.sigma.resize(grid.count() * 2);
-  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
-    out.sigma[2 * cell] = state.stress[cell * grid.dim];
-    out.sigma[2 * cell + 1] = state.stress[cell * grid.dim + 1];
-  }
-  out.u = state.displacement;
-  return out;
-}
-
-namespace {
-
-std::vector<std::string> agent_metric_names(const std::vector<double>& depths) {
-  std::vector<std::string> scopes{"body", "vertical"};
-  for (double d : depths) scopes.push_back(line_name(d));
+std::vector<std::string> agent_metric_names(const std::vector<std::string>& line_names) {
+  std::vector<std::string> scopes{"body", "far"};
+  scopes.insert(scopes.end(), line_names.begin(), line_names.end());
   std::vector<std::string> names;
   for (const auto& s : scopes) {
     for (const char* f : kFields)
@@ -119,235 +82,355 @@ std::vector<std::string> agent_metric_names(const std::vector<double>& depths) {
       names.push_back(s + "." + f + ".masked_fraction");
     }
   }
-  for (const char* n : {"agent.equilibrium_dev", "fem.equilibrium_dev", "agent.reach_fraction", "time.agent_s",
-                        "time.fem_s", "time.compare_s", "time.figures_s", "time.total_s"})
+  for (const char* n : {"agent.equilibrium_dev", "agent.lost_share", "agent.reaction_share", "fem.equilibrium_dev",
+                        "agent.reach_fraction", "time.agent_s", "time.fem_s", "time.compare_s", "time.figures_s",
+                        "time.total_s"})
     names.push_back(n);
   return names;
 }
 
 }  // namespace
 
-std::vector<std::string> metric_names(const CompareOptions& options) {
-  return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(options.depths);
+std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names) {
+  return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(line_names);
 }
 
 namespace {
 
-CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
-                                 std::ostream& log) {
-  const auto start = std::chrono::steady_clock::now();
-  const auto root = file.root();
-  auto study = agent_study::load_agent_study(file);
-  auto problem = fem_reference::problem_from_case(file);
-  report::check_gate_names(options, metric_names(options), root);
+// Step 1: the inputs.
+struct AgentCompareInput {
+  agent_study::AgentStudy study;
+  fem_reference::FemProblem problem;
+  std::vector<LoadFrame> loads;
+  std::vector<Line> lines;  ///< each load's lines, then the user's
+  NearLoad near;            ///< cells and nodes left out of the far field
+  double far_distance = 0;  ///< [m]
+  ReferenceOptions reference;  ///< resolved for the mesh's dimension
+};
+
+AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptions& options) {
+  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
+  const auto& grid = in.study.mesh.grid;
+  in.reference = options.reference.resolved(grid.dim);
+  in.loads = load_frames(in.study.mesh, in.study.setup.loads);
+  in.lines = load_lines(grid, in.loads, options.depths);
+  for (std::size_t i = 0; i < options.lines.size(); ++i)
+    in.lines.push_back(make_line(grid, options.lines[i][0], options.lines[i][1],
+                                 "line " + std::to_string(i + 1) + " of [[compare.line]]", "user"));
+  in.far_distance = options.far_distance_mm > 0 ? 1e-3 * options.far_distance_mm : 5 * grid.size[0];
+  in.near = near_load(in.study.mesh, in.study.setup.loads, in.far_distance);
+  std::vector<std::string> names;
+  for (const auto& l : in.lines) names.push_back(l.name);
+  report::check_gate_names(options, metric_names(options, names), file.root());
   file.reject_unknown_keys();
+  return in;
+}
+
+// Step 2: the agent model at every load step, each solved once (the last is the full load).
+std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& study, const fs::path& dir,
+                                               std::ostream& log) {
+  fs::create_directories(dir / "agent");
+  return agent_study::write_agent_outputs(study, dir / "agent", log);
+}
+
+// Step 4: both models and the reference's second level along each line.
+struct LineSamples {
+  std::vector<double> sx[3], sy[3], u[3];  ///< agent, reference, estimate; u: (u_x, u_y) per sample
+};
+
+LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFields* fields[3]) {
+  LineSamples s;
+  for (int i = 0; i < line.samples; ++i) {
+    const Eigen::Vector3d p = line.point(i);
+    for (int m = 0; m < 3; ++m) {
+      s.sx[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 0, p));
+      s.sy[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 1, p));
+      for (int a = 0; a < 2; ++a) s.u[m].push_back(sample_nodes(grid, fields[m]->u, grid.dim, a, p));
+    }
+  }
+  return s;
+}
+
+// Step 5: the metrics of one scope; each error norm with the reference's own error beside it.
+void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<double>* sx,
+               const std::vector<double>* sy, const std::vector<double>* u, double mask) {
+  const std::vector<double>* fields[3] = {sx, sy, u};  // each: agent, reference, estimate
+  for (int f = 0; f < 3; ++f) {
+    const auto e = relative_errors(fields[f][0], fields[f][1]);
+    const auto r = relative_errors(fields[f][2], fields[f][1]);
+    out.metrics.push_back({scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2});
+    out.metrics.push_back(
+        {scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max});
+  }
+  for (int f = 0; f < 2; ++f) {
+    const auto r = ratios(fields[f][0], fields[f][1], mask);
+    out.metrics.push_back({scope + "." + kFields[f] + ".ratio_median_dev", std::abs(r.median - 1.0),
+                           "|median(agent / FEM) - 1|"});
+    out.metrics.push_back({scope + "." + kFields[f] + ".masked_fraction",
+                           double(r.masked_count) / double(std::max<std::size_t>(1, r.ratio.size())),
+                           "share of entries where |FEM| < mask * max |FEM|"});
+  }
+}
+
+/// The body's cells (grid order) and nodes, and the far field's.
+void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[3], double mask) {
+  const auto& mesh = in.study.mesh;
+  const auto& grid = mesh.grid;
+  std::vector<char> body_cells(grid.count(), 0), body_nodes(grid.node_count(), 0);
+  for (std::size_t cell : mesh.cell_of_element) {
+    body_cells[cell] = 1;
+    const auto c = grid.coords(cell);
+    for (int corner = 0; corner < (1 << grid.dim); ++corner)
+      body_nodes[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
+                                 c[2] + (grid.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
+  }
+  std::vector<char> far_cells = body_cells, far_nodes = body_nodes;
+  for (std::size_t c = 0; c < far_cells.size(); ++c) far_cells[c] = far_cells[c] && !in.near.cells[c];
+  for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
+  for (const auto& [scope, cells, nodes] : {std::tuple{"body", &body_cells, &body_nodes},
+                                            std::tuple{"far", &far_cells, &far_nodes}}) {
+    std::vector<double> sx[3], sy[3], u[3];
+    for (int m = 0; m < 3; ++m) {
+      const auto sigma = select(fields[m]->sigma, 2, *cells);
+      sx[m] = component(sigma, 2, 0);
+      sy[m] = component(sigma, 2, 1);
+      u[m] = select(fields[m]->u, grid.dim, *nodes);
+    }
+    add_scope(out, scope, sx, sy, u, mask);
+  }
+}
+
+/// Where the agent model's load went; warnings when it does not reach a rigid face.
+void add_load_balance(CompareOutcome& out, const agent::Diagnostics& d, double min_share, std::size_t n_cells) {
+  const double lost = d.applied - d.rigid_reaction - d.passed_out - d.dropped;
+  out.metrics.push_back({"agent.equilibrium_dev", std::abs(d.rigid_reaction - d.applied) / d.applied,
+                         "|rigid reaction - applied| / applied (agent)"});
+  out.metrics.push_back({"agent.reaction_share", d.rigid_reaction / d.applied,
+                         "rigid reaction / applied: the share of the load the agents carry to a rigid face"});
+  out.metrics.push_back({"agent.lost_share", lost / d.applied,
+                         "(applied - rigid reaction - passed out - dropped) / applied: load the transfer "
+                         "coefficients lose"});
+  out.metrics.push_back({"agent.reach_fraction", double(d.agents_generated) / double(n_cells),
+                         "share of agents the load reaches"});
+  if (d.rigid_reaction < min_share * d.applied) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "agent: only %.3g of %.3g N (%.1f %%) reaches a rigid face (compare.min_reaction_share = %g): "
+                  "passed out %.3g N, dropped below gamma %.3g N, lost by the transfer coefficients %.3g N",
+                  d.rigid_reaction, d.applied, 100 * d.rigid_reaction / d.applied, min_share, d.passed_out, d.dropped,
+                  lost);
+    out.warnings.push_back(text);
+  }
+}
+
+// Step 6: the files.
+void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
+                     const std::vector<LineSamples>& samples) {
+  const int dim = grid.dim;
+  auto csv = open_out(file);
+  csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
+  for (std::size_t li = 0; li < lines.size(); ++li)
+    for (int m = 0; m < 2; ++m)
+      for (int i = 0; i < lines[li].samples; ++i) {
+        const Eigen::Vector3d p = lines[li].point(i);
+        const auto& s = samples[li];
+        csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
+        for (int a = 0; a < dim; ++a) csv << ',' << p[a];
+        csv << ',' << s.sx[m][i] << ',' << s.sy[m][i] << ',' << s.u[m][2 * i] << ',' << s.u[m][2 * i + 1] << '\n';
+      }
+  csv.close();  // complete on disk before figures.py reads it
+  if (!csv) throw Error(file.string() + ": write failed");
+}
+
+void write_field_files(const fs::path& dir, const AgentCompareInput& in, const GridFields& agent,
+                       const GridFields& fem, const agent_study::AgentState& state, double mask) {
+  const auto& study = in.study;
   const auto& grid = study.mesh.grid;
   const int dim = grid.dim;
-
-  // The agent model: every load step (VTU series) and the full load.
-  auto t = std::chrono::steady_clock::now();
-  fs::create_directories(dir / "agent");
-  agent_study::write_agent_outputs(study, dir / "agent", log);
-  agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
-  const auto agent = agent_study::evaluate(study, model, 1.0);
-  const double agent_seconds = seconds_since(t);
-
-  // The FEM reference on the same mesh.
-  double fem_seconds = 0;
-  const auto fem = report::run_fem(problem, dir, log, fem_seconds);
-  t = std::chrono::steady_clock::now();
-
-  const std::size_t n_cells = grid.agent_count();
-  const auto fem_fields = fem_on_grid(study, fem, file.path().string());
-  const auto agent_fields = agent_on_grid(study, agent);
-  const auto& fem_sigma = fem_fields.sigma;
-  const auto& agent_sigma = agent_fields.sigma;
-  const auto& fem_u = fem_fields.u;
-
-  CompareOutcome outcome;
-  auto add = [&](const std::string& name, double value, const std::string& meaning) {
-    outcome.metrics.push_back({name, value, meaning});
-  };
-  auto component = [](const std::vector<double>& v, int comps, int c) {
-    std::vector<double> out(v.size() / comps);
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
-    return out;
-  };
-  auto add_scope = [&](const std::string& scope, const std::vector<double>& a_sx, const std::vector<double>& f_sx,
-                       const std::vector<double>& a_sy, const std::vector<double>& f_sy,
-                       const std::vector<double>& a_u, const std::vector<double>& f_u) {
-    const std::vector<const std::vector<double>*> models{&a_sx, &a_sy, &a_u}, refs{&f_sx, &f_sy, &f_u};
-    for (int f = 0; f < 3; ++f) {
-      const auto e = relative_errors(*models[f], *refs[f]);
-      add(scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2");
-      add(scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|");
-    }
-    for (int f = 0; f < 2; ++f) {
-      const auto r = ratios(*models[f], *refs[f], options.mask);
-      add(scope + "." + kFields[f] + ".ratio_median_dev", std::abs(r.median - 1.0), "|median(agent / FEM) - 1|");
-      add(scope + "." + kFields[f] + ".masked_fraction", double(r.masked_count) / double(std::max<std::size_t>(1, r.ratio.size())),
-          "share of entries where |FEM| < mask * max |FEM|");
-    }
-  };
-  add_scope("body", component(agent_sigma, 2, 0), component(fem_sigma, 2, 0), component(agent_sigma, 2, 1),
-            component(fem_sigma, 2, 1), agent_fields.u, fem_u);
-
-  // Sample lines.
-  Eigen::Vector3d load_centre = Eigen::Vector3d::Zero();
-  double total = 0;
-  for (const auto& l : study.loads) {
-    load_centre += l.force * grid.centre(l.cell);
-    total += l.force;
+  const auto mesh = agent_study::output_mesh(study);
+  const auto rx = ratios(component(agent.sigma, 2, 0), component(fem.sigma, 2, 0), mask);
+  const auto ry = ratios(component(agent.sigma, 2, 1), component(fem.sigma, 2, 1), mask);
+  std::vector<workbench::Field> cells;
+  for (const char* n : {"agent_sigma_x [Pa]", "agent_sigma_y [Pa]", "fem_sigma_x [Pa]", "fem_sigma_y [Pa]",
+                        "diff_sigma_x [Pa]", "diff_sigma_y [Pa]", "ratio_sigma_x [-]", "ratio_sigma_y [-]",
+                        "ratio_masked_x [-]", "ratio_masked_y [-]", "generation [-]", "far [-]"})
+    cells.push_back({n, 1, {}, {}, {}});
+  for (std::size_t cell : study.mesh.cell_of_element) {
+    const double v[] = {agent.sigma[2 * cell], agent.sigma[2 * cell + 1], fem.sigma[2 * cell], fem.sigma[2 * cell + 1],
+                        agent.sigma[2 * cell] - fem.sigma[2 * cell], agent.sigma[2 * cell + 1] - fem.sigma[2 * cell + 1],
+                        rx.ratio[cell], ry.ratio[cell], double(rx.masked[cell]), double(ry.masked[cell]),
+                        double(state.generation[cell]), double(!in.near.cells[cell])};
+    for (std::size_t f = 0; f < cells.size(); ++f) cells[f].values.push_back(v[f]);
   }
-  load_centre /= total;
-  const auto lines = standard_lines(grid, load_centre, options.depths);
-  auto lines_csv = open_out(dir / "lines.csv");
-  lines_csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
-            << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
-  for (std::size_t li = 0; li < lines.size(); ++li) {
-    const auto& line = lines[li];
-    std::vector<double> s[2][4];  // model, field (sx, sy, ux, uy)
-    for (int i = 0; i < line.samples; ++i) {
-      const Eigen::Vector3d p = line.point(i);
-      const std::vector<double>* sig[2] = {&agent_sigma, &fem_sigma};
-      const std::vector<double>* u[2] = {&agent.displacement, &fem_u};
-      for (int m = 0; m < 2; ++m) {
-        s[m][0].push_back(sample_cells(grid, *sig[m], 2, 0, p));
-        s[m][1].push_back(sample_cells(grid, *sig[m], 2, 1, p));
-        s[m][2].push_back(sample_nodes(grid, *u[m], dim, 0, p));
-        s[m][3].push_back(sample_nodes(grid, *u[m], dim, 1, p));
-        lines_csv << (m == 0 ? "agent" : "fem") << ',' << line.name << ',' << (p - line.from).norm();
-        for (int a = 0; a < dim; ++a) lines_csv << ',' << p[a];
-        for (int f = 0; f < 4; ++f) lines_csv << ',' << s[m][f].back();
-        lines_csv << '\n';
-      }
-    }
-    std::vector<double> ua, uf;
-    for (int i = 0; i < line.samples; ++i) {
-      ua.insert(ua.end(), {s[0][2][i], s[0][3][i]});
-      uf.insert(uf.end(), {s[1][2][i], s[1][3][i]});
-    }
-    add_scope(line.name, s[0][0], s[1][0], s[0][1], s[1][1], ua, uf);
+  for (std::size_t cell : study.mesh.cell_of_element) {  // masked ratios: NaN, blanked by ParaView
+    cells[6].undefined.push_back(rx.masked[cell]);
+    cells[7].undefined.push_back(ry.masked[cell]);
   }
-  lines_csv.close();  // complete on disk before figures.py reads it
-  if (!lines_csv) throw Error((dir / "lines.csv").string() + ": write failed");
-
-  // Equilibrium: what each model returns at its supports against what was applied.
-  const auto& d = agent.diagnostics;
-  add("agent.equilibrium_dev", std::abs(d.rigid_reaction - d.applied) / d.applied,
-      "|rigid reaction - applied| / applied (agent)");
-  add("fem.equilibrium_dev", report::fem_equilibrium_dev(fem), "|reactions + applied| / |applied| (FEM)");
-  add("agent.reach_fraction", double(d.agents_generated) / double(n_cells), "share of agents the load reaches");
-
-  // One VTU with both models, their differences and ratios.
-  {
-    auto mesh = agent_study::output_mesh(study);
-    const auto rx = ratios(component(agent_sigma, 2, 0), component(fem_sigma, 2, 0), options.mask);
-    const auto ry = ratios(component(agent_sigma, 2, 1), component(fem_sigma, 2, 1), options.mask);
-    std::vector<workbench::Field> cells;
-    for (const char* n : {"agent_sigma_x [Pa]", "agent_sigma_y [Pa]", "fem_sigma_x [Pa]", "fem_sigma_y [Pa]",
-                          "diff_sigma_x [Pa]", "diff_sigma_y [Pa]", "ratio_sigma_x [-]", "ratio_sigma_y [-]",
-                          "ratio_masked_x [-]", "ratio_masked_y [-]", "generation [-]"})
-      cells.push_back({n, 1, {}, {}, {}});
-    for (std::size_t cell : study.mesh.cell_of_element) {
-      const double v[] = {agent_sigma[2 * cell], agent_sigma[2 * cell + 1], fem_sigma[2 * cell], fem_sigma[2 * cell + 1],
-                          agent_sigma[2 * cell] - fem_sigma[2 * cell], agent_sigma[2 * cell + 1] - fem_sigma[2 * cell + 1],
-                          rx.ratio[cell], ry.ratio[cell], double(rx.masked[cell]), double(ry.masked[cell]),
-                          double(agent.generation[cell])};
-      for (std::size_t f = 0; f < cells.size(); ++f) cells[f].values.push_back(v[f]);
+  const std::vector<std::string> xyz{"x", "y", "z"};
+  std::vector<workbench::Field> points{
+      {"agent_u [m]", 3, {}, xyz, {}}, {"fem_u [m]", 3, {}, xyz, {}}, {"diff_u [m]", 3, {}, xyz, {}}};
+  for (std::size_t n = 0; n < grid.node_count(); ++n)
+    for (int a = 0; a < 3; ++a) {
+      const double ua = a < dim ? agent.u[n * dim + a] : 0.0, uf = a < dim ? fem.u[n * dim + a] : 0.0;
+      points[0].values.push_back(ua);
+      points[1].values.push_back(uf);
+      points[2].values.push_back(ua - uf);
     }
-    for (std::size_t cell : study.mesh.cell_of_element) {  // masked ratios: NaN, blanked by ParaView
-      cells[6].undefined.push_back(rx.masked[cell]);
-      cells[7].undefined.push_back(ry.masked[cell]);
-    }
-    const std::vector<std::string> xyz{"x", "y", "z"};
-    std::vector<workbench::Field> points{
-        {"agent_u [m]", 3, {}, xyz, {}}, {"fem_u [m]", 3, {}, xyz, {}}, {"diff_u [m]", 3, {}, xyz, {}}};
-    for (std::size_t n = 0; n < grid.node_count(); ++n)
-      for (int a = 0; a < 3; ++a) {
-        const double ua = a < dim ? agent.displacement[n * dim + a] : 0.0, uf = a < dim ? fem_u[n * dim + a] : 0.0;
-        points[0].values.push_back(ua);
-        points[1].values.push_back(uf);
-        points[2].values.push_back(ua - uf);
+  workbench::write_vtu(dir / "compare.vtu", mesh, points, cells);
+
+  auto cells_csv = open_out(dir / "cells.csv");
+  cells_csv << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
+            << ",generation,agent_sigma_x [Pa],agent_sigma_y [Pa],fem_sigma_x [Pa],fem_sigma_y [Pa],ratio_sigma_x [-],"
+               "ratio_sigma_y [-],masked_x,masked_y,far\n";
+  for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
+    const std::size_t cell = study.mesh.cell_of_element[e];
+    const Eigen::Vector3d c = grid.centre(cell);
+    cells_csv << e;
+    for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
+    cells_csv << ',' << state.generation[cell] << ',' << agent.sigma[2 * cell] << ',' << agent.sigma[2 * cell + 1] << ','
+              << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0  // + 0.0: no "-0"
+              << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
+  }
+  auto nodes_csv = open_out(dir / "nodes.csv");
+  const auto nn = grid.node_counts();
+  nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
+            << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
+            << (dim == 3 ? ",fem_u_z [m]" : "") << "\n";
+  for (int k = 0; k < nn[2]; ++k)
+    for (int j = 0; j < nn[1]; ++j)
+      for (int i = 0; i < nn[0]; ++i) {
+        const std::size_t n = grid.node_index(i, j, k);
+        nodes_csv << i << ',' << j;
+        if (dim == 3) nodes_csv << ',' << k;
+        for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
+        for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.u[n * dim + a];
+        for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem.u[n * dim + a];
+        nodes_csv << '\n';
       }
-    workbench::write_vtu(dir / "compare.vtu", mesh, points, cells);
+  cells_csv.close();
+  nodes_csv.close();
+  if (!cells_csv || !nodes_csv) throw Error(dir.string() + ": write failed");
+}
 
-    auto cells_csv = open_out(dir / "cells.csv");
-    cells_csv << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
-              << ",generation,agent_sigma_x [Pa],agent_sigma_y [Pa],fem_sigma_x [Pa],fem_sigma_y [Pa],ratio_sigma_x [-],"
-                 "ratio_sigma_y [-],masked_x,masked_y\n";
+/// The agent's sigma per cell at every load step (the animation's data).
+void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
+                     const std::vector<agent_study::AgentState>& states) {
+  const int dim = study.mesh.grid.dim;
+  auto csv = open_out(file);
+  csv << "step,load [N],cell,generation,sigma_x [Pa],sigma_y [Pa]\n";
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const auto& s = states[k];
     for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
       const std::size_t cell = study.mesh.cell_of_element[e];
-      const Eigen::Vector3d c = grid.centre(cell);
-      cells_csv << e;
-      for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
-      // (+ 0.0: a zero ratio of a negative reference is -0, which would print as "-0")
-      cells_csv << ',' << agent.generation[cell] << ',' << agent_sigma[2 * cell] << ',' << agent_sigma[2 * cell + 1] << ','
-                << fem_sigma[2 * cell] << ',' << fem_sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0
-                << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << '\n';
+      csv << k + 1 << ',' << s.diagnostics.applied << ',' << e << ',' << s.generation[cell] << ','
+          << s.stress[cell * dim] << ',' << s.stress[cell * dim + 1] << '\n';
     }
-    auto nodes_csv = open_out(dir / "nodes.csv");
-    const auto nn = grid.node_counts();
-    nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
-              << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
-              << (dim == 3 ? ",fem_u_z [m]" : "") << "\n";
-    for (int k = 0; k < nn[2]; ++k)
-      for (int j = 0; j < nn[1]; ++j)
-        for (int i = 0; i < nn[0]; ++i) {
-          const std::size_t n = grid.node_index(i, j, k);
-          nodes_csv << i << ',' << j;
-          if (dim == 3) nodes_csv << ',' << k;
-          for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
-          for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.displacement[n * dim + a];
-          for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem_u[n * dim + a];
-          nodes_csv << '\n';
-        }
-    // The agent's load steps, for the animation.
-    auto steps_csv = open_out(dir / "steps.csv");
-    steps_csv << "step,load [N],cell,generation,sigma_x [Pa],sigma_y [Pa]\n";
-    for (int k = 1; k <= study.setup.steps; ++k) {
-      const double factor = double(k) / study.setup.steps;
-      const auto s = agent_study::evaluate(study, model, factor);
-      for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
-        const std::size_t cell = study.mesh.cell_of_element[e];
-        steps_csv << k << ',' << factor * total << ',' << e << ',' << s.generation[cell] << ','
-                  << s.stress[cell * dim] << ',' << s.stress[cell * dim + 1] << '\n';
-      }
-    }
-    if (!cells_csv || !nodes_csv || !steps_csv) throw Error(dir.string() + ": write failed");
   }
-  add("time.agent_s", agent_seconds, "agent model, all load steps with output [s]");
-  add("time.fem_s", fem_seconds, "FEM reference with output [s]");
-  add("time.compare_s", seconds_since(t), "comparison and its output [s]");
+  csv.close();
+  if (!csv) throw Error(file.string() + ": write failed");
+}
 
-  // Figures 8-11 and the animation, from the CSV files (compare/figures.py, matplotlib).
-  double figures_seconds = 0;
-  if (options.figures) {
-    t = std::chrono::steady_clock::now();
-    report::run_figure_script("compare/figures.py", dir,
-                              study.setup.title.empty() ? file.path().stem().string() : study.setup.title, log);
-    figures_seconds = seconds_since(t);
-  }
-  add("time.figures_s", figures_seconds, "figures and animation [s]");
-  add("time.total_s", seconds_since(start), "the whole study [s]");
-
-  // The gate, summary.json / summary.txt / junit.xml.
+// Step 8: what the summary says beside the metrics.
+nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompareInput& in,
+                              const CompareOptions& options, const Reference& reference,
+                              const agent::Diagnostics& d) {
+  const auto& study = in.study;
+  const auto& k = study.coefficients;
+  const auto& fem = reference.fem;
   nlohmann::json json;
   json["case"] = file.path().string();
   json["title"] = study.setup.title;
   json["model"] = "agent";
   json["agent"] = {{"rule_set", study.rules == agent::RuleSet::Patent ? "patent" : "conserving"},
-                   {"alpha1", study.coefficients.alpha1}, {"alpha2", study.coefficients.alpha2},
-                   {"alpha3", study.coefficients.alpha3}, {"beta", study.coefficients.beta},
-                   {"gamma", study.coefficients.gamma}, {"poisson_decay", study.coefficients.decay()},
-                   {"agents", n_cells}, {"agent_size", grid.size[0]},
+                   {"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
+                   {"gamma", k.gamma}, {"poisson_decay", k.decay()},
+                   {"agents", study.mesh.cell_of_element.size()}, {"agent_size", study.mesh.grid.size[0]},
                    {"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
-                   {"dropped", d.dropped}, {"agents_generated", d.agents_generated}};
+                   {"dropped", d.dropped}, {"lost", d.applied - d.rigid_reaction - d.passed_out - d.dropped},
+                   {"agents_generated", d.agents_generated}};
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
+  json["reference"] = {{"description", in.reference.describe()},
+                       {"degree", in.reference.degree},
+                       {"refine", in.reference.refine},
+                       {"dofs", fem.n_dofs},
+                       {"estimate", reference.estimate.describe()},
+                       {"estimate_dofs", reference.estimate_dofs},
+                       {"estimate_seconds", reference.estimate_seconds},
+                       {"reference_error", "each error metric's reference_error: the same norm of the estimate "
+                                           "level against the reference"}};
+  json["far_distance"] = in.far_distance;
   json["mask"] = options.mask;
-  report::finish(dir, file.path().stem().string(), std::move(json), options.gate, {}, outcome, log);
+  for (const auto& l : in.lines)
+    json["lines"].push_back({{"name", l.name}, {"description", l.description}, {"kind", l.kind},
+                             {"from", {l.from[0], l.from[1], l.from[2]}}, {"to", {l.to[0], l.to[1], l.to[2]}}});
+  return json;
+}
+
+CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
+                                 std::ostream& log) {
+  const auto start = std::chrono::steady_clock::now();
+  // 1. Read and check everything before running anything.
+  const auto in = read_input(file, options);
+  const auto& grid = in.study.mesh.grid;
+
+  // 2. The agent model, every load step.
+  auto t = std::chrono::steady_clock::now();
+  const auto states = run_agent(in.study, dir, log);
+  const auto& agent_state = states.back();
+  const double agent_seconds = seconds_since(t);
+
+  // 3. The FEM reference at two levels (its output in dir/fem).
+  t = std::chrono::steady_clock::now();
+  const auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
+  const double fem_seconds = seconds_since(t);
+
+  // 4. Everything on the agent grid and along the lines.
+  t = std::chrono::steady_clock::now();
+  const auto agent_fields = agent_on_grid(grid, agent_state);
+  const GridFields* fields[3] = {&agent_fields, &reference.fields, &reference.estimate_fields};
+  std::vector<LineSamples> samples;
+  for (const auto& line : in.lines) samples.push_back(sample_line(grid, line, fields));
+
+  // 5. The metrics.
+  CompareOutcome outcome;
+  add_field_scopes(outcome, in, fields, options.mask);
+  for (std::size_t li = 0; li < in.lines.size(); ++li)
+    add_scope(outcome, in.lines[li].name, samples[li].sx, samples[li].sy, samples[li].u, options.mask);
+  add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
+  outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
+                             "|reactions + applied| / |applied| (FEM)"});
+
+  // 6. The files.
+  write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
+  write_field_files(dir, in, agent_fields, reference.fields, agent_state, options.mask);
+  write_steps_csv(dir / "steps.csv", in.study, states);
+  outcome.metrics.push_back({"time.agent_s", agent_seconds, "agent model, all load steps with output [s]"});
+  outcome.metrics.push_back({"time.fem_s", fem_seconds, "FEM reference, both levels, with output [s]"});
+  outcome.metrics.push_back({"time.compare_s", seconds_since(t), "comparison and its output [s]"});
+
+  // 7. Figures 8-11 and the animation, from the CSV files (compare/figures.py, matplotlib).
+  const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
+  auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
+  report::open_out(dir / "lines.json") << json["lines"].dump(1) << "\n";
+  double figures_seconds = 0;
+  if (options.figures) {
+    t = std::chrono::steady_clock::now();
+    report::run_figure_script("compare/figures.py", dir, title, log);
+    figures_seconds = seconds_since(t);
+  }
+  outcome.metrics.push_back({"time.figures_s", figures_seconds, "figures and animation [s]"});
+  outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
+
+  // 8. The gate, summary.json / summary.txt / junit.xml.
+  const std::vector<std::string> notes{
+      "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
+          " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
+          " DoFs) against it",
+      "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
+          " mm from every loaded face"};
+  report::finish(dir, file.path().stem().string(), std::move(json), options.gate, notes, outcome, log);
   return outcome;
 }
 

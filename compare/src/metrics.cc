@@ -1,3 +1,4 @@
+// Comparing fields on the agent grid: sampling, sample lines in each load's frame, the far-field mask, error norms and ratios.
 #include <compare/metrics.h>
 
 #include <algorithm>
@@ -59,41 +60,161 @@ double sample_nodes(const agent::Grid& g, const std::vector<double>& values, int
   return sample_lattice(g, values, comps, comp, p, true);
 }
 
-std::vector<Line> standard_lines(const agent::Grid& g, const Eigen::Vector3d& centre, const std::vector<double>& depths) {
-  std::vector<Line> lines;
-  const Eigen::Vector3d lo = g.origin;
+namespace {
+
+std::string millimetres(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", 1e3 * metres + 0.0);  // + 0.0: no "-0"
+  std::string s;
+  for (const char* c = text; *c; ++c) s += *c == '.' ? 'p' : *c == '-' ? 'm' : *c;
+  return s;
+}
+
+std::string point_name(const Eigen::Vector3d& p, int dim) {
+  std::string s;
+  for (int a = 0; a < dim; ++a) s += std::string(1, "xyz"[a]) + millimetres(p[a]);
+  return s;
+}
+
+Eigen::Vector3d box_hi(const agent::Grid& g) {
   Eigen::Vector3d hi = g.origin;
   for (int a = 0; a < g.dim; ++a) hi[a] += g.cells[a] * g.size[a];
+  return hi;
+}
+
+std::string format(const char* pattern, double a, double b = 0) {
   char text[160];
-  {
-    Line l;
-    l.name = "vertical";
-    l.from = centre;
-    l.to = centre;
-    l.from[1] = hi[1] - 0.5 * g.size[1];
-    l.to[1] = lo[1] + 0.5 * g.size[1];
-    l.samples = g.cells[1];
-    std::snprintf(text, sizeof text, "vertical line x = %.4g mm under the load", 1e3 * centre[0]);
-    l.description = text;
-    lines.push_back(l);
+  std::snprintf(text, sizeof text, pattern, a, b);
+  return text;
+}
+
+/// Nearest point of the outer face `side` of `cell` to `p`, and its distance.
+double distance_to_face(const agent::Grid& g, const agent::BoundaryFace& f, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d c = g.centre(f.cell);
+  const int axis = agent::axis_of(f.side);
+  double d2 = 0;
+  for (int a = 0; a < g.dim; ++a) {
+    double lo = c[a] - 0.5 * g.size[a], hi = c[a] + 0.5 * g.size[a];
+    if (a == axis) lo = hi = c[a] + (f.side % 2 ? 0.5 : -0.5) * g.size[a];
+    const double q = std::clamp(p[a], lo, hi);
+    d2 += (p[a] - q) * (p[a] - q);
   }
-  for (double depth : depths) {
-    Line l;
-    char name[32];
-    std::snprintf(name, sizeof name, "depth_%.3g", depth);
-    l.name = name;
-    const double y = hi[1] - depth * (hi[1] - lo[1]);
-    l.from = centre;
-    l.to = centre;
-    l.from[0] = lo[0] + 0.5 * g.size[0];
-    l.to[0] = hi[0] - 0.5 * g.size[0];
-    l.from[1] = l.to[1] = y;
-    l.samples = g.cells[0];
-    std::snprintf(text, sizeof text, "horizontal line y = %.4g mm (depth %.3g H)", 1e3 * y, depth);
-    l.description = text;
-    lines.push_back(l);
+  return std::sqrt(d2);
+}
+
+}  // namespace
+
+std::string line_name(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int dim) {
+  return "line_" + point_name(from, dim) + "_" + point_name(to, dim);
+}
+
+Line make_line(const agent::Grid& g, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+               const std::string& description, const std::string& kind) {
+  Line l;
+  l.kind = kind;
+  l.from = from;
+  l.to = to;
+  double agents = 0;  // agents crossed along the line's main axis
+  for (int a = 0; a < g.dim; ++a) agents = std::max(agents, std::abs(to[a] - from[a]) / g.size[a]);
+  l.samples = std::max(2, int(std::lround(agents)) + 1);
+  l.name = line_name(from, to, g.dim);
+  l.description = description;
+  return l;
+}
+
+std::vector<LoadFrame> load_frames(const agent::ImportedMesh& mesh, const std::vector<workbench::LoadSpec>& loads) {
+  const auto& g = mesh.grid;
+  std::vector<LoadFrame> frames;
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    LoadFrame f;
+    f.axis = loads[i].axis;
+    f.sign = loads[i].sign;
+    f.label = "load " + std::to_string(i + 1) + " (group " + loads[i].group + ", " + loads[i].direction_name() + ")";
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double area = 0;
+    for (const auto& face : mesh.face_groups.at(loads[i].group)) {
+      const int axis = agent::axis_of(face.side);
+      Eigen::Vector3d c = g.centre(face.cell);
+      c[axis] += (face.side % 2 ? 0.5 : -0.5) * g.size[axis];
+      const double a = g.face_area(axis);
+      sum += a * c;
+      area += a;
+    }
+    f.centre = sum / area;
+    frames.push_back(f);
+  }
+  return frames;
+}
+
+std::vector<Line> load_lines(const agent::Grid& g, const std::vector<LoadFrame>& loads, const std::vector<double>& depths) {
+  const Eigen::Vector3d lo = g.origin, hi = box_hi(g);
+  std::vector<Line> lines;
+  auto add = [&](Line l) {
+    for (const auto& other : lines)
+      if (other.name == l.name) return;
+    lines.push_back(std::move(l));
+  };
+  for (const auto& load : loads) {
+    const int ax = load.axis, across = ax == 0 ? 1 : 0;
+    const double h = g.size[ax];
+    // The loaded face is the body's side the load enters: the high side for a negative push.
+    const double entry = load.sign < 0 ? hi[ax] : lo[ax], exit = load.sign < 0 ? lo[ax] : hi[ax];
+    std::string slice;
+    if (g.dim == 3) {
+      const int third = 3 - ax - across;
+      slice = std::string(", slice ") + "xyz"[third] + " = " + format("%.4g mm", 1e3 * load.centre[third]);
+    }
+    Eigen::Vector3d from = load.centre, to = load.centre;
+    from[ax] = entry + load.sign * 0.5 * h;
+    to[ax] = exit - load.sign * 0.5 * h;
+    add(make_line(g, from, to,
+                  load.label + ": along the load, " + std::string(1, "xyz"[across]) + " = " +
+                      format("%.4g mm", 1e3 * load.centre[across]) + slice,
+                  "along"));
+    for (double depth : depths) {
+      Eigen::Vector3d a = load.centre, b = load.centre;
+      a[ax] = b[ax] = entry + load.sign * depth * (hi[ax] - lo[ax]);
+      a[across] = lo[across] + 0.5 * g.size[across];
+      b[across] = hi[across] - 0.5 * g.size[across];
+      add(make_line(g, a, b,
+                    load.label + ": across at depth " + format("%.4g", depth) + " of the body (" +
+                        std::string(1, "xyz"[ax]) + " = " + format("%.4g mm", 1e3 * a[ax]) + ")" + slice,
+                    "across"));
+    }
   }
   return lines;
+}
+
+NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench::LoadSpec>& loads, double distance) {
+  const auto& g = mesh.grid;
+  std::vector<agent::BoundaryFace> faces;
+  for (const auto& l : loads) {
+    const auto& group = mesh.face_groups.at(l.group);
+    faces.insert(faces.end(), group.begin(), group.end());
+  }
+  auto near = [&](const Eigen::Vector3d& p) {
+    for (const auto& f : faces)
+      if (distance_to_face(g, f, p) < distance) return char(1);
+    return char(0);
+  };
+  NearLoad out;
+  out.cells.resize(g.count());
+  for (std::size_t c = 0; c < g.count(); ++c) out.cells[c] = near(g.centre(c));
+  const auto nn = g.node_counts();
+  out.nodes.resize(g.node_count());
+  for (int k = 0; k < nn[2]; ++k)
+    for (int j = 0; j < nn[1]; ++j)
+      for (int i = 0; i < nn[0]; ++i) {
+        const Eigen::Vector3d p = g.origin + Eigen::Vector3d(i * g.size[0], j * g.size[1], k * g.size[2]);
+        out.nodes[g.node_index(i, j, k)] = near(p);
+      }
+  return out;
+}
+
+std::vector<double> component(const std::vector<double>& v, int comps, int c) {
+  std::vector<double> out(v.size() / comps);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i * comps + c];
+  return out;
 }
 
 Errors relative_errors(const std::vector<double>& model, const std::vector<double>& reference) {

@@ -1,7 +1,7 @@
 // The PBD angle bending rod against the deal.II FEM strip (issue 6, docs/compare.md "model = pbd"):
 // PBD relaxed to rest from the case's frames, FEM solved once, the FEM displacement sampled on the
 // strip's mid-height line at the PBD centreline's nodes, both against Euler-Bernoulli.
-#include <compare/compare_study.h>
+#include <compare/pbd_compare.h>
 #include <compare/metrics.h>
 
 #include "report.h"

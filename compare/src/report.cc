@@ -1,3 +1,4 @@
+// What both comparisons share: the gate, summary.json / summary.txt / junit.xml, the FEM run and the figure script.
 #include "report.h"
 
 #include <workbench/child_process.h>
@@ -89,6 +90,7 @@ void finish(const fs::path& dir, const std::string& case_name, nlohmann::json js
   for (const auto& m : outcome.metrics) {
     nlohmann::json entry{{"value", std::isfinite(m.value) ? nlohmann::json(m.value) : nlohmann::json("inf")},
                          {"meaning", m.meaning}};
+    if (std::isfinite(m.reference_error)) entry["reference_error"] = m.reference_error;
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;
       entry["passed"] = m.value <= it->second;
@@ -96,15 +98,22 @@ void finish(const fs::path& dir, const std::string& case_name, nlohmann::json js
     json["metrics"][m.name] = entry;
   }
   json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
+  json["warnings"] = outcome.warnings;
   open_out(dir / "summary.json") << json.dump(2) << "\n";
 
   std::ostringstream table;
+  for (const auto& w : outcome.warnings) table << "WARNING: " << w << "\n";
   for (const auto& n : notes) table << n << "\n";
-  if (!notes.empty()) table << "\n";
-  table << std::left << std::setw(40) << "metric" << std::right << std::setw(14) << "value" << std::setw(12) << "limit"
-        << "\n";
+  if (!notes.empty() || !outcome.warnings.empty()) table << "\n";
+  std::size_t width = 40;
+  for (const auto& m : outcome.metrics) width = std::max(width, m.name.size() + 2);
+  table << std::left << std::setw(int(width)) << "metric" << std::right << std::setw(14) << "value" << std::setw(16)
+        << "reference_error" << std::setw(12) << "limit\n";
   for (const auto& m : outcome.metrics) {
-    table << std::left << std::setw(40) << m.name << std::right << std::setw(14) << std::setprecision(5) << m.value;
+    table << std::left << std::setw(int(width)) << m.name << std::right << std::setw(14) << std::setprecision(5)
+          << m.value << std::setw(16);
+    if (std::isfinite(m.reference_error)) table << m.reference_error;
+    else table << "";
     if (auto it = gate.find(m.name); it != gate.end())
       table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
     table << "\n";

@@ -117,7 +117,7 @@ TEST(AgentStudy, LoadThatMissesTheRigidFaceWarnsAndMixedLoadsPrintVectors) {
     const fs::path dir = test_support::scratch_folder() / (mixed ? "mixed" : "patent");
     fs::create_directories(dir);
     std::ostringstream log;
-    const auto warnings = agent_study::write_agent_outputs(study, dir, log);
+    const auto warnings = agent_study::load_balance_warnings(agent_study::write_agent_outputs(study, dir, log).back().diagnostics);
     ASSERT_EQ(warnings.size(), 1u) << log.str();
     EXPECT_NE(warnings[0].find("reaches a rigid face"), std::string::npos);
     EXPECT_NE(log.str().find("agent: warning: only "), std::string::npos);

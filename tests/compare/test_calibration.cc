@@ -2,6 +2,7 @@
 // is reproducible, and refuses bad calibration files.
 #include <compare/calibration.h>
 #include <compare/calibration_study.h>
+#include <compare/metrics.h>
 
 #include <gtest/gtest.h>
 
@@ -31,14 +32,14 @@ std::string plate_case(const std::string& xc = "0.1") {
 }
 
 /// A load case whose reference is the agent model itself with coefficients `truth`.
-CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth) {
+CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth,
+                             agent::RuleSet rules = agent::RuleSet::Conserving) {
   workbench::CaseFile file(write("plate_" + xc + ".toml", plate_case(xc)));
   CalibrationCase c;
   c.name = "plate_" + xc;
   c.study = agent_study::load_agent_study(file);
-  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
-                            agent::RuleSet::Conserving);
-  c.reference = agent_on_grid(c.study, agent_study::evaluate(c.study, model, 1.0));
+  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth, rules);
+  c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
   return c;
 }
 
@@ -54,13 +55,15 @@ CalibrationOptions options() {
   o.seed = 7;
   o.max_evaluations = 600;
   o.tolerance = 1e-12;
+  o.weights.keep_load = false;  // the targets below lose more load than the start: tested on its own
   return o;
 }
 
 std::string error_of(const std::string& text) {
   try {
     workbench::CaseFile file(write("calibration.toml", text));
-    compare::run_calibration(file, test_support::scratch_folder() / "out", *new std::ostringstream);
+    std::ostringstream log;
+    compare::run_calibration(file, test_support::scratch_folder() / "out", log);
   } catch (const workbench::Error& e) {
     return e.what();
   }
@@ -140,4 +143,65 @@ TEST(Calibration, RefusesBadCalibrationFiles) {
             std::string::npos);
   EXPECT_NE(error_of(base + "[calibrate.objective]\nsigma_y = 0\ndisplacement = 0\n").find("positive weight"),
             std::string::npos);
+}
+
+TEST(Calibration, NeverEndsWithMoreLoadLostThanItStartedUnlessAllowed) {
+  // Off-centre load near a free side: a target with wider friction spreading (alpha3 = 0.6) passes
+  // more of the load out through the free sides than the start (alpha3 = 0.25) does.
+  const auto truth = coefficients_from({0.5, 0.3, 0.6, 0.6, 1e-9});
+  const std::vector<CalibrationCase> cases{agent_target("0.05", truth)};
+  auto o = options();
+  std::vector<Score> at_truth;
+  objective(cases, truth, o.rules, o.weights, &at_truth);
+  o.weights.keep_load = true;
+  const auto kept = calibrate(cases, o);
+  ASSERT_GT(at_truth[0].equilibrium_dev, kept.before[0].equilibrium_dev + 0.01);  // the target loses more load
+  EXPECT_LE(kept.after[0].equilibrium_dev, kept.before[0].equilibrium_dev + kLoadTolerance);
+  EXPECT_LE(kept.objective_best, kept.objective_start);
+  // Allowed to lose load, the same fit finds the target, and with it the larger loss.
+  o.weights.keep_load = false;
+  const auto free = calibrate(cases, o);
+  EXPECT_NEAR(free.best.alpha3, 0.6, 2e-3);
+  EXPECT_NEAR(free.after[0].equilibrium_dev, at_truth[0].equilibrium_dev, 1e-3);
+  EXPECT_LT(free.objective_best, kept.objective_best);
+}
+
+TEST(Calibration, CalibratedCaseKeepsTheOriginalsTextAndWritesNumbersShortestExact) {
+  const std::string original =
+      "# The plate, commented\ntitle = \"p\"\n[mesh]\nfile = \"../meshes/plate2d.geo\"  # relative\n"
+      "[agent]\nrule_set = \"conserving\"\nalpha2 = 0.5       # kept comment\ngamma = 1e-4  # held\n"
+      "[compare]\nmask = 0.01\n";
+  agent::Coefficients k = coefficients_from({0.5, 0.3, 0.1 + 0.2, 0.5, 1e-4});  // alpha3: 0.30000000000000004
+  const auto text = with_coefficients(original, "/cases", k, agent::RuleSet::Conserving);
+  EXPECT_NE(text.find("# The plate, commented\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("alpha2 = 0.3  # kept comment\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("gamma = 1e-4  # held\n"), std::string::npos) << text;  // unchanged: untouched
+  EXPECT_NE(text.find("alpha3 = 0.30000000000000004\n"), std::string::npos) << text;  // shortest that reads back exactly
+  EXPECT_NE(text.find("poisson_decay = 0.3\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("file = \"/meshes/plate2d.geo\"  # relative\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("[compare]\nmask = 0.01\n"), std::string::npos) << text;
+  // Keys added inside [agent], before [compare].
+  EXPECT_LT(text.find("beta = 0.5"), text.find("[compare]"));
+}
+
+TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
+  // A target that differs from the start only near the patch: doubling the reference's stress and
+  // displacement within 30 mm of the loaded face changes the body error, not the far field's.
+  const agent::Coefficients truth = coefficients_from({0.5, 0.3, 0.35, 0.6, 1e-9});
+  auto c = agent_target("0.1", truth);
+  auto w = options().weights;
+  w.far = true;
+  w.far_distance_mm = 30;
+  std::vector<Score> before;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &before);
+  EXPECT_LT(before[0].objective, 1e-20);  // the agent model against itself
+  const auto near = near_load(c.study.mesh, c.study.setup.loads, 0.03);
+  for (std::size_t cell = 0; cell < near.cells.size(); ++cell)
+    if (near.cells[cell]) c.reference.sigma[2 * cell + 1] *= 2;
+  std::vector<Score> far, body;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &far);
+  EXPECT_LT(far[0].sigma_y, 1e-12);
+  w.far = false;
+  objective({c}, truth, agent::RuleSet::Conserving, w, &body);
+  EXPECT_GT(body[0].sigma_y, 0.1);
 }

@@ -18,29 +18,101 @@ TEST(CompareSampling, BilinearFieldsAreSampledExactly) {
   for (std::size_t c = 0; c < g.count(); ++c) cells[c] = f(g.centre(c)[0], g.centre(c)[1]);
   for (int j = 0; j <= 5; ++j)
     for (int i = 0; i <= 8; ++i) nodes[g.node_index(i, j, 0)] = f(0.5 * i, 0.25 * j);
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(0.3, 0.2, 0), Eigen::Vector3d(2.1, 0.9, 0), Eigen::Vector3d(3.75, 1.125, 0)}) {
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.3, 0.2, 0), Eigen::Vector3d(2.1, 0.9, 0), Eigen::Vector3d(3.75, 1.125, 0)}) {
     EXPECT_NEAR(sample_nodes(g, nodes, 1, 0, p), f(p[0], p[1]), 1e-12);
     // Between the outer cell centres the cell field is bilinear too.
-    if (p[0] >= 0.25 && p[0] <= 3.75 && p[1] >= 0.125 && p[1] <= 1.125)
+    if (p[0] >= 0.25 && p[0] <= 3.75 && p[1] >= 0.125 && p[1] <= 1.125) {
       EXPECT_NEAR(sample_cells(g, cells, 1, 0, p), f(p[0], p[1]), 1e-12);
+    }
   }
   // Past the outer centres the cell field is held constant.
   EXPECT_NEAR(sample_cells(g, cells, 1, 0, Eigen::Vector3d(0.0, 0.125, 0)), f(0.25, 0.125), 1e-12);
 }
 
-TEST(CompareLines, VerticalAndHorizontalLinesThroughTheLoadCentre) {
-  const auto g = grid2d();
-  const auto lines = standard_lines(g, Eigen::Vector3d(2.0, 1.25, 0), {0.5});
-  ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[0].name, "vertical");
-  EXPECT_EQ(lines[0].samples, 5);
-  EXPECT_DOUBLE_EQ(lines[0].point(0)[1], 1.125);
-  EXPECT_DOUBLE_EQ(lines[0].point(4)[1], 0.125);
-  EXPECT_DOUBLE_EQ(lines[0].point(2)[0], 2.0);
-  EXPECT_EQ(lines[1].name, "depth_0.5");
+namespace {
+/// The 8 x 5 grid with face groups: "a" and "b" on top of columns 1 and 6, "s" on the left of row 2.
+agent::ImportedMesh mesh2d() {
+  agent::ImportedMesh m;
+  m.grid = grid2d();
+  m.face_groups["a"] = {{m.grid.index(1, 4, 0), agent::direction(1, true)}};
+  m.face_groups["b"] = {{m.grid.index(6, 4, 0), agent::direction(1, true)}};
+  m.face_groups["s"] = {{m.grid.index(0, 2, 0), agent::direction(0, false)}};
+  for (std::size_t c = 0; c < m.grid.count(); ++c) m.cell_of_element.push_back(c);
+  return m;
+}
+workbench::LoadSpec load(const std::string& group, int axis, int sign) {
+  workbench::LoadSpec l;
+  l.group = group;
+  l.axis = axis;
+  l.sign = sign;
+  l.force = 1.0;
+  return l;
+}
+}  // namespace
+
+TEST(CompareLines, TwoLoadsGetALineEachThroughTheirOwnPatch) {
+  const auto m = mesh2d();
+  const auto frames = load_frames(m, {load("a", 1, -1), load("b", 1, -1)});
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_DOUBLE_EQ(frames[0].centre[0], 0.75);
+  EXPECT_DOUBLE_EQ(frames[1].centre[0], 3.25);
+  EXPECT_DOUBLE_EQ(frames[0].centre[1], 1.25);
+  const auto lines = load_lines(m.grid, frames, {0.5});
+  // Each load's own vertical line; the line across at half depth is the same for both: once.
+  ASSERT_EQ(lines.size(), 3u);
+  for (int k : {0, 2}) {
+    const double x = k == 0 ? 0.75 : 3.25;
+    EXPECT_DOUBLE_EQ(lines[k].from[0], x);
+    EXPECT_DOUBLE_EQ(lines[k].to[0], x);
+    EXPECT_DOUBLE_EQ(lines[k].from[1], 1.125);  // the first agent centre under the patch
+    EXPECT_DOUBLE_EQ(lines[k].to[1], 0.125);
+    EXPECT_EQ(lines[k].samples, 5);
+  }
+  EXPECT_EQ(lines[0].name, "line_x750y1125_x750y125");
+  EXPECT_EQ(lines[2].name, "line_x3250y1125_x3250y125");
+  EXPECT_DOUBLE_EQ(lines[1].from[1], 0.625);
+  EXPECT_DOUBLE_EQ(lines[1].to[1], 0.625);
+  EXPECT_DOUBLE_EQ(lines[1].from[0], 0.25);
+  EXPECT_DOUBLE_EQ(lines[1].to[0], 3.75);
   EXPECT_EQ(lines[1].samples, 8);
-  EXPECT_DOUBLE_EQ(lines[1].point(0)[1], 0.625);
-  EXPECT_DOUBLE_EQ(lines[1].point(7)[0], 3.75);
+}
+
+TEST(CompareLines, ASideLoadsLinesAreTurned) {
+  const auto m = mesh2d();
+  const auto lines = load_lines(m.grid, load_frames(m, {load("s", 0, +1)}), {0.25});
+  ASSERT_EQ(lines.size(), 2u);
+  // Along the load (+x) at the patch's height, from the loaded left side across the body.
+  EXPECT_DOUBLE_EQ(lines[0].from[1], 0.625);
+  EXPECT_DOUBLE_EQ(lines[0].to[1], 0.625);
+  EXPECT_DOUBLE_EQ(lines[0].from[0], 0.25);
+  EXPECT_DOUBLE_EQ(lines[0].to[0], 3.75);
+  // Across it (along y) at a quarter of the width in from the loaded side.
+  EXPECT_DOUBLE_EQ(lines[1].from[0], 1.0);
+  EXPECT_DOUBLE_EQ(lines[1].to[0], 1.0);
+  EXPECT_DOUBLE_EQ(lines[1].from[1], 0.125);
+  EXPECT_DOUBLE_EQ(lines[1].to[1], 1.125);
+}
+
+TEST(CompareLines, OneNameFromTheCoordinates) {
+  // depths = [0.1234] on a 200 mm plate: the line at y = 175.32 mm has one name everywhere.
+  EXPECT_EQ(line_name(Eigen::Vector3d(0.1, 0.17532, 0), Eigen::Vector3d(0, -0.0015, 0), 2), "line_x100y175p32_x0ym1p5");
+  EXPECT_EQ(line_name(Eigen::Vector3d(0, 0, 0.002), Eigen::Vector3d(0.001, 0, 0), 3), "line_x0y0z2_x1y0z0");
+}
+
+TEST(CompareFarField, TheMaskLeavesOutExactlyTheCellsAndNodesWithinTheDistance) {
+  const auto m = mesh2d();
+  // Patch "a": x in [0.5, 1], y = 1.25. Within 0.3 of it: the centres (0.25 | 0.75 | 1.25, 1.125)
+  // (distances 0.2795, 0.125, 0.2795); the next ones are 0.375 (below) and 0.76 (beside) away.
+  const auto near = near_load(m, {load("a", 1, -1)}, 0.3);
+  std::vector<std::size_t> cells, nodes;
+  for (std::size_t c = 0; c < near.cells.size(); ++c)
+    if (near.cells[c]) cells.push_back(c);
+  for (std::size_t n = 0; n < near.nodes.size(); ++n)
+    if (near.nodes[n]) nodes.push_back(n);
+  EXPECT_EQ(cells, (std::vector<std::size_t>{m.grid.index(0, 4, 0), m.grid.index(1, 4, 0), m.grid.index(2, 4, 0)}));
+  // Nodes x = 0.5, 1 at y = 1 (0.25 away) and y = 1.25 (on the patch); x = 0 and 1.5 are 0.5 away.
+  EXPECT_EQ(nodes, (std::vector<std::size_t>{m.grid.node_index(1, 4, 0), m.grid.node_index(2, 4, 0),
+                                             m.grid.node_index(1, 5, 0), m.grid.node_index(2, 5, 0)}));
 }
 
 TEST(CompareNorms, RelativeErrorsAndMaskedRatios) {

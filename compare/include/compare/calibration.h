@@ -27,7 +27,16 @@ struct Parameter {
 struct ObjectiveWeights {
   double sigma_x = 0.0, sigma_y = 1.0, displacement = 1.0;
   bool lines = false;
-  std::vector<double> depths{0.25, 0.5, 0.75};  ///< the horizontal lines, when `lines`
+  std::vector<double> depths{0.25, 0.5, 0.75};  ///< the lines across each load, when `lines`
+  bool far = false;              ///< over the far field (docs/compare.md) instead of the body
+  double far_distance_mm = 0;    ///< far: what is closer to a loaded face is left out; 0: 5 agent sizes
+  /// The load-balance constraint (on by default): a point where a case's equilibrium deviation
+  /// |rigid reaction - applied| / applied exceeds `equilibrium_ceiling[case]` is refused (objective 1e30).
+  bool keep_load = true;
+  /// Per case: the start's deviation + kLoadTolerance; set by calibrate().
+  std::vector<double> equilibrium_ceiling;
+  /// Coefficients (alpha1..gamma) that are not fitted and come from each case's own [agent].
+  std::array<bool, 5> held_from_case{};
 };
 
 struct CalibrationCase {
@@ -48,8 +57,15 @@ struct CalibrationOptions {
   int threads = 0;              ///< 0: every core
 };
 
+/// The load balance a fit may lose with keep_load (a share of the applied load): rounding only.
+constexpr double kLoadTolerance = 1e-6;
+
 struct Score {
   double objective = 0, sigma_x = 0, sigma_y = 0, displacement = 0;  ///< per case: the errors e
+  double reaction_share = 0;  ///< rigid reaction / applied: the load the agents carry to a rigid face
+  double equilibrium_dev = 0; ///< |rigid reaction - applied| / applied
+  double reach = 0;           ///< share of agents the load reaches
+  bool load_refused = false;  ///< over the case's equilibrium ceiling (keep_load)
 };
 
 /// The objective for one set of coefficients; `per_case` receives each case's errors.
@@ -79,5 +95,9 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
 
 /// Coefficients from a parameter vector (alpha1..gamma); poisson_decay is left to follow alpha2.
 agent::Coefficients coefficients_from(const std::array<double, 5>& values);
+
+/// A case's coefficients: the fitted ones, with those `held` taken from the case's `own`.
+agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
+                             const std::array<bool, 5>& held);
 
 }  // namespace compare

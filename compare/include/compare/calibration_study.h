@@ -9,6 +9,13 @@
 
 namespace compare {
 
+/// The text of a case file with its [agent] rule set and coefficients set to `k` and a relative
+/// mesh file made absolute against `case_dir`: the original's lines, comments and layout are kept,
+/// only the values that change are rewritten, shortest-exact (0.3, not 0.29999999999999999), and
+/// missing keys are added at the end of [agent] (a new [agent] table at the end if there is none).
+std::string with_coefficients(const std::string& text, const std::filesystem::path& case_dir,
+                              const agent::Coefficients& k, agent::RuleSet rules);
+
 /// Reads the calibration file and every case it lists, solves FEM for each, fits, cross-validates,
 /// and writes report.txt, report.json and calibrated/<case>.toml into `dir`.
 CalibrationResult run_calibration(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);

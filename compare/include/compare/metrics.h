@@ -2,6 +2,8 @@
 // Comparing two models on the same structured grid: sampling along lines, error norms and
 // agent/FEM ratios with a mask where the reference is too small for a ratio to mean anything.
 #include <agent/grid.h>
+#include <agent/mesh_import.h>
+#include <workbench/study_setup.h>
 
 #include <Eigen/Core>
 
@@ -22,19 +24,54 @@ double sample_nodes(const agent::Grid& grid, const std::vector<double>& values, 
 
 /// A straight sample line through the body.
 struct Line {
-  std::string name;        ///< e.g. "vertical", "depth_0.25"
-  std::string description; ///< for figure titles, e.g. "x = 100 mm, under the load"
+  std::string name;        ///< line_name(from, to): the same in every file and in the gate
+  std::string description; ///< for figure titles, e.g. "load 1 (group load, -y): along the load"
+  std::string kind;        ///< "along" a load, "across" a load, or "user" ([[compare.line]])
   Eigen::Vector3d from, to;
   int samples = 0;
   Eigen::Vector3d point(int i) const { return from + (to - from) * (samples > 1 ? double(i) / (samples - 1) : 0.0); }
   double length() const { return (to - from).norm(); }
 };
 
-/// The vertical line under the load centre (top to bottom), and horizontal lines at the given
-/// depths (fractions of the height below the top), through the load centre in 3D. One sample
-/// per agent along each line, at agent centres.
-std::vector<Line> standard_lines(const agent::Grid& grid, const Eigen::Vector3d& load_centre,
-                                 const std::vector<double>& depths);
+/// The one name of the line from `from` to `to`: "line_" then each end as x<mm>y<mm>(z<mm>),
+/// millimetres with up to 6 significant digits, '.' written 'p' and '-' written 'm' so that the
+/// name is one word in metric names and CSV files (e.g. line_x100y199_x100y1).
+std::string line_name(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int dim);
+
+/// A line from `from` to `to` with one sample per agent along its main axis (at least 2), named by
+/// line_name.
+Line make_line(const agent::Grid& grid, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+               const std::string& description, const std::string& kind);
+
+/// A load in its own frame: where its patch is and which way it pushes.
+struct LoadFrame {
+  Eigen::Vector3d centre;  ///< force-weighted centre of the loaded faces [m]
+  int axis = 1;            ///< direction of the load: axis and sign
+  int sign = -1;
+  std::string label;       ///< e.g. "load 1 (group load, -y)"
+};
+
+/// Each [[load]] of a study in its frame (the agent mesh's faces of its group, weighted by area).
+std::vector<LoadFrame> load_frames(const agent::ImportedMesh& mesh, const std::vector<workbench::LoadSpec>& loads);
+
+/// For each load: the line along its direction through its patch centre, from the first agent
+/// centre to the last one across the body, and lines across it at `depths` (fractions of the
+/// body's extent along the load, measured from the loaded face), along the first other axis
+/// through the patch centre (3D: in the slice through the centre). Lines shared by two loads
+/// (same ends) appear once.
+std::vector<Line> load_lines(const agent::Grid& grid, const std::vector<LoadFrame>& loads,
+                             const std::vector<double>& depths);
+
+/// Cells (grid order) and grid nodes (Grid::node_index order) closer than `distance` [m] to a
+/// loaded face: an agent's centre, a node's position, to the nearest point of any face of the
+/// given groups. The far field is everything else.
+struct NearLoad {
+  std::vector<char> cells, nodes;
+};
+NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench::LoadSpec>& loads, double distance);
+
+/// Component `c` of an interleaved field with `comps` values per entry.
+std::vector<double> component(const std::vector<double>& v, int comps, int c);
 
 /// ||model - reference|| / ||reference|| in the 2-norm and the max-norm (0 when both are 0).
 struct Errors {

@@ -19,6 +19,7 @@
 #include <toml++/toml.h>
 
 #include <fstream>
+#include <cmath>
 #include <iterator>
 #include <memory>
 #include <optional>
@@ -207,7 +208,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     const auto study = agent_study::load_agent_study(*file);
     check_every_section(*file);
     if (output_dir) {
-      workbench::StagedDirectory staged(*output_dir);
+      workbench::StagedDirectory staged(*output_dir, file->path());
       agent_study::write_agent_outputs(study, staged.path(), log);
       staged.commit();
     }
@@ -288,7 +289,7 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
     const auto problem = fem_reference::problem_from_case(*file);
     check_every_section(*file);
     if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
-    workbench::StagedDirectory staged(*output_dir);
+    workbench::StagedDirectory staged(*output_dir, file->path());
     auto r = fem_reference::solve_fem(problem, staged.path(), &log);
     fem_reference::write_fem_csv(r, staged.path());
     staged.commit();
@@ -300,21 +301,26 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
 py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto outcome = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    workbench::StagedDirectory staged(output_dir);
+    workbench::StagedDirectory staged(output_dir, file->path());
     auto o = compare::run_compare(*file, staged.path(), log);
     staged.commit();
     return o;
   });
-  py::dict metrics, meanings;
+  py::dict metrics, meanings, reference_errors;
   for (const auto& m : outcome.metrics) {
     metrics[py::str(m.name)] = m.value;
     meanings[py::str(m.name)] = m.meaning;
+    if (!std::isnan(m.reference_error)) reference_errors[py::str(m.name)] = m.reference_error;
   }
   py::list failures;
   for (const auto& f : outcome.failures) failures.append(py::make_tuple(f.metric, f.value, f.limit));
   py::dict r;
   r["metrics"] = metrics;
   r["meanings"] = meanings;
+  r["reference_errors"] = reference_errors;  // the reference's own error, beside each error metric
+  py::list warning_list;
+  for (const auto& w : outcome.warnings) warning_list.append(w);
+  r["warnings"] = warning_list;
   r["gate_failures"] = failures;
   r["gated"] = outcome.gated;
   return r;
@@ -323,7 +329,7 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
 py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    workbench::StagedDirectory staged(output_dir);
+    workbench::StagedDirectory staged(output_dir, file->path());
     auto r = compare::run_calibration(*file, staged.path(), log);
     staged.commit();
     return r;
@@ -357,9 +363,9 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
   };
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    auto study = pbd_study::load_pbd_study(*file);
-    if (file->root().has("mesh")) workbench::read_study_setup(file->root());  // as `workbench pbd` does
-    check_every_section(*file);
+    auto pbd_case = pbd_study::read_pbd_case(*file);
+    check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
+    auto study = pbd_study::load_pbd_study(*file, std::move(pbd_case));
     const auto& setup = study.setup;
     Out o;
     o.nodes = study.mesh.mesh.points.size();
@@ -410,10 +416,14 @@ class Objective {
         compare::CalibrationCase cc;
         cc.name = c.path.stem().string();
         cc.study = agent_study::load_agent_study(*file);
-        const auto problem = fem_reference::problem_from_case(*file);
+        auto problem = fem_reference::problem_from_case(*file);
         check_every_section(*file);
+        // The case's own reference, as `workbench calibrate` solves it ([compare.reference]).
+        const auto reference = compare::read_compare_options(file->root()).reference.resolved(cc.study.mesh.grid.dim);
+        problem.options.degree = reference.degree;
+        problem.options.refine = reference.refine;
         const auto fem = fem_reference::solve_fem(problem, {}, &log);
-        cc.reference = compare::fem_on_grid(cc.study, fem, file->path().string());
+        cc.reference = compare::fem_on_grid(cc.study.mesh, fem, file->path().string());
         out.push_back(std::move(cc));
       }
       return out;

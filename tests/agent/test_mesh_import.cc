@@ -124,7 +124,7 @@ TEST(Voxelize, ADiscHasAboutPiRSquaredOverHSquaredAgents) {
 
 TEST(Voxelize, GroupsGoToTheNearestStaircaseFacesAndTheMshReadsBackIdentical) {
   namespace fs = std::filesystem;
-  const fs::path msh = fs::temp_directory_path() / ("workbench_voxelize_" + std::to_string(::getpid()) + ".msh");
+  const fs::path msh = fs::temp_directory_path() / ("workbench_voxelize_" + std::to_string(::getpid()) + ".msh");  // removed at the end
   const double h = 0.005;
   const auto m = voxelize(kMeshes + "plate_hole.geo", h, {}, msh);
   const auto& g = m.grid;
@@ -164,6 +164,7 @@ TEST(Voxelize, GroupsGoToTheNearestStaircaseFacesAndTheMshReadsBackIdentical) {
     EXPECT_EQ(a, b) << name;
   }
   fs::remove(msh);
+}
 
 TEST(MeshImport, RefusesOverlapsIncoherentNodesAndBrokenMshFiles) {
   // Two unit squares side by side (MSH 2.2), each file with one fault.

@@ -13,7 +13,6 @@
 namespace workbench {
 
 namespace {
-constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 std::string gib(double bytes) {
   char buf[64];

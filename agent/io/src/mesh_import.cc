@@ -3,6 +3,7 @@
 
 #include <gmsh.h>
 #include <gmsh_session.h>
+#include <workbench/memory_limit.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include <unistd.h>
 
 namespace agent {
 
@@ -38,15 +38,6 @@ double study_bytes_per_slot(int dim) {
   // Solver: 2 dim face forces and a generation per slot, the grid's flag byte; study: stress,
   // strain, displacement and output points, import tables (measured sizes, rounded up).
   return dim == 2 ? 200.0 : 300.0;
-}
-
-double memory_limit_bytes() {
-  if (const char* text = std::getenv("WORKBENCH_MEMORY_LIMIT_GB")) {
-    char* end = nullptr;
-    const double gb = std::strtod(text, &end);
-    if (end != text && *end == '\0' && gb > 0 && std::isfinite(gb)) return gb * 1e9;
-  }
-  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
 }
 
 ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
@@ -134,12 +125,12 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
     longest = std::max(longest, along);
   }
   const double estimate = slots * study_bytes_per_slot(dim);
-  const double limit = memory_limit_bytes();
+  const double limit = workbench::memory_limit_bytes();
   if (!(estimate <= limit) || !(longest < 1e9)) {
     std::ostringstream s;
     s << name << ": the agent grid's bounding box " << point_text(hi_all - lo_all, dim) << " m holds " << slots
-      << " agent slots of " << size[0] << " m: about " << estimate / 1e9 << " GB, more than the " << limit / 1e9
-      << " GB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT_GB to change it)";
+      << " agent slots of " << size[0] << " m: about " << estimate / workbench::kGiB << " GiB, more than the " << limit / workbench::kGiB
+      << " GiB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw MeshError(s.str());
   }
   for (int a = 0; a < dim; ++a) n[a] = int(std::lround((hi_all[a] - lo_all[a]) / size[a]));

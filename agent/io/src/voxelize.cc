@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <gmsh.h>
 #include <gmsh_session.h>
+#include <workbench/memory_limit.h>
 
 #include <algorithm>
 #include <cmath>
@@ -152,11 +153,11 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
     slots *= along;
     if (!(along < 1e9)) slots = std::numeric_limits<double>::infinity();
   }
-  if (!(slots * study_bytes_per_slot(dim) <= memory_limit_bytes())) {
+  if (!(slots * study_bytes_per_slot(dim) <= workbench::memory_limit_bytes())) {
     std::ostringstream s;
     s << name << ": agent size " << size << " m gives " << slots << " agent slots, about "
-      << slots * study_bytes_per_slot(dim) / 1e9 << " GB, more than the " << memory_limit_bytes() / 1e9
-      << " GB allowed (set WORKBENCH_MEMORY_LIMIT_GB to change it)";
+      << slots * study_bytes_per_slot(dim) / workbench::kGiB << " GiB, more than the " << workbench::memory_limit_bytes() / workbench::kGiB
+      << " GiB allowed (set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw std::runtime_error(s.str());
   }
   for (int a = 0; a < dim; ++a) n[a] = int(std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9)));

@@ -5,6 +5,8 @@
 
 namespace workbench {
 
+constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
 /// The limit in bytes: WORKBENCH_MEMORY_LIMIT (GiB, e.g. "64") when set, else the machine's
 /// physical memory. An unreadable WORKBENCH_MEMORY_LIMIT is an Error.
 double memory_limit_bytes();

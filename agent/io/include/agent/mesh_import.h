@@ -27,9 +27,6 @@ struct ImportedMesh {
 /// memory check.
 double study_bytes_per_slot(int dim);
 
-/// The memory a grid may take [bytes]: WORKBENCH_MEMORY_LIMIT_GB if set, else the machine's.
-double memory_limit_bytes();
-
 /// Reads or generates the mesh. `parameters` override the .geo's DefineConstant values; a name
 /// the file does not declare is an error. Every error is a std::runtime_error whose message
 /// starts with the file name and says what is wrong (element type, overlap, size, ...).

@@ -1,3 +1,4 @@
+// `workbench agent` (the agent study: VTU per load step, CSV, summary) and `workbench voxelize` (a staircase .msh from any geometry).
 #include "commands.h"
 
 #include <agent/voxelize.h>

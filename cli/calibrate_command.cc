@@ -1,3 +1,4 @@
+// `workbench calibrate`: fits the agent transfer coefficients against the FEM reference.
 #include "commands.h"
 
 #include <compare/calibration_study.h>

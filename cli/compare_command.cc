@@ -1,3 +1,4 @@
+// `workbench compare`: a fast model against the FEM reference (metrics, figures, tolerance gate).
 #include "commands.h"
 
 #include <compare/compare_study.h>

@@ -1,3 +1,4 @@
+// `workbench fem`: the deal.II FEM reference, serial or under mpirun (collective errors).
 #include "commands.h"
 
 #include <fem_reference/fem.h>

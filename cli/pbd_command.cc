@@ -1,3 +1,4 @@
+// `workbench pbd`: the PBD angle bending model stepped into frames (VTU/PVD/CSV, animation).
 #include "commands.h"
 
 #include <pbd_study.h>

@@ -1,11 +1,6 @@
-// What every subcommand does with a case file: read it, check every section, name the output folder.
+// What every subcommand does with a case file: read it, check its output options, name the output folder.
 #include "commands.h"
 
-#include <agent_study.h>
-#include <compare/compare_study.h>
-#include <fem_reference/fem.h>
-#include <pbd_study.h>
-#include <workbench/study_setup.h>
 
 #include <filesystem>
 #include <iostream>
@@ -46,40 +41,5 @@ std::string output_folder(const std::string& option, const workbench::CaseFile& 
   return option.empty() ? "out/" + file.path().stem().string() + "/" + subcommand : option;
 }
 
-namespace {
-
-// Every section a case file may have, each with the reader that checks it. One case file describes
-// one study for every model, so every subcommand checks all of them (a section its model does not
-// run is still checked, never refused as unknown).
-struct Section {
-  const char* names;
-  void (*check)(const workbench::CaseFile& file);
-};
-
-const Section kSections[] = {
-    {"mesh, material, boundary, load, steps",
-     [](const workbench::CaseFile& f) {
-       if (f.root().has("mesh")) workbench::read_study_setup(f.root());
-     }},
-    {"agent",
-     [](const workbench::CaseFile& f) {
-       agent::Coefficients k;
-       agent::RuleSet rules;
-       agent_study::read_agent_section(f.root(), k, rules);
-     }},
-    {"fem", [](const workbench::CaseFile& f) { fem_reference::read_fem_section(f.root()); }},
-    {"compare", [](const workbench::CaseFile& f) { compare::read_compare_options(f.root()); }},
-    {"pbd",
-     [](const workbench::CaseFile& f) {
-       if (f.root().has("pbd")) pbd_study::read_pbd_case(f);
-     }},
-};
-
-}  // namespace
-
-void check_every_section(const workbench::CaseFile& file) {
-  for (const auto& section : kSections) section.check(file);
-  file.reject_unknown_keys();
-}
 
 }  // namespace cli

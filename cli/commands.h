@@ -1,6 +1,7 @@
 #pragma once
 // Each subcommand of the `workbench` program registers itself here; main() only dispatches.
 #include <CLI/CLI.hpp>
+#include <compare/case_sections.h>
 #include <workbench/case_file.h>
 
 #include <functional>
@@ -8,9 +9,8 @@
 
 namespace cli {
 
-/// A case file describes one study for every model, so each subcommand checks every section
-/// (the list is in case_sections.cc), then rejects whatever no module knows.
-void check_every_section(const workbench::CaseFile& file);
+/// Every section of a case file checked, unknown keys refused (compare/case_sections.h).
+using compare::check_every_section;
 
 /// `--check`: read the case file, check every section (and, but for compare, load the model's
 /// study, mesh included), write nothing.

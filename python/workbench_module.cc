@@ -3,6 +3,7 @@
 #include <agent_study.h>
 #include <compare/calibration.h>
 #include <compare/calibration_study.h>
+#include <compare/case_sections.h>
 #include <compare/compare_study.h>
 #include <compare/reference.h>
 #include <fem_reference/fem.h>
@@ -158,17 +159,6 @@ py::array_t<T> take(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
 
 py::ssize_t ssize(std::size_t n) { return static_cast<py::ssize_t>(n); }
 
-/// The same check the command line does before a run: every section read, no unknown key.
-void check_every_section(const workbench::CaseFile& file) {
-  const auto root = file.root();
-  agent::Coefficients k;
-  agent::RuleSet rules;
-  agent_study::read_agent_section(root, k, rules);
-  fem_reference::read_fem_section(root);
-  compare::read_compare_options(root);
-  file.reject_unknown_keys();
-}
-
 py::dict diagnostics_dict(const agent::Diagnostics& d) {
   py::dict out;
   out["agents_generated"] = d.agents_generated;
@@ -177,6 +167,7 @@ py::dict diagnostics_dict(const agent::Diagnostics& d) {
   out["rigid_reaction_N"] = d.rigid_reaction;
   out["passed_out_N"] = d.passed_out;
   out["dropped_N"] = d.dropped;
+  out["lost_N"] = d.lost;  // applied = rigid reaction + passed out + dropped + lost
   out["lateral_reaction_N"] = d.lateral_reaction;
   out["lateral_passed_out_N"] = d.lateral_passed_out;
   out["lateral_dropped_N"] = d.lateral_dropped;
@@ -190,7 +181,7 @@ py::dict coefficients_dict(const agent::Coefficients& k) {
   out["alpha3"] = k.alpha3;
   out["beta"] = k.beta;
   out["gamma"] = k.gamma;
-  out["poisson_decay"] = k.poisson_decay;
+  out["poisson_decay"] = k.decay();
   return out;
 }
 
@@ -206,7 +197,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     const auto study = agent_study::load_agent_study(*file);
-    check_every_section(*file);
+    compare::check_every_section(*file);
     if (output_dir) {
       workbench::StagedDirectory staged(*output_dir, file->path());
       agent_study::write_agent_outputs(study, staged.path(), log);
@@ -287,7 +278,7 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     const auto problem = fem_reference::problem_from_case(*file);
-    check_every_section(*file);
+    compare::check_every_section(*file);
     if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
     workbench::StagedDirectory staged(*output_dir, file->path());
     auto r = fem_reference::solve_fem(problem, staged.path(), &log);
@@ -364,7 +355,7 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     auto pbd_case = pbd_study::read_pbd_case(*file);
-    check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
+    compare::check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
     auto study = pbd_study::load_pbd_study(*file, std::move(pbd_case));
     const auto& setup = study.setup;
     Out o;
@@ -417,7 +408,7 @@ class Objective {
         cc.name = c.path.stem().string();
         cc.study = agent_study::load_agent_study(*file);
         auto problem = fem_reference::problem_from_case(*file);
-        check_every_section(*file);
+        compare::check_every_section(*file);
         // The case's own reference, as `workbench calibrate` solves it ([compare.reference]).
         const auto reference = compare::read_compare_options(file->root()).reference.resolved(cc.study.mesh.grid.dim);
         problem.options.degree = reference.degree;

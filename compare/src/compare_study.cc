@@ -430,7 +430,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
           " DoFs) against it",
       "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
           " mm from every loaded face"};
-  report::finish(dir, file.path().stem().string(), std::move(json), options.gate, notes, outcome, log);
+  report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log);
   return outcome;
 }
 

@@ -302,7 +302,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   n3 << "PBD: " << s_used.size() - 1 << " segments, " << setup.frames << " frames of " << setup.step.dt << " s, "
      << setup.step.substeps << " substeps x " << setup.step.iterations << " iterations; FEM: Q" << fem.degree << ", "
      << fem.n_active_cells << " cells, " << fem.n_dofs << " DoFs";
-  report::finish(dir, file.path().stem().string(), std::move(json), options.gate, {n1.str(), n2.str(), n3.str()},
+  report::finish(dir, file.path(), std::move(json), options.gate, {n1.str(), n2.str(), n3.str()},
                  outcome, log);
   return outcome;
 }

@@ -73,9 +73,16 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
   return std::sqrt(imbalance / applied);
 }
 
-void finish(const fs::path& dir, const std::string& case_name, nlohmann::json json,
+void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
             std::ostream& log) {
+  const std::string case_name = case_file.stem().string();
+  // Nothing non-finite is written with exit 0: a metric that is not a number is an error (a zero
+  // reference norm, a non-finite field), named with the metric, before any summary is written.
+  for (const auto& m : outcome.metrics)
+    if (!std::isfinite(m.value))
+      throw Error(case_file.string() + ": compare: metric " + m.name + " is " + std::to_string(m.value) + " (" + m.meaning +
+                  "): not a finite number, nothing written");
   // The gate.
   outcome.gated = 0;
   outcome.failures.clear();
@@ -88,8 +95,7 @@ void finish(const fs::path& dir, const std::string& case_name, nlohmann::json js
 
   // Summary: JSON for programs, a table for people, JUnit XML for CI systems.
   for (const auto& m : outcome.metrics) {
-    nlohmann::json entry{{"value", std::isfinite(m.value) ? nlohmann::json(m.value) : nlohmann::json("inf")},
-                         {"meaning", m.meaning}};
+    nlohmann::json entry{{"value", m.value}, {"meaning", m.meaning}};
     if (std::isfinite(m.reference_error)) entry["reference_error"] = m.reference_error;
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;

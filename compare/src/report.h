@@ -43,8 +43,9 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem);
 /// Applies the gate to `outcome.metrics` (fills failures and gated) and writes summary.json
 /// (`header` plus every metric with meaning, limit and verdict, and the gate's counts),
 /// summary.txt (`notes`, then the metric table, also on `log`) and junit.xml (one test case per
-/// gated metric, a <failure> for each one over its limit) into `dir`.
-void finish(const std::filesystem::path& dir, const std::string& case_name, nlohmann::json header,
+/// gated metric, a <failure> for each one over its limit) into `dir`. A metric that is not finite
+/// is a workbench::Error naming it and `case_file`, before anything is written.
+void finish(const std::filesystem::path& dir, const std::filesystem::path& case_file, nlohmann::json header,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
             std::ostream& log);
 

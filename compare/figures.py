@@ -59,8 +59,13 @@ def num(a):
 
 
 def progress(text):
-    """A progress line on stderr, only when it is a terminal (the workbench logs into figures.log)."""
-    if sys.stderr.isatty():
+    """A progress line for a person at a terminal: the workbench's terminal when it runs this script
+    (descriptor WORKBENCH_PROGRESS_FD; everything else goes to figures.log), else stderr when that is
+    a terminal; nothing otherwise."""
+    fd = os.environ.get("WORKBENCH_PROGRESS_FD")
+    if fd:
+        os.write(int(fd), ("figures: " + text + "\n").encode())
+    elif sys.stderr.isatty():
         print("figures: " + text, file=sys.stderr, flush=True)
 
 

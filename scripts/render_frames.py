@@ -44,22 +44,35 @@ def fail(msg):
     sys.exit(1)
 
 
+def progress_stream():
+    """Where progress goes: the workbench's terminal when it runs this script (descriptor
+    WORKBENCH_PROGRESS_FD; everything else goes to render.log), else stderr when that is a terminal,
+    else nowhere."""
+    fd = os.environ.get("WORKBENCH_PROGRESS_FD")
+    if fd:
+        return os.fdopen(int(fd), "w", closefd=False)
+    return sys.stderr if sys.stderr.isatty() else None
+
+
+PROGRESS = progress_stream()
+
+
 class Progress:
-    """`label k/n` on one stderr line, shown only on a terminal and only after the first second."""
+    """`label k/n` on one terminal line, shown only after the first second."""
 
     def __init__(self, label, total):
         self.label, self.total, self.start = label, total, clock.monotonic()
         self.shown = False
-        self.on = sys.stderr.isatty()
+        self.on = PROGRESS is not None
 
     def step(self, k):
         if self.on and (self.shown or clock.monotonic() - self.start > 1.0):
             self.shown = True
-            print(f"\r{self.label} {k}/{self.total}", end="", file=sys.stderr, flush=True)
+            print(f"\r{self.label} {k}/{self.total}", end="", file=PROGRESS, flush=True)
 
     def done(self):
         if self.shown:
-            print(f"\r{self.label} {self.total}/{self.total} ({clock.monotonic() - self.start:.1f} s)", file=sys.stderr)
+            print(f"\r{self.label} {self.total}/{self.total} ({clock.monotonic() - self.start:.1f} s)", file=PROGRESS)
 
 
 def read_cells(path):
@@ -208,8 +221,8 @@ def main():
             fig.savefig(os.path.join(tmp, f"img_{k:05d}.png"))
             plt.close(fig)
         drawing.done()
-        if sys.stderr.isatty():
-            print("render_frames: encoding with ffmpeg", file=sys.stderr)
+        if PROGRESS is not None:
+            print("render_frames: encoding with ffmpeg", file=PROGRESS, flush=True)
         src = ["-framerate", str(a.fps), "-i", os.path.join(tmp, "img_%05d.png")]
         if ext == ".mp4":
             cmd = ["ffmpeg", "-y", "-loglevel", "error", *src, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",

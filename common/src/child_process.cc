@@ -16,6 +16,10 @@
 
 extern char** environ;
 
+namespace {
+constexpr int kProgressFd = 3;  // the terminal, for a child's progress lines
+}  // namespace
+
 namespace workbench {
 
 namespace fs = std::filesystem;
@@ -47,6 +51,10 @@ int run_child(const std::vector<std::string>& argv, const fs::path& log) {
 
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
+  // On a terminal the child gets it as descriptor 3 for its progress lines (WORKBENCH_PROGRESS_FD);
+  // everything else it prints goes to the log.
+  const bool terminal = ::isatty(2);
+  if (terminal) posix_spawn_file_actions_adddup2(&files, 2, kProgressFd);
   posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&files, 1, 2);
   posix_spawnattr_t attr;
@@ -63,11 +71,19 @@ int run_child(const std::vector<std::string>& argv, const fs::path& log) {
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
 
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "WORKBENCH_PROGRESS_FD=", 22) != 0) env_text.emplace_back(*e);
+  if (terminal) env_text.push_back("WORKBENCH_PROGRESS_FD=" + std::to_string(kProgressFd));
+  std::vector<char*> env;
+  for (auto& e : env_text) env.push_back(e.data());
+  env.push_back(nullptr);
+
   pid_t pid = 0;
   int err;
   {
     auto lock = hold_interruptions();  // an interruption now sees the child's group
-    err = posix_spawnp(&pid, args[0], &files, &attr, args.data(), environ);
+    err = posix_spawnp(&pid, args[0], &files, &attr, args.data(), env.data());
     if (err == 0) set_child_group(pid);
   }
   posix_spawn_file_actions_destroy(&files);

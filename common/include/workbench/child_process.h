@@ -19,7 +19,8 @@ std::string python_interpreter();
 std::filesystem::path find_script(const std::string& relative);
 
 /// Runs `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log` and
-/// waits; returns its exit status (128 + signal when a signal ended it). Throws Error when it
+/// waits; when this program's stderr is a terminal, the child also gets it as descriptor
+/// $WORKBENCH_PROGRESS_FD for its progress lines (quiet otherwise); returns its exit status (128 + signal when a signal ended it). Throws Error when it
 /// cannot be started.
 int run_child(const std::vector<std::string>& argv, const std::filesystem::path& log);
 

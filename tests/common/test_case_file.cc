@@ -5,22 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/error_of.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 
 using namespace workbench;
 
-namespace {
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-}  // namespace
+using test_support::error_of;
 
 TEST(CaseFile, ReadsTypedValuesAndDefaults) {
   CaseFile f("[material]\nyoung = 2e11\npoisson = 0.25\n[steps]\ncount = 4\n", "case.toml");

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/error_of.h"
+
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -20,16 +22,9 @@
 namespace fs = std::filesystem;
 using namespace workbench;
 
-namespace {
+using test_support::error_of;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+namespace {
 
 std::string read(const fs::path& file) {
   std::ifstream in(file);

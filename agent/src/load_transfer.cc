@@ -40,11 +40,13 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   down_.assign(layer, 0.0);
   next_down_.assign(layer, 0.0);
   top_.assign(layer, 0.0);
+  line_.assign(std::size_t(*std::max_element(grid.cells.begin(), grid.cells.end())), 0.0);
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
   return faces_.capacity() * sizeof(double) + generation_.capacity() * sizeof(std::int32_t) + grid_.flags.capacity() +
-         (fresh_.capacity() + down_.capacity() + next_down_.capacity() + top_.capacity()) * sizeof(double) +
+         (fresh_.capacity() + down_.capacity() + next_down_.capacity() + top_.capacity() + line_.capacity()) *
+             sizeof(double) +
          touched_.capacity() * sizeof(Touched);
 }
 
@@ -120,6 +122,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   double* const fresh_buf = fresh_.data();
   double* const top_buf = top_.data();
+  double* const line = line_.data();
 
   diagnostics_.applied += load.force;
   if (!(load.force > gamma)) {
@@ -149,54 +152,78 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
     Box ext = box;  // grows with friction chains and Poisson pushes
 
-    // Friction chains along one lateral axis, both ways, for one line of the box: inside the box
-    // every agent adds `emit` of its load from above; past it a chain runs on until gamma.
-    auto friction = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
-                        std::size_t first_buf, int lo, int hi, int& ext_lo, int& ext_hi) {
-      // Each way with its direction known at compile time (a generic lambda per way).
-      auto run = [&](auto way) {
-        constexpr bool up = decltype(way)::value;
-        constexpr int sgn = up ? 1 : -1;
-        const int end = up ? n : -1;
-        double carried = 0;
-        int w = up ? lo : hi;
-        int last = w;
-        auto pass = [&](int w, double out) {
-          if (!(out > gamma)) {
-            d.dropped += out;
-            return 0.0;
-          }
-          const std::size_t cell = first_cell + w * cell_stride;
-          if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a boundary face
-            if (rigid(cell, direction(lateral, up))) d.rigid_reaction += out;
-            else d.passed_out += out;
-            return 0.0;
-          }
-          last = w + sgn;
-          return out;
-        };
-        for (; up ? w <= hi : w >= lo; w += sgn) {
-          const std::size_t b = first_buf + w * buf_stride;
-          fresh_buf[b] += carried;
-          const double out = carry * carried + emit * down_buf[b];
-          carried = out == 0 ? 0.0 : pass(w, out);
-        }
-        for (; carried != 0 && w != end; w += sgn) {
-          fresh_buf[first_buf + w * buf_stride] += carried;
-          carried = pass(w, carry * carried);
-        }
-        ext_lo = std::min(ext_lo, last);
-        ext_hi = std::max(ext_hi, last);
-      };
-      run(std::true_type{});
-      run(std::false_type{});
+    // Friction chains: a load from above sends `emit` of itself to every side, a friction load
+    // runs straight on passing `carry` of itself to the next agent, until gamma or a boundary face.
+    // friction_pass() settles a chain's load `out` leaving position w (of cell `cell`) toward sgn:
+    // dropped, or returned or passed out at a boundary face (then 0), or passed on (then `out`).
+    auto friction_pass = [&](int lateral, int sgn, int w, int end, std::size_t cell, long cell_stride, double out,
+                             int& reach_end) {
+      if (!(out > gamma)) {
+        d.dropped += out;
+        return 0.0;
+      }
+      if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a boundary face
+        if (rigid(cell, direction(lateral, sgn > 0))) d.rigid_reaction += out;
+        else d.passed_out += out;
+        return 0.0;
+      }
+      reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
+      return out;
     };
     if (alpha3 > 0) {
-      for (int v = box.v_lo; v <= box.v_hi; ++v)
-        friction(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, box.u_lo, box.u_hi, ext.u_lo, ext.u_hi);
-      if constexpr (three_d)
-        for (int u = box.u_lo; u <= box.u_hi; ++u)
-          friction(l1, n1, long(s1), n0, layer_base + u * s0, u, box.v_lo, box.v_hi, ext.v_lo, ext.v_hi);
+      // Along l0, row by row: the two ways of a row run in lockstep (independent chains, so their
+      // latencies overlap; each adds to `fresh` once, and 0 + x + y == 0 + y + x).
+      for (int v = box.v_lo; v <= box.v_hi; ++v) {
+        const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        double up = 0, dn = 0;
+        for (int i = 0; i <= box.u_hi - box.u_lo; ++i) {
+          const int wu = box.u_lo + i, wd = box.u_hi - i;
+          fresh_buf[row_buf + wu] += up;
+          fresh_buf[row_buf + wd] += dn;
+          const double out_up = carry * up + emit * down_buf[row_buf + wu];
+          const double out_dn = carry * dn + emit * down_buf[row_buf + wd];
+          up = out_up == 0 ? 0.0 : friction_pass(l0, 1, wu, n0, row_cell + wu * s0, long(s0), out_up, ext.u_hi);
+          dn = out_dn == 0 ? 0.0 : friction_pass(l0, -1, wd, -1, row_cell + wd * s0, long(s0), out_dn, ext.u_lo);
+        }
+        // Past the box, each chain runs on until gamma or a boundary face.
+        for (int w = box.u_hi + 1; up != 0 && w != n0; ++w) {
+          fresh_buf[row_buf + w] += up;
+          up = friction_pass(l0, 1, w, n0, row_cell + w * s0, long(s0), carry * up, ext.u_hi);
+        }
+        for (int w = box.u_lo - 1; dn != 0 && w != -1; --w) {
+          fresh_buf[row_buf + w] += dn;
+          dn = friction_pass(l0, -1, w, -1, row_cell + w * s0, long(s0), carry * dn, ext.u_lo);
+        }
+      }
+      // Along l1 (3D), a whole layer plane at once in row order, one chain per column in
+      // `line`: memory is read row after row, not one column at a time across the plane.
+      if constexpr (three_d) {
+        auto columns = [&](auto way) {
+          constexpr bool up = decltype(way)::value;
+          constexpr int sgn = up ? 1 : -1;
+          const int end = up ? n1 : -1;
+          int& reach_end = up ? ext.v_hi : ext.v_lo;
+          std::fill(line + box.u_lo, line + box.u_hi + 1, 0.0);
+          bool running = true;
+          for (int v = up ? box.v_lo : box.v_hi; running && v != end; v += sgn) {
+            const bool in_box = up ? v <= box.v_hi : v >= box.v_lo;
+            const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+            running = in_box;
+            for (int u = box.u_lo; u <= box.u_hi; ++u) {
+              double carried = line[u];
+              if (!in_box && carried == 0) continue;
+              const std::size_t b = row_buf + u;
+              fresh_buf[b] += carried;
+              const double out = in_box ? carry * carried + emit * down_buf[b] : carry * carried;
+              carried = out == 0 ? 0.0 : friction_pass(l1, sgn, v, end, row_cell + u * s0, long(s1), out, reach_end);
+              line[u] = carried;
+              running |= carried != 0;
+            }
+          }
+        };
+        columns(std::true_type{});
+        columns(std::false_type{});
+      }
     }
 
     // Each loaded agent: its entering force, and what it passes on in the load direction.
@@ -246,62 +273,104 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
     // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
     Box touched = ext;
-    auto push_line = [&](int lateral, int n, long cell_stride, long buf_stride, std::size_t first_cell,
-                         std::size_t first_buf, int lo, int hi, int line_distance, int& reach_lo, int& reach_hi) {
-      const double push = (1 - k_.beta) * material_.poisson * g.face_area(lateral) / g.face_area(a);
-      const int centre = lateral == l0 ? eu : ev;
-      auto run = [&](auto way) {
-        constexpr bool up = decltype(way)::value;
-        constexpr int sgn = up ? 1 : -1;
-        const int face_out = direction(lateral, up), face_in = opposite(face_out);
-        const int end = up ? n : -1;
-        double carried = 0;
-        int w = up ? lo : hi;
-        int last = w;
-        auto pass = [&](int w, double t) {
-          if (!(t > gamma)) {
-            d.lateral_dropped += t;
-            return 0.0;
-          }
-          const std::size_t cell = first_cell + w * cell_stride;
-          double* f = faces + cell * nd;
-          if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a rigid face pushes back, a free one lets the push out
-            if (rigid(cell, face_out)) {
-              f[face_out] += t;
-              d.lateral_reaction += t;
-            } else {
-              d.lateral_passed_out += t;
-            }
-            return 0.0;
-          }
+    // push_pass() settles a push `t` leaving position w (of cell `cell`) toward sgn: dropped, or
+    // returned by a rigid face / let out by a free one (then 0), or passed on (then t), loading the
+    // agent's face and the neighbour's facing face. `deferred`, when given, takes those two loads
+    // for later instead (see below).
+    auto push_pass = [&](int lateral, int sgn, int w, int end, std::size_t cell, long cell_stride, double t,
+                         int& reach_end, double* deferred) {
+      if (!(t > gamma)) {
+        d.lateral_dropped += t;
+        return 0.0;
+      }
+      const int face_out = direction(lateral, sgn > 0);
+      double* f = faces + cell * nd;
+      if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a rigid face pushes back, a free one lets the push out
+        if (rigid(cell, face_out)) {
           f[face_out] += t;
-          faces[(cell + sgn * cell_stride) * nd + face_in] += t;
-          last = w + sgn;
-          return t;
-        };
-        for (; up ? w <= hi : w >= lo; w += sgn) {
-          const double t = push * top_buf[first_buf + w * buf_stride] + decay * carried;
-          carried = t == 0 ? 0.0 : pass(w, t);
+          d.lateral_reaction += t;
+        } else {
+          d.lateral_passed_out += t;
         }
-        for (; carried != 0 && w != end; w += sgn) {
-          // Past the loaded agents: a push reaching an agent with no load of its own.
-          reach(first_cell + w * cell_stride, depth + line_distance + std::abs(w - centre));
-          carried = pass(w, decay * carried);
-        }
-        reach_lo = std::min(reach_lo, last);
-        reach_hi = std::max(reach_hi, last);
-      };
-      run(std::true_type{});
-      run(std::false_type{});
+        return 0.0;
+      }
+      if (deferred) {
+        *deferred = t;
+      } else {
+        f[face_out] += t;
+        faces[(cell + sgn * cell_stride) * nd + opposite(face_out)] += t;
+      }
+      reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
+      return t;
     };
     if (k_.beta < 1 && material_.poisson != 0) {
-      for (int v = ext.v_lo; v <= ext.v_hi; ++v)
-        push_line(l0, n0, long(s0), 1, layer_base + v * s1, std::size_t(n0) * v, ext.u_lo, ext.u_hi, std::abs(v - ev),
-                  touched.u_lo, touched.u_hi);
-      if constexpr (three_d)
-        for (int u = ext.u_lo; u <= ext.u_hi; ++u)
-          push_line(l1, n1, long(s1), n0, layer_base + u * s0, u, ext.v_lo, ext.v_hi, std::abs(u - eu), touched.v_lo,
-                    touched.v_hi);
+      const double push0 = (1 - k_.beta) * material_.poisson * g.face_area(l0) / g.face_area(a);
+      // Along l0, row by row, the two ways in lockstep. A face between two agents is loaded by
+      // both ways; the way down's loads wait in `line` until the way up has loaded every face of
+      // the row, so that each face adds its loads in the same order as one way after the other.
+      for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
+        const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        const int line_distance = std::abs(v - ev);
+        std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
+        double up = 0, dn = 0;
+        for (int i = 0; i <= ext.u_hi - ext.u_lo; ++i) {
+          const int wu = ext.u_lo + i, wd = ext.u_hi - i;
+          const double t_up = push0 * top_buf[row_buf + wu] + decay * up;
+          const double t_dn = push0 * top_buf[row_buf + wd] + decay * dn;
+          up = t_up == 0 ? 0.0 : push_pass(l0, 1, wu, n0, row_cell + wu * s0, long(s0), t_up, touched.u_hi, nullptr);
+          dn = t_dn == 0 ? 0.0 : push_pass(l0, -1, wd, -1, row_cell + wd * s0, long(s0), t_dn, touched.u_lo, line + wd);
+        }
+        for (int w = ext.u_lo; w <= ext.u_hi; ++w)
+          if (line[w] != 0) {
+            const std::size_t cell = row_cell + w * s0;
+            faces[cell * nd + direction(l0, false)] += line[w];
+            faces[(cell - s0) * nd + direction(l0, true)] += line[w];
+          }
+        // Past the loaded agents: a push reaching an agent with no load of its own.
+        for (int w = ext.u_hi + 1; up != 0 && w != n0; ++w) {
+          const std::size_t cell = row_cell + w * s0;
+          reach(cell, depth + line_distance + std::abs(w - eu));
+          up = push_pass(l0, 1, w, n0, cell, long(s0), decay * up, touched.u_hi, nullptr);
+        }
+        for (int w = ext.u_lo - 1; dn != 0 && w != -1; --w) {
+          const std::size_t cell = row_cell + w * s0;
+          reach(cell, depth + line_distance + std::abs(w - eu));
+          dn = push_pass(l0, -1, w, -1, cell, long(s0), decay * dn, touched.u_lo, nullptr);
+        }
+      }
+      // Along l1 (3D), the whole layer plane in row order, one push per column in `line`; the
+      // way up over the whole plane before the way down, as each column did before.
+      if constexpr (three_d) {
+        const double push1 = (1 - k_.beta) * material_.poisson * g.face_area(l1) / g.face_area(a);
+        auto columns = [&](auto way) {
+          constexpr bool up = decltype(way)::value;
+          constexpr int sgn = up ? 1 : -1;
+          const int end = up ? n1 : -1;
+          int& reach_end = up ? touched.v_hi : touched.v_lo;
+          std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
+          bool running = true;
+          for (int v = up ? ext.v_lo : ext.v_hi; running && v != end; v += sgn) {
+            const bool in_ext = up ? v <= ext.v_hi : v >= ext.v_lo;
+            const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+            running = in_ext;
+            for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
+              double carried = line[u];
+              const std::size_t cell = row_cell + u * s0;
+              if (in_ext) {
+                const double t = push1 * top_buf[row_buf + u] + decay * carried;
+                carried = t == 0 ? 0.0 : push_pass(l1, sgn, v, end, cell, long(s1), t, reach_end, nullptr);
+              } else if (carried != 0) {
+                reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
+                carried = push_pass(l1, sgn, v, end, cell, long(s1), decay * carried, reach_end, nullptr);
+              }
+              line[u] = carried;
+              running |= carried != 0;
+            }
+          }
+        };
+        columns(std::true_type{});
+        columns(std::false_type{});
+      }
     }
     for (int v = ext.v_lo; v <= ext.v_hi; ++v) std::fill_n(top_buf + ext.u_lo + std::size_t(n0) * v, ext.u_hi - ext.u_lo + 1, 0.0);
     touched_.push_back({a, layer, touched});

@@ -108,8 +108,9 @@ class LoadTransfer {
   Diagnostics diagnostics_;
   std::vector<Touched> touched_;
   // Per-layer scratch, zero outside the active box: fresh (entry/friction) and downward inputs,
-  // the downward inputs of the next layer, and each agent's entering force.
-  std::vector<double> fresh_, down_, next_down_, top_;
+  // the downward inputs of the next layer, and each agent's entering force; and one value per
+  // line of a layer (a chain per column while a layer plane is scanned in row order).
+  std::vector<double> fresh_, down_, next_down_, top_, line_;
 };
 
 }  // namespace agent

@@ -39,38 +39,48 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   fresh_.assign(layer, 0.0);
   down_.assign(layer, 0.0);
   next_down_.assign(layer, 0.0);
-  top_.assign(layer, 0.0);
   line_.assign(std::size_t(*std::max_element(grid.cells.begin(), grid.cells.end())), 0.0);
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
   return faces_.capacity() * sizeof(double) + generation_.capacity() * sizeof(std::int32_t) + grid_.flags.capacity() +
-         (fresh_.capacity() + down_.capacity() + next_down_.capacity() + top_.capacity() + line_.capacity()) *
-             sizeof(double) +
-         touched_.capacity() * sizeof(Touched);
+         (fresh_.capacity() + down_.capacity() + next_down_.capacity() + line_.capacity()) * sizeof(double) +
+         (touched_.capacity() + pending_.capacity()) * sizeof(Touched);
 }
 
-void LoadTransfer::clear_touched() {
+void LoadTransfer::clear(const Touched& t) {
   const int nd = 2 * grid_.dim;
-  for (const auto& t : touched_) {
-    const int l0 = t.axis == 0 ? 1 : 0, l1 = t.axis == 2 ? 1 : 2;
-    const std::size_t base = std::size_t(t.layer) * grid_.stride(t.axis);
-    const std::size_t s0 = grid_.stride(l0), s1 = grid_.stride(l1);
-    const int width = t.box.u_hi - t.box.u_lo + 1;
-    for (int v = t.box.v_lo; v <= t.box.v_hi; ++v) {
-      const std::size_t first = base + t.box.u_lo * s0 + v * s1;
-      if (s0 == 1) {  // a contiguous row: one fill each
-        std::fill_n(faces_.begin() + first * nd, std::size_t(width) * nd, 0.0);
-        std::fill_n(generation_.begin() + first, width, -1);
-        continue;
-      }
-      for (int u = 0; u < width; ++u) {
-        std::fill_n(faces_.begin() + (first + u * s0) * nd, nd, 0.0);
-        generation_[first + u * s0] = -1;
-      }
+  const int l0 = t.axis == 0 ? 1 : 0, l1 = t.axis == 2 ? 1 : 2;
+  const std::size_t base = std::size_t(t.layer) * grid_.stride(t.axis);
+  const std::size_t s0 = grid_.stride(l0), s1 = grid_.stride(l1);
+  const int width = t.box.u_hi - t.box.u_lo + 1;
+  for (int v = t.box.v_lo; v <= t.box.v_hi; ++v) {
+    const std::size_t first = base + t.box.u_lo * s0 + v * s1;
+    if (s0 == 1) {  // a contiguous row: one fill each
+      std::fill_n(faces_.begin() + first * nd, std::size_t(width) * nd, 0.0);
+      std::fill_n(generation_.begin() + first, width, -1);
+      continue;
+    }
+    for (int u = 0; u < width; ++u) {
+      std::fill_n(faces_.begin() + (first + u * s0) * nd, nd, 0.0);
+      generation_[first + u * s0] = -1;
     }
   }
-  touched_.clear();
+}
+
+void LoadTransfer::clear_pending(int layer) {
+  const auto at = std::equal_range(pending_.begin(), pending_.end(), Touched{0, layer, {}},
+                                   [](const Touched& x, const Touched& y) { return x.layer < y.layer; });
+  for (auto t = at.first; t != at.second; ++t) {
+    clear(*t);
+    t->box = Box{1, 0, 1, 0};  // cleared
+  }
+}
+
+void LoadTransfer::clear_all_pending() {
+  for (const auto& t : pending_)
+    if (!t.box.empty()) clear(t);
+  std::vector<Touched>().swap(pending_);  // held only while a solve clears it
 }
 
 void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
@@ -80,9 +90,23 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
     check(load.dir >= 0 && load.dir < 2 * grid_.dim, "entry load direction out of range");
     check(load.force >= 0 && std::isfinite(load.force), "entry load force must be finite and >= 0");
   }
-  clear_touched();
+  // What the previous solve wrote is cleared. When it was all swept along the first load's axis,
+  // the first sweep clears each layer just before it writes there (the layer is then in cache
+  // for the sweep instead of passing through memory twice); the rest is cleared after that sweep.
+  pending_.swap(touched_);
+  touched_.clear();
+  const bool lazy = !loads.empty() && std::all_of(pending_.begin(), pending_.end(), [&](const Touched& t) {
+    return t.axis == axis_of(loads.front().dir);
+  });
+  if (lazy)
+    std::sort(pending_.begin(), pending_.end(), [](const Touched& x, const Touched& y) { return x.layer < y.layer; });
+  else
+    clear_all_pending();
   diagnostics_ = Diagnostics{};
-  for (const auto& load : loads) grid_.dim == 2 ? sweep<2>(load) : sweep<3>(load);
+  for (const auto& load : loads) {
+    grid_.dim == 2 ? sweep<2>(load) : sweep<3>(load);
+    clear_all_pending();
+  }
 }
 
 template <int Dim>
@@ -121,7 +145,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   constexpr std::uint8_t air = Grid::kAirBit;
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   double* const fresh_buf = fresh_.data();
-  double* const top_buf = top_.data();
+  // Each agent's entering force takes the place of its fresh input once that is consumed.
+  double* const top_buf = fresh_buf;
   double* const line = line_.data();
 
   diagnostics_.applied += load.force;
@@ -145,6 +170,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   Box box{eu, eu, ev, ev};
   int layer = entry[a];
   for (int depth = 0;; layer += step, ++depth) {
+    if (!pending_.empty()) clear_pending(layer);  // the previous solve's loads in this layer
     const std::size_t layer_base = std::size_t(layer) * sa;
     const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
     double* const down_buf = down_.data();

@@ -97,7 +97,9 @@ class LoadTransfer {
   };
   template <int Dim>
   void sweep(const EntryLoad& load);
-  void clear_touched();
+  void clear(const Touched& t);
+  void clear_pending(int layer);
+  void clear_all_pending();
 
   Grid grid_;
   Material material_;
@@ -106,11 +108,12 @@ class LoadTransfer {
   std::vector<double> faces_;
   std::vector<std::int32_t> generation_;
   Diagnostics diagnostics_;
-  std::vector<Touched> touched_;
-  // Per-layer scratch, zero outside the active box: fresh (entry/friction) and downward inputs,
-  // the downward inputs of the next layer, and each agent's entering force; and one value per
-  // line of a layer (a chain per column while a layer plane is scanned in row order).
-  std::vector<double> fresh_, down_, next_down_, top_, line_;
+  std::vector<Touched> touched_;  // what this solve's sweeps wrote, layer by layer
+  std::vector<Touched> pending_;  // what the previous solve wrote, not yet cleared (sorted by layer)
+  // Per-layer scratch, zero outside the active box: fresh (entry/friction) inputs, then each
+  // agent's entering force; downward inputs; the downward inputs of the next layer. And one value
+  // per line of a layer (a chain per column while a layer plane is scanned in row order).
+  std::vector<double> fresh_, down_, next_down_, line_;
 };
 
 }  // namespace agent

@@ -178,10 +178,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
     Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
     Box ext = box;  // grows with friction chains and Poisson pushes
 
-    // Friction chains: a load from above sends `emit` of itself to every side, a friction load
-    // runs straight on passing `carry` of itself to the next agent, until gamma or a boundary face.
-    // friction_pass() settles a chain's load `out` leaving position w (of cell `cell`) toward sgn:
-    // dropped, or returned or passed out at a boundary face (then 0), or passed on (then `out`).
+    // Friction chains run until gamma or a boundary face. friction_pass() settles a chain's load
+    // `out` leaving position w (of cell `cell`) toward sgn: dropped, or returned or passed out at a
+    // boundary face (then 0), or passed on (then `out`).
     auto friction_pass = [&](int lateral, int sgn, int w, int end, std::size_t cell, long cell_stride, double out,
                              int& reach_end) {
       if (!(out > gamma)) {

@@ -6,7 +6,7 @@
 #include <compare/case_sections.h>
 #include <compare/compare_study.h>
 #include <compare/reference.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>

@@ -2,7 +2,7 @@
 #include <compare/calibration_study.h>
 #include <compare/compare_study.h>
 
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/error.h>
 
 #include <nlohmann/json.hpp>

@@ -8,7 +8,7 @@
 #include "report.h"
 
 #include <agent_study.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 

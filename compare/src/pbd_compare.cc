@@ -6,7 +6,7 @@
 
 #include "report.h"
 
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/error.h>
 

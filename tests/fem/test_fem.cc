@@ -1,7 +1,7 @@
 // Verification of the deal.II FEM reference (docs/fem-reference.md): manufactured solutions with
 // convergence rates, Cook's membrane, the Timoshenko-Goodier cantilever, equilibrium of reactions,
 // and bad input. Only the plain-data API is used (no deal.II here).
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/error.h>
 
 #include <gtest/gtest.h>

@@ -279,7 +279,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
     }
   workbench::write_vtu(dir / "compare.vtu", mesh, points, cells);
 
-  // A masked ratio means nothing: "nan" on purpose (workbench::CsvFile, docs/compare.md), as in compare.vtu.
+  // A masked ratio means nothing: an empty field on purpose (workbench::CsvFile, docs/compare.md); NaN in compare.vtu.
   auto ratio_field = [](const Ratios& r, std::size_t cell) {
     return r.masked[cell] ? std::nullopt : std::optional<double>(r.ratio[cell] + 0.0);  // + 0.0: no "-0"
   };

@@ -10,9 +10,8 @@
 //
 // Lines starting with '#' are comments. A row may have more fields than the header (the last
 // column then holds a list, e.g. a cell's nodes). A value that is undefined on purpose (a ratio
-// where its denominator is masked) is written as std::nullopt: the field reads "nan", the one
-// marker of "no number here" (numpy and pandas read it as NaN); any other non-finite number is
-// refused.
+// whose denominator is masked) is written as std::nullopt: an empty field, the one marker of "no
+// number here" (pandas and numpy.genfromtxt read it as NaN); a non-finite number is never written.
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -35,8 +34,8 @@ class CsvFile {
   /// not a finite number".
   CsvFile& operator<<(double v);
   CsvFile& operator<<(float v) { return *this << double(v); }
-  /// A number where there is one; std::nullopt writes "nan" (undefined on purpose, see above).
-  CsvFile& operator<<(const std::optional<double>& v) { return v ? *this << *v : text("nan"); }
+  /// A number where there is one; std::nullopt leaves the field empty (undefined on purpose, see above).
+  CsvFile& operator<<(const std::optional<double>& v) { return v ? *this << *v : *this; }
   template <class Int, class = std::enable_if_t<std::is_integral_v<Int> && !std::is_same_v<Int, char>>>
   CsvFile& operator<<(Int v) {
     return text(std::to_string(v));

@@ -332,6 +332,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   using VectorType = LinearAlgebra::distributed::Vector<double>;
   using LevelVector = LinearAlgebra::distributed::Vector<float>;
 
+  profile("matrix-free operator");
   // The active level: homogeneous version of the constraints.
   AffineConstraints<double> homogeneous;
   {
@@ -354,9 +355,9 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     system.initialize(mf);
     system.set_coefficients(s.lambda, s.mu);
   }
-  profile("matrix-free operator");
 
   // The levels.
+  profile("multigrid levels");
   dof.distribute_mg_dofs();
   MGConstrainedDoFs mg_constrained;
   mg_constrained.initialize(dof);
@@ -375,8 +376,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     for (unsigned level = 0; level < n_levels; ++level) std::fprintf(stderr, " %zu", levels[level].shapes());
     std::fprintf(stderr, "\n");
   }
-  profile("multigrid levels");
 
+  profile("smoothers + coarse solver");
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;
   mg::SmootherRelaxation<Smoother, LevelVector> smoother;
   MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
@@ -392,8 +393,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   mg::Matrix<LevelVector> mg_matrix(levels);
   Multigrid<LevelVector> mg(mg_matrix, coarse, transfer, smoother, smoother);
   PreconditionMG<dim, LevelVector, MGTransferMatrixFree<dim, float>> preconditioner(dof, mg, transfer);
-  profile("smoothers + coarse solver");
 
+  profile("CG");
   VectorType b, x;
   system.initialize_dof_vector(b);
   system.initialize_dof_vector(x);
@@ -403,7 +404,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   SolverControl control(s.max_iterations, s.tolerance * b_norm, false, false);
   SolverCG<VectorType> cg(control);
   cg.solve(system, x, b, preconditioner);
-  profile("CG");
+  profile(nullptr);
 
   MgOutcome out;
   out.iterations = int(control.last_step());

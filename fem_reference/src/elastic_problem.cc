@@ -757,6 +757,9 @@ void ElasticProblem<dim>::solve() {
     }
     result_.solver = outcome.solver;
     result_.iterations = outcome.iterations;
+    profile_out_ << "fem-profile: element matrices stored per level:";
+    for (std::size_t n : outcome.matrices_per_level) profile_out_ << ' ' << n;
+    profile_out_ << std::endl;
     constraints_.distribute(solution_);
     result_.residual = outcome.residual;
     ghosted_ = solution_;

@@ -32,7 +32,6 @@
 
 #include <Teuchos_ParameterList.hpp>
 
-#include <cstdio>
 #include <cstdlib>
 #include <algorithm>
 #include <cmath>
@@ -371,11 +370,6 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   }
   MGTransferMatrixFree<dim, float> transfer(mg_constrained);
   transfer.build(dof, partitioners);
-  if (std::getenv("WORKBENCH_FEM_PROFILE")) {
-    std::fprintf(stderr, "fem-profile: element matrices stored per level:");
-    for (unsigned level = 0; level < n_levels; ++level) std::fprintf(stderr, " %zu", levels[level].shapes());
-    std::fprintf(stderr, "\n");
-  }
 
   profile("smoothers + coarse solver");
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;
@@ -408,6 +402,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
 
   MgOutcome out;
   out.iterations = int(control.last_step());
+  for (unsigned level = 0; level < n_levels; ++level) out.matrices_per_level.push_back(levels[level].shapes());
   {
     VectorType r;
     r.reinit(x);

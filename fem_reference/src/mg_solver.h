@@ -43,6 +43,7 @@ struct MgOutcome {
   int iterations = 0;
   double residual = 0;  ///< ||K u - f|| / ||f|| of the condensed system
   std::string solver;
+  std::vector<std::size_t> matrices_per_level;  ///< element matrices stored per level (the profile)
 };
 
 /// Zero boundary conditions of the multigrid levels: boundary ids and the components they hold.

@@ -1,7 +1,7 @@
 // `workbench fem`: the deal.II FEM reference, serial or under mpirun (collective errors).
 #include "commands.h"
 
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
 

@@ -6,7 +6,7 @@
 #include <compare/case_sections.h>
 #include <compare/compare_study.h>
 #include <compare/reference.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
@@ -159,6 +159,28 @@ py::array_t<T> take(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
 
 py::ssize_t ssize(std::size_t n) { return static_cast<py::ssize_t>(n); }
 
+/// A list of dicts, one per item, each filled by `fill(dict, item)`.
+template <class Items, class Fill>
+py::list dict_list(const Items& items, Fill fill) {
+  py::list out;
+  for (const auto& item : items) {
+    py::dict d;
+    fill(d, item);
+    out.append(d);
+  }
+  return out;
+}
+
+/// Runs `write(folder)` in a staged folder that becomes `output_dir` whole when it returns, as the
+/// program does (workbench/staged_directory.h); returns what `write` returns.
+template <class Write>
+auto staged(const fs::path& output_dir, const workbench::CaseFile& file, Write write) {
+  workbench::StagedDirectory folder(output_dir, file.path());
+  auto result = write(folder.path());
+  folder.commit();
+  return result;
+}
+
 py::dict diagnostics_dict(const agent::Diagnostics& d) {
   py::dict out;
   out["agents_generated"] = d.agents_generated;
@@ -198,11 +220,8 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     auto file = c.open();
     const auto study = agent_study::load_agent_study(*file);
     compare::check_every_section(*file);
-    if (output_dir) {
-      workbench::StagedDirectory staged(*output_dir, file->path());
-      agent_study::write_agent_outputs(study, staged.path(), log);
-      staged.commit();
-    }
+    if (output_dir)
+      staged(*output_dir, *file, [&](const fs::path& dir) { return agent_study::write_agent_outputs(study, dir, log); });
     const auto& grid = study.mesh.grid;
     agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
     Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
@@ -248,15 +267,11 @@ py::dict fem_dict(fem_reference::FemResult&& f) {
                          {"tau_xy", &f.tau_xy}, {"tau_yz", &f.tau_yz}, {"tau_xz", &f.tau_xz},
                          {"von_mises", &f.von_mises}})
     r[name] = take(std::move(*v), {n_cells});
-  py::list reactions;
-  for (const auto& g : f.reactions) {
-    py::dict d;
+  r["reactions"] = dict_list(f.reactions, [](py::dict& d, const fem_reference::GroupReaction& g) {
     d["group"] = g.group;
     d["kind"] = g.kind;
     d["force_N"] = g.force;
-    reactions.append(d);
-  }
-  r["reactions"] = reactions;
+  });
   r["applied_N"] = f.applied;
   r["solver"] = f.solver;
   r["iterations"] = f.iterations;
@@ -280,11 +295,11 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
     const auto problem = fem_reference::problem_from_case(*file);
     compare::check_every_section(*file);
     if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
-    workbench::StagedDirectory staged(*output_dir, file->path());
-    auto r = fem_reference::solve_fem(problem, staged.path(), &log);
-    fem_reference::write_fem_csv(r, staged.path());
-    staged.commit();
-    return r;
+    return staged(*output_dir, *file, [&](const fs::path& dir) {
+      auto r = fem_reference::solve_fem(problem, dir, &log);
+      fem_reference::write_fem_csv(r, dir);
+      return r;
+    });
   });
   return fem_dict(std::move(result));
 }
@@ -292,10 +307,7 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
 py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto outcome = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    workbench::StagedDirectory staged(output_dir, file->path());
-    auto o = compare::run_compare(*file, staged.path(), log);
-    staged.commit();
-    return o;
+    return staged(output_dir, *file, [&](const fs::path& dir) { return compare::run_compare(*file, dir, log); });
   });
   py::dict metrics, meanings, reference_errors;
   for (const auto& m : outcome.metrics) {
@@ -320,10 +332,7 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
 py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    workbench::StagedDirectory staged(output_dir, file->path());
-    auto r = compare::run_calibration(*file, staged.path(), log);
-    staged.commit();
-    return r;
+    return staged(output_dir, *file, [&](const fs::path& dir) { return compare::run_calibration(*file, dir, log); });
   });
   py::dict r;
   r["start"] = coefficients_dict(result.start);
@@ -332,17 +341,13 @@ py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::obje
   r["objective_best"] = result.objective_best;
   r["start_objectives"] = result.start_objectives;
   r["evaluations"] = result.evaluations;
-  py::list sensitivity;
-  for (const auto& s : result.sensitivity) {
-    py::dict d;
+  r["sensitivity"] = dict_list(result.sensitivity, [](py::dict& d, const compare::Sensitivity& s) {
     d["name"] = s.name;
     d["objective_minus"] = s.objective_minus;
     d["objective_plus"] = s.objective_plus;
     d["curvature"] = s.curvature;
     d["pinned"] = s.pinned;
-    sensitivity.append(d);
-  }
-  r["sensitivity"] = sensitivity;
+  });
   return r;
 }
 

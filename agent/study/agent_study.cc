@@ -218,14 +218,6 @@ Eigen::Vector3d load_vector(const AgentStudy& study, double factor) {
 
 namespace {
 
-std::string vector_text(const Eigen::Vector3d& v, int dim) {
-  std::ostringstream s;
-  s << "(" << v[0] << ", " << v[1];
-  if (dim == 3) s << ", " << v[2];
-  s << ")";
-  return s.str();
-}
-
 void write_summary(const fs::path& file, const AgentStudy& study, const agent::Diagnostics& d,
                    const std::vector<std::string>& warnings) {
   const int dim = study.mesh.grid.dim;
@@ -272,7 +264,7 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
     diagnostics << k << ',' << factor << ',' << d.agents_generated << ',' << d.agent_updates << ',' << d.applied << ','
                 << d.rigid_reaction << ',' << d.passed_out << ',' << d.dropped << ',' << d.lost << ','
                 << d.lateral_reaction << ',' << d.lateral_passed_out << ',' << d.lateral_dropped << '\n';
-    log << "agent: step " << k << "/" << steps << ": load " << vector_text(load_vector(study, factor), study.mesh.grid.dim)
+    log << "agent: step " << k << "/" << steps << ": load " << agent::point_text(load_vector(study, factor), study.mesh.grid.dim)
         << " N (" << d.applied << " N applied in all), " << d.agents_generated << " agents, rigid reaction "
         << d.rigid_reaction << " N, passed out " << d.passed_out << " N, dropped " << d.dropped << " N, lost "
         << d.lost << " N\n";

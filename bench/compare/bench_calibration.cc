@@ -4,7 +4,7 @@
 //
 //   build/bench/calibration_bench
 #include <compare/calibration.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 
 #include <benchmark/benchmark.h>
 

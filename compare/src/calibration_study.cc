@@ -2,7 +2,9 @@
 #include <compare/calibration_study.h>
 #include <compare/compare_study.h>
 
-#include <fem_reference/fem.h>
+#include "report.h"
+
+#include <fem_reference/fem_case.h>
 #include <workbench/error.h>
 
 #include <nlohmann/json.hpp>
@@ -92,13 +94,6 @@ Plan read_plan(const workbench::CaseFile& file) {
     t.table("alpha2").fail("min", "alpha2 and alpha3 may not both reach 0 in the conserving rule set (give one a min > 0)");
   if (n_free == 0) t.fail("alpha2", "no coefficient is free: nothing to fit");
   return plan;
-}
-
-std::ofstream open_out(const fs::path& file) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(10);
-  return out;
 }
 
 /// The shortest decimal text that reads back as exactly `v`.
@@ -216,10 +211,7 @@ void write_calibrated_case(const fs::path& original, const fs::path& target, con
   std::stringstream text;
   text << in.rdbuf();
   const std::string out = with_coefficients(text.str(), original.parent_path(), k, rules);
-  auto file = open_out(target);
-  file << "# " << note << "\n" << out;
-  file.close();
-  if (!file) throw Error(target.string() + ": write failed");
+  report::write_text(target, "# " + note + "\n" + out);
 }
 
 std::string coefficient_row(const agent::Coefficients& k) {
@@ -359,7 +351,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   } else if (plan.cross_validate) {
     r << "\ncross-validation: needs two or more cases\n";
   }
-  open_out(dir / "report.txt") << r.str();
+  report::write_text(dir / "report.txt", r.str());
   log << r.str();
 
   nlohmann::json j;
@@ -388,7 +380,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
   for (const auto& f : folds)
     j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all}, {"start", f.start}};
-  open_out(dir / "report.json") << j.dump(2) << "\n";
+  report::write_text(dir / "report.json", j.dump(2) + "\n");
 
   fs::create_directories(dir / "calibrated");
   for (std::size_t i = 0; i < cases.size(); ++i)

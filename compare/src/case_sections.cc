@@ -4,7 +4,7 @@
 
 #include <agent_study.h>
 #include <compare/compare_study.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/study_setup.h>
 

@@ -8,7 +8,8 @@
 #include "report.h"
 
 #include <agent_study.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
 
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 namespace compare {
@@ -59,7 +61,7 @@ namespace {
 
 const char* kFields[] = {"sigma_x", "sigma_y", "displacement"};
 
-using report::open_out;
+using workbench::open_csv;
 using report::seconds_since;
 
 /// The entries of `v` (comps per entry) where `keep` is set.
@@ -227,7 +229,7 @@ void add_load_balance(CompareOutcome& out, const agent::Diagnostics& d, double m
 void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
                      const std::vector<LineSamples>& samples) {
   const int dim = grid.dim;
-  auto csv = open_out(file);
+  auto csv = open_csv(file);
   csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
   for (std::size_t li = 0; li < lines.size(); ++li)
     for (int m = 0; m < 2; ++m)
@@ -239,7 +241,6 @@ void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::v
         csv << ',' << s.sx[m][i] << ',' << s.sy[m][i] << ',' << s.u[m][2 * i] << ',' << s.u[m][2 * i + 1] << '\n';
       }
   csv.close();  // complete on disk before figures.py reads it
-  if (!csv) throw Error(file.string() + ": write failed");
 }
 
 void write_field_files(const fs::path& dir, const AgentCompareInput& in, const GridFields& agent,
@@ -278,7 +279,11 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
     }
   workbench::write_vtu(dir / "compare.vtu", mesh, points, cells);
 
-  auto cells_csv = open_out(dir / "cells.csv");
+  // A masked ratio means nothing: an empty field on purpose (workbench::CsvFile, docs/compare.md); NaN in compare.vtu.
+  auto ratio_field = [](const Ratios& r, std::size_t cell) {
+    return r.masked[cell] ? std::nullopt : std::optional<double>(r.ratio[cell] + 0.0);  // + 0.0: no "-0"
+  };
+  auto cells_csv = open_csv(dir / "cells.csv");
   cells_csv << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
             << ",generation,agent_sigma_x [Pa],agent_sigma_y [Pa],fem_sigma_x [Pa],fem_sigma_y [Pa],ratio_sigma_x [-],"
                "ratio_sigma_y [-],masked_x,masked_y,far\n";
@@ -288,10 +293,10 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
     cells_csv << e;
     for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
     cells_csv << ',' << state.generation[cell] << ',' << agent.sigma[2 * cell] << ',' << agent.sigma[2 * cell + 1] << ','
-              << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0  // + 0.0: no "-0"
+              << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell)
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
-  auto nodes_csv = open_out(dir / "nodes.csv");
+  auto nodes_csv = open_csv(dir / "nodes.csv");
   const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
             << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
@@ -309,14 +314,13 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
       }
   cells_csv.close();
   nodes_csv.close();
-  if (!cells_csv || !nodes_csv) throw Error(dir.string() + ": write failed");
 }
 
 /// The agent's sigma per cell at every load step (the animation's data).
 void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
                      const std::vector<agent_study::AgentState>& states) {
   const int dim = study.mesh.grid.dim;
-  auto csv = open_out(file);
+  auto csv = open_csv(file);
   csv << "step,load [N],cell,generation,sigma_x [Pa],sigma_y [Pa]\n";
   for (std::size_t k = 0; k < states.size(); ++k) {
     const auto& s = states[k];
@@ -327,7 +331,6 @@ void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
     }
   }
   csv.close();
-  if (!csv) throw Error(file.string() + ": write failed");
 }
 
 // Step 8: what the summary says beside the metrics.
@@ -413,7 +416,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 7. Figures 8-11 and the animation, from the CSV files (compare/figures.py, matplotlib).
   const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
   auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
-  report::open_out(dir / "lines.json") << json["lines"].dump(1) << "\n";
+  report::write_text(dir / "lines.json", json["lines"].dump(1) + "\n");
   double figures_seconds = 0;
   if (options.figures) {
     t = std::chrono::steady_clock::now();

@@ -243,7 +243,7 @@ Ratios ratios(const std::vector<double>& model, const std::vector<double>& refer
   r.masked.assign(reference.size(), 1);
   std::vector<double> kept;
   for (std::size_t i = 0; i < reference.size(); ++i) {
-    if (ref_max > 0 && std::abs(reference[i]) >= floor) {
+    if (reference[i] != 0 && std::abs(reference[i]) >= floor) {  // mask 0 still leaves out x / 0
       r.ratio[i] = model[i] / reference[i];
       r.masked[i] = 0;
       kept.push_back(r.ratio[i]);

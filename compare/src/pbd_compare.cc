@@ -6,8 +6,9 @@
 
 #include "report.h"
 
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <pbd_study.h>
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 
 #include <algorithm>
@@ -22,7 +23,7 @@
 namespace compare {
 
 namespace fs = std::filesystem;
-using report::open_out;
+using workbench::open_csv;
 using report::seconds_since;
 using workbench::Error;
 
@@ -217,7 +218,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   // Sample both along the centreline (s >= 0; the ghost node inside the clamp is left out).
   const RowSampler sampler(fem, 1e-6 * D);
   std::vector<double> s_used, pbd_uy, fem_uy, eb_uy;
-  auto csv = open_out(dir / "centreline.csv");
+  auto csv = open_csv(dir / "centreline.csv");
   csv << "s [m],x0 [m],y0 [m],pbd_x [m],pbd_y [m],pbd_u_x [m],pbd_u_y [m],fem_u_x [m],fem_u_y [m],eb_u_y [m]\n";
   for (std::size_t k = 0; k < n_line; ++k) {
     if (line.s[k] < -1e-12 * L) continue;
@@ -237,7 +238,6 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
         << p[1] - p0[1] << ',' << uf[0] << ',' << uf[1] << ',' << eb_uy.back() << '\n';
   }
   csv.close();
-  if (!csv) throw Error((dir / "centreline.csv").string() + ": write failed");
 
   CompareOutcome outcome;
   auto add = [&](const std::string& name, double value) {

@@ -4,6 +4,7 @@
 
 #include "report.h"
 
+#include <agent_study.h>
 #include <workbench/error.h>
 
 #include <chrono>

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -20,11 +21,12 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-std::ofstream open_out(const fs::path& file) {
+void write_text(const fs::path& file, const std::string& text) {
   std::ofstream out(file);
   if (!out) throw Error(file.string() + ": cannot open for writing");
-  out.precision(12);
-  return out;
+  out << text;
+  out.close();
+  if (!out) throw Error(file.string() + ": write failed");
 }
 
 namespace {
@@ -105,7 +107,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   }
   json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
   json["warnings"] = outcome.warnings;
-  open_out(dir / "summary.json") << json.dump(2) << "\n";
+  write_text(dir / "summary.json", json.dump(2) + "\n");
 
   std::ostringstream table;
   for (const auto& w : outcome.warnings) table << "WARNING: " << w << "\n";
@@ -124,10 +126,11 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
       table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
     table << "\n";
   }
-  open_out(dir / "summary.txt") << table.str();
+  write_text(dir / "summary.txt", table.str());
   log << table.str();
 
-  auto junit = open_out(dir / "junit.xml");
+  std::ostringstream junit;
+  junit.precision(12);
   junit << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n  <testsuite name=\"compare."
         << xml_escape(case_name) << "\" tests=\"" << outcome.gated << "\" failures=\"" << outcome.failures.size()
         << "\">\n";
@@ -141,7 +144,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     junit << "</testcase>\n";
   }
   junit << "  </testsuite>\n</testsuites>\n";
-  if (!junit) throw Error((dir / "junit.xml").string() + ": write failed");
+  write_text(dir / "junit.xml", junit.str());
 }
 
 void run_figure_script(const std::string& script, const fs::path& dir, const std::string& title, std::ostream& log) {

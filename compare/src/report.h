@@ -10,7 +10,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -26,8 +25,9 @@ namespace compare::report {
 
 double seconds_since(std::chrono::steady_clock::time_point t);
 
-/// An output file with 12 significant digits; throws workbench::Error if it cannot be opened.
-std::ofstream open_out(const std::filesystem::path& file);
+/// Writes `text` to `file` (JSON, text, XML; CSV tables go through workbench::CsvFile); throws
+/// workbench::Error if it cannot be opened or written.
+void write_text(const std::filesystem::path& file, const std::string& text);
 
 /// Rejects (case-file error naming compare.gate.<name>) a gate key that is not in `names`.
 void check_gate_names(const CompareOptions& options, const std::vector<std::string>& names,

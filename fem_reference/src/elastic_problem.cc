@@ -114,31 +114,6 @@ void ensure_mpi() {
   std::atexit(finalize_mpi);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-/// Resident memory of this process now [bytes] (Linux /proc/self/statm).
-double resident_bytes() {
-  std::ifstream in("/proc/self/statm");
-  double pages = 0, resident = 0;
-  in >> pages >> resident;
-  return resident * double(::sysconf(_SC_PAGESIZE));
-}
-
-/// Optional phase profile on stderr (WORKBENCH_FEM_PROFILE=1): time and resident memory.
-void profile(const char* what, std::chrono::steady_clock::time_point& t) {
-  static const bool on = std::getenv("WORKBENCH_FEM_PROFILE") != nullptr;
-  if (!on) return;
-  static double cpu_before = 0;
-  struct rusage u {};
-  getrusage(RUSAGE_SELF, &u);
-  const double cpu = double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  std::fprintf(stderr, "fem-profile: %-28s %8.3f s (cpu %7.3f s)  rss %8.1f MB\n", what, seconds_since(t),
-               cpu - cpu_before, resident_bytes() / 1e6);
-  cpu_before = cpu;
-  t = std::chrono::steady_clock::now();
-}
 
 
 /// One line out of a deal.II exception: its "Additional information", else its name.
@@ -308,6 +283,24 @@ class ElasticProblem {
   std::ostream null_stream_{nullptr};  // pcout_'s target without a log (writes nothing)
   ConditionalOStream pcout_{log_ ? *log_ : null_stream_, log_ && Utilities::MPI::this_mpi_process(comm_) == 0};
   TimerOutput timer_{pcout_, TimerOutput::never, TimerOutput::wall_times};  // phases of run()
+  // WORKBENCH_FEM_PROFILE: the finer phases inside them, deal.II's table of cpu and wall times on
+  // stderr (rank 0) when the problem ends, and the resident memory after each phase (TimerOutput
+  // measures no memory).
+  const bool profiling_ = std::getenv("WORKBENCH_FEM_PROFILE") != nullptr;
+  ConditionalOStream profile_out_{std::cerr, profiling_ && Utilities::MPI::this_mpi_process(comm_) == 0};
+  TimerOutput profile_{profile_out_, profiling_ ? TimerOutput::summary : TimerOutput::never, TimerOutput::cpu_and_wall_times};
+  std::string phase_;  // profile_'s section in progress
+  /// Ends the profiled phase in progress and starts `next` (nullptr: none).
+  void phase(const char* next) {
+    if (!phase_.empty()) {
+      profile_.leave_subsection(phase_);
+      Utilities::System::MemoryStats memory;
+      if (profiling_) Utilities::System::get_memory_stats(memory);
+      profile_out_ << "fem-profile: resident " << memory.VmRSS / 1024.0 << " MB after " << phase_ << std::endl;
+    }
+    phase_ = next ? next : "";
+    if (!phase_.empty()) profile_.enter_subsection(phase_);
+  }
   const int degree_;
   bool direct_ = false;  // the solver, decided in setup_system
   bool use_mg_ = false;  // matrix-free geometric multigrid: no global matrix
@@ -424,10 +417,10 @@ void ElasticProblem<dim>::make_grid() {
     quadrature_ = std::make_unique<QGauss<dim>>(degree_ + 1);
     face_quadrature_ = std::make_unique<QGauss<dim - 1>>(degree_ + 1);
   }
-  auto t = std::chrono::steady_clock::now();
+  phase("create triangulation");
   // The coarse cells keep the order of `cells` (gmsh element order) and the vertices their indices.
   tria_->create_triangulation(vertices, cells, SubCellData());
-  profile("create triangulation", t);
+  phase("boundary ids");
 
   // Boundary ids: one per distinct set of named groups a face belongs to (0: none).
   auto group_index = [&](const std::string& name) {
@@ -468,9 +461,9 @@ void ElasticProblem<dim>::make_grid() {
       throw Error(problem_.name + ": group '" + groups_[g] + "' of " + mesh_.source + " has " +
                   std::to_string(mesh_.face_groups.at(groups_[g]).size() - matched[g]) +
                   " faces inside the body; supports and loads act on outer faces only");
-  profile("boundary ids", t);
+  phase("refine");
   if (problem_.options.refine > 0) tria_->refine_global(problem_.options.refine);
-  profile("refine", t);
+  phase(nullptr);
 }
 
 template <int dim>
@@ -483,12 +476,12 @@ std::vector<int> ElasticProblem<dim>::constrained_components(const Support& s) c
 
 template <int dim>
 void ElasticProblem<dim>::setup_system() {
-  auto t = std::chrono::steady_clock::now();
+  phase("distribute dofs");
   dof_handler_.reinit(*tria_);
   dof_handler_.distribute_dofs(*fe_);
   owned_ = dof_handler_.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
-  profile("distribute dofs", t);
+  phase("constraints");
 
   constraints_.clear();
   constraints_.reinit(relevant_);
@@ -507,7 +500,7 @@ void ElasticProblem<dim>::setup_system() {
         VectorTools::interpolate_boundary_values(*mapping_, dof_handler_, id, *g, constraints_, mask);
   }
   constraints_.close();
-  profile("constraints", t);
+  phase(nullptr);
 
   const auto& o = problem_.options;
   // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
@@ -521,12 +514,13 @@ void ElasticProblem<dim>::setup_system() {
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);
   if (use_mg_) return;  // matrix-free: no sparsity pattern, no matrix
+  phase("sparsity pattern");
   DynamicSparsityPattern dsp(relevant_);
   DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
   SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
-  profile("sparsity pattern", t);
+  phase("matrix reinit");
   matrix_.reinit(owned_, owned_, dsp, comm_);
-  profile("matrix reinit", t);
+  phase(nullptr);
 }
 
 /// The supports must hold every rigid body motion: translations and rotations, evaluated at the
@@ -736,7 +730,6 @@ void ElasticProblem<dim>::solve() {
     solution_ = 0;
     result_.solver = "none (no load)";
   } else if (use_mg_) {
-    auto t = std::chrono::steady_clock::now();
     MgSettings s;
     s.lambda = lambda_;
     s.mu = mu_;
@@ -757,13 +750,16 @@ void ElasticProblem<dim>::solve() {
     MgOutcome outcome;
     try {
       outcome = solve_mg(*mapping_, dof_handler_, constraints_, boundaries, rhs_, solution_, s,
-                         [&](const char* what) { profile(what, t); });
+                         [&](const char* what) { phase(what); });
     } catch (const SolverControl::NoConvergence& e) {
       require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "geometric multigrid", e));
     }
     result_.solver = outcome.solver;
     result_.iterations = outcome.iterations;
+    profile_out_ << "fem-profile: element matrices stored per level:";
+    for (std::size_t n : outcome.matrices_per_level) profile_out_ << ' ' << n;
+    profile_out_ << std::endl;
     constraints_.distribute(solution_);
     result_.residual = outcome.residual;
     ghosted_ = solution_;
@@ -777,7 +773,7 @@ void ElasticProblem<dim>::solve() {
     result_.iterations = 0;
   } else {
     // ML smoothed aggregation with the rigid body modes as near-null space.
-    auto t = std::chrono::steady_clock::now();
+    phase("rigid body modes");
     std::vector<double> modes = rigid_body_modes<dim>(
         *mapping_, *fe_, dof_handler_.active_cell_iterators(),
         [](const auto& cell, std::vector<types::global_dof_index>& dofs) {
@@ -786,10 +782,10 @@ void ElasticProblem<dim>::solve() {
           return true;
         },
         owned_, mode_centre_, mode_size_);
-    profile("rigid body modes", t);
+    phase("AMG setup");
     TrilinosWrappers::PreconditionAMG amg;
     initialize_elasticity_ml(amg, matrix_, dim, degree_, modes);
-    profile("AMG setup", t);
+    phase("CG");
     SolverControl control(o.max_iterations, o.tolerance * rhs_norm, false, false);
     SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
     try {
@@ -798,7 +794,7 @@ void ElasticProblem<dim>::solve() {
       require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "AMG", e));
     }
-    profile("CG", t);
+    phase(nullptr);
     result_.solver = "cg+amg (ML)";
     result_.iterations = int(control.last_step());
   }

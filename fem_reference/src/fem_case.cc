@@ -1,7 +1,8 @@
-// The FEM reference's plain-data side: [fem] options, case file -> FemProblem, input checks that
-// need no deal.II, CSV output.
+// The FEM reference's side without deal.II: the case-file glue (fem_case.h: [fem], case file ->
+// FemProblem), the input checks that need no deal.II, the CSV output.
 #include "plain_mesh.h"
 
+#include <fem_reference/fem_case.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/study_setup.h>

@@ -32,7 +32,6 @@
 
 #include <Teuchos_ParameterList.hpp>
 
-#include <cstdio>
 #include <cstdlib>
 #include <algorithm>
 #include <cmath>
@@ -332,6 +331,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   using VectorType = LinearAlgebra::distributed::Vector<double>;
   using LevelVector = LinearAlgebra::distributed::Vector<float>;
 
+  profile("matrix-free operator");
   // The active level: homogeneous version of the constraints.
   AffineConstraints<double> homogeneous;
   {
@@ -354,9 +354,9 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     system.initialize(mf);
     system.set_coefficients(s.lambda, s.mu);
   }
-  profile("matrix-free operator");
 
   // The levels.
+  profile("multigrid levels");
   dof.distribute_mg_dofs();
   MGConstrainedDoFs mg_constrained;
   mg_constrained.initialize(dof);
@@ -370,13 +370,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   }
   MGTransferMatrixFree<dim, float> transfer(mg_constrained);
   transfer.build(dof, partitioners);
-  if (std::getenv("WORKBENCH_FEM_PROFILE")) {
-    std::fprintf(stderr, "fem-profile: element matrices stored per level:");
-    for (unsigned level = 0; level < n_levels; ++level) std::fprintf(stderr, " %zu", levels[level].shapes());
-    std::fprintf(stderr, "\n");
-  }
-  profile("multigrid levels");
 
+  profile("smoothers + coarse solver");
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;
   mg::SmootherRelaxation<Smoother, LevelVector> smoother;
   MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
@@ -392,8 +387,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   mg::Matrix<LevelVector> mg_matrix(levels);
   Multigrid<LevelVector> mg(mg_matrix, coarse, transfer, smoother, smoother);
   PreconditionMG<dim, LevelVector, MGTransferMatrixFree<dim, float>> preconditioner(dof, mg, transfer);
-  profile("smoothers + coarse solver");
 
+  profile("CG");
   VectorType b, x;
   system.initialize_dof_vector(b);
   system.initialize_dof_vector(x);
@@ -403,10 +398,11 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   SolverControl control(s.max_iterations, s.tolerance * b_norm, false, false);
   SolverCG<VectorType> cg(control);
   cg.solve(system, x, b, preconditioner);
-  profile("CG");
+  profile(nullptr);
 
   MgOutcome out;
   out.iterations = int(control.last_step());
+  for (unsigned level = 0; level < n_levels; ++level) out.matrices_per_level.push_back(levels[level].shapes());
   {
     VectorType r;
     r.reinit(x);

@@ -43,6 +43,7 @@ struct MgOutcome {
   int iterations = 0;
   double residual = 0;  ///< ||K u - f|| / ||f|| of the condensed system
   std::string solver;
+  std::vector<std::size_t> matrices_per_level;  ///< element matrices stored per level (the profile)
 };
 
 /// Zero boundary conditions of the multigrid levels: boundary ids and the components they hold.
@@ -58,7 +59,8 @@ bool direct_is_fast(double n_dofs, int dim, long direct_limit);
 /// Degrees 1 and 2 on quadrilaterals/hexahedra. `dof_handler` must have its DoFs distributed;
 /// its level DoFs are distributed here. `constraints` are the (possibly inhomogeneous) Dirichlet
 /// constraints `rhs` was condensed with; `solution` gets the homogeneous part (constrained entries
-/// zero; distribute the constraints afterwards). Throws SolverControl::NoConvergence.
+/// zero; distribute the constraints afterwards). `profile(name)` starts the profiled phase `name`
+/// (ending the one before; nullptr ends the last). Throws SolverControl::NoConvergence.
 template <int dim>
 MgOutcome solve_mg(const dealii::Mapping<dim>& mapping, dealii::DoFHandler<dim>& dof_handler,
                    const dealii::AffineConstraints<double>& constraints, const MgBoundaries& boundaries,

@@ -26,6 +26,35 @@ inline double small_atan2(double y, double x) {
   }
   return std::atan2(y, x);
 }
+
+/// The angle at p3 between the edges to p1 and p2: unit edges ua, ub, their inverse lengths, the
+/// cosine c, and the sine s about the rotation axis n (the fixed axis: signed; else unsigned,
+/// s = |ua x ub|, n = ua x ub / s, left zero below kMinSin where it has no direction).
+struct AngleFrame {
+  Vec3 ua, ub, n;
+  double inv_la = 0, inv_lb = 0, c = 0, s = 0;
+};
+
+/// false where an edge is degenerate (no frame).
+inline bool angle_frame(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3* axis, AngleFrame& f) {
+  const Vec3 a = p1 - p3, b = p2 - p3;
+  const double la2 = a.squaredNorm(), lb2 = b.squaredNorm();
+  if (!(la2 > kTinySquaredLength) || !(lb2 > kTinySquaredLength)) return false;
+  f.inv_la = 1.0 / std::sqrt(la2);
+  f.inv_lb = 1.0 / std::sqrt(lb2);
+  f.ua = a * f.inv_la;
+  f.ub = b * f.inv_lb;
+  const Vec3 cr = f.ua.cross(f.ub);
+  f.c = f.ua.dot(f.ub);
+  if (axis) {
+    f.n = *axis;
+    f.s = f.n.dot(cr);
+  } else {
+    f.s = cr.norm();
+    f.n = f.s < kMinSin ? Vec3::Zero() : Vec3(cr * (1.0 / f.s));
+  }
+  return true;
+}
 }  // namespace
 
 double angle(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
@@ -41,30 +70,16 @@ double signed_angle(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& 
 AngleGradient angle_constraint_gradient(const Vec3& p1, const Vec3& p2, const Vec3& p3, double theta0,
                                         const Vec3* axis) {
   AngleGradient g;
-  const Vec3 a = p1 - p3, b = p2 - p3;
-  const double la2 = a.squaredNorm(), lb2 = b.squaredNorm();
-  if (!(la2 > kTinySquaredLength) || !(lb2 > kTinySquaredLength)) return g;
-  const double inv_la = 1.0 / std::sqrt(la2), inv_lb = 1.0 / std::sqrt(lb2);
-  const Vec3 ua = a * inv_la, ub = b * inv_lb;
-  const Vec3 cr = ua.cross(ub);
-  const double c = ua.dot(ub);
-  Vec3 n;
-  double s;
-  if (axis) {
-    n = *axis;
-    s = n.dot(cr);
-  } else {
-    s = cr.norm();
-    if (s < kMinSin) {
-      g.C = std::atan2(s, c) - theta0;
-      return g;
-    }
-    n = cr / s;
+  AngleFrame f;
+  if (!angle_frame(p1, p2, p3, axis, f)) return g;
+  if (!axis && f.s < kMinSin) {
+    g.C = std::atan2(f.s, f.c) - theta0;
+    return g;
   }
   const double rc = std::cos(theta0), rs = std::sin(theta0);
-  g.C = std::atan2(s * rc - c * rs, c * rc + s * rs);
-  g.g1 = -n.cross(ua) * inv_la;
-  g.g2 = n.cross(ub) * inv_lb;
+  g.C = std::atan2(f.s * rc - f.c * rs, f.c * rc + f.s * rs);
+  g.g1 = -f.n.cross(f.ua) * f.inv_la;
+  g.g2 = f.n.cross(f.ub) * f.inv_lb;
   g.g3 = -g.g1 - g.g2;
   g.valid = true;
   return g;
@@ -72,26 +87,13 @@ AngleGradient angle_constraint_gradient(const Vec3& p1, const Vec3& p2, const Ve
 
 double project_angle(Vec3& p1, Vec3& p2, Vec3& p3, double w1, double w2, double w3, double rest_cos,
                      double rest_sin, double alpha_tilde, double& lambda, const Vec3* axis) {
-  const Vec3 a = p1 - p3, b = p2 - p3;
-  const double la2 = a.squaredNorm(), lb2 = b.squaredNorm();
-  if (!(la2 > kTinySquaredLength) || !(lb2 > kTinySquaredLength)) return 0;
-  const double inv_la = 1.0 / std::sqrt(la2), inv_lb = 1.0 / std::sqrt(lb2);
-  const Vec3 ua = a * inv_la, ub = b * inv_lb;
-  const Vec3 cr = ua.cross(ub);
-  const double c = ua.dot(ub);
+  AngleFrame f;
+  if (!angle_frame(p1, p2, p3, axis, f) || (!axis && f.s < kMinSin)) return 0;
+  const Vec3 &ua = f.ua, &ub = f.ub, &n = f.n;
+  const double inv_la = f.inv_la, inv_lb = f.inv_lb, c = f.c, s = f.s;
   // Gradients g1 = -(n x ua) / la, g2 = (n x ub) / lb with n the unit rotation axis (cr / |cr|
   // unsigned, the fixed axis signed); n is perpendicular to ua and ub, so |g1|^2 = 1/la^2,
   // |g2|^2 = 1/lb^2 and g1 . g2 = -c / (la lb): the denominator needs no gradient products.
-  Vec3 n;
-  double s;
-  if (axis) {
-    n = *axis;
-    s = n.dot(cr);
-  } else {
-    s = cr.norm();
-    if (s < kMinSin) return 0;
-    n = cr * (1.0 / s);
-  }
   const double C = small_atan2(s * rest_cos - c * rest_sin, c * rest_cos + s * rest_sin);
   const double ia2 = inv_la * inv_la, ib2 = inv_lb * inv_lb;
   const double den = (w1 + w3) * ia2 + (w2 + w3) * ib2 - 2 * w3 * c * inv_la * inv_lb + alpha_tilde;

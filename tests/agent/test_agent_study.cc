@@ -14,14 +14,7 @@ namespace {
 
 const std::string kMeshes = WORKBENCH_SOURCE_DIR "/meshes/";
 
-// A case file in a temporary folder; `extra` replaces nothing, it is appended.
-fs::path write_case(const std::string& name, const std::string& body) {
-  const fs::path dir = test_support::scratch_folder();
-  fs::create_directories(dir);
-  const fs::path file = dir / name;
-  std::ofstream(file) << body;
-  return file;
-}
+using test_support::write_file;
 
 std::string plate_case(const std::string& boundary = "rigid = [\"base\"]", const std::string& direction = "-y",
                        const std::string& group = "load") {
@@ -33,7 +26,7 @@ std::string plate_case(const std::string& boundary = "rigid = [\"base\"]", const
 
 std::string study_error(const std::string& body) {
   try {
-    workbench::CaseFile file(write_case("bad.toml", body));
+    workbench::CaseFile file(write_file("bad.toml", body));
     agent_study::load_agent_study(file);
     file.reject_unknown_keys();
   } catch (const workbench::Error& e) {
@@ -45,7 +38,7 @@ std::string study_error(const std::string& body) {
 }  // namespace
 
 TEST(AgentStudy, SeedPlateLoadIsSharedOverThePatchFaces) {
-  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  workbench::CaseFile file(write_file("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
   ASSERT_EQ(study.loads.size(), 2u);
   for (const auto& l : study.loads) {
@@ -57,7 +50,7 @@ TEST(AgentStudy, SeedPlateLoadIsSharedOverThePatchFaces) {
 }
 
 TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
-  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  workbench::CaseFile file(write_file("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
   agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
   const auto s = agent_study::evaluate(study, model, 1.0);
@@ -81,7 +74,7 @@ TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
 }
 
 TEST(AgentStudy, WritesEveryStepAndTheTables) {
-  workbench::CaseFile file(write_case("plate.toml", plate_case()));
+  workbench::CaseFile file(write_file("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
   const fs::path dir = test_support::scratch_folder() / "out";
   fs::create_directories(dir);
@@ -112,7 +105,7 @@ TEST(AgentStudy, LoadThatMissesTheRigidFaceWarnsAndMixedLoadsPrintVectors) {
   const std::string side = plate_case("rigid = [\"base\"]") +
                            "[[load]]\ngroup = \"free\"\ndirection = \"+x\"\nforce = 2.0\n";
   for (const bool mixed : {false, true}) {
-    workbench::CaseFile file(write_case("warn.toml", mixed ? side : patent));
+    workbench::CaseFile file(write_file("warn.toml", mixed ? side : patent));
     const auto study = agent_study::load_agent_study(file);
     const fs::path dir = test_support::scratch_folder() / (mixed ? "mixed" : "patent");
     fs::create_directories(dir);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -211,6 +212,19 @@ TEST(CsvFile, WritesShortestRoundTripNumbersAndRefusesNonFiniteNamingTheColumn) 
   EXPECT_EQ(read(file), "# a comment, not the header\nnode,x,y\n7,0.1,0.3333333333333333\n8,-2.5e-300,1e+21\n9,1,,\n");
   EXPECT_EQ(std::stod(shortest_decimal(1.0 / 3.0)), 1.0 / 3.0);
   EXPECT_EQ(shortest_decimal(0.1), "0.1");
+}
+
+TEST(CsvFile, AnUndefinedValueIsAnEmptyFieldOnlyWhenSaidSo) {
+  const fs::path file = test_support::scratch_folder() / "ratios.csv";
+  auto out = open_csv(file);
+  out << "cell,ratio\n";
+  out << 0 << ',' << std::optional<double>(0.25) << '\n';
+  out << 1 << ',' << std::optional<double>() << '\n';  // masked: empty on purpose
+  EXPECT_EQ(error_of([&] { out << 2 << ',' << std::optional<double>(std::nan("")); }),
+            "ratios.csv: column 'ratio' (row 2): nan is not a finite number");
+  out << '\n';
+  out.close();
+  EXPECT_EQ(read(file), "cell,ratio\n0,0.25\n1,\n2,\n");
 }
 
 TEST(CsvFile, AFailedWriteIsAnError) {

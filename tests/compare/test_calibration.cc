@@ -18,12 +18,7 @@ namespace {
 
 const std::string kSource = WORKBENCH_SOURCE_DIR;
 
-fs::path write(const std::string& name, const std::string& text) {
-  const fs::path dir = test_support::scratch_folder();
-  fs::create_directories(dir);
-  std::ofstream(dir / name) << text;
-  return dir / name;
-}
+using test_support::write_file;
 
 std::string plate_case(const std::string& xc = "0.1") {
   return "[mesh]\nfile = \"" + kSource + "/meshes/plate2d.geo\"\n[mesh.parameters]\nh = 0.01\nlw = 0.02\nxc = " + xc +
@@ -34,7 +29,7 @@ std::string plate_case(const std::string& xc = "0.1") {
 /// A load case whose reference is the agent model itself with coefficients `truth`.
 CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& truth,
                              agent::RuleSet rules = agent::RuleSet::Conserving) {
-  workbench::CaseFile file(write("plate_" + xc + ".toml", plate_case(xc)));
+  workbench::CaseFile file(write_file("plate_" + xc + ".toml", plate_case(xc)));
   CalibrationCase c;
   c.name = "plate_" + xc;
   c.study = agent_study::load_agent_study(file);
@@ -61,7 +56,7 @@ CalibrationOptions options() {
 
 std::string error_of(const std::string& text) {
   try {
-    workbench::CaseFile file(write("calibration.toml", text));
+    workbench::CaseFile file(write_file("calibration.toml", text));
     std::ostringstream log;
     compare::run_calibration(file, test_support::scratch_folder() / "out", log);
   } catch (const workbench::Error& e) {
@@ -125,7 +120,7 @@ TEST(Calibration, IsReproducibleWhateverTheThreadCount) {
 
 TEST(Calibration, RefusesBadCalibrationFiles) {
   const std::string base = "[calibrate]\nrule_set = \"conserving\"\n[[calibrate.case]]\nfile = \"" +
-                           write("case.toml", plate_case()).string() + "\"\n";
+                           write_file("case.toml", plate_case()).string() + "\"\n";
   EXPECT_NE(error_of(base + "[calibrate.alpha3]\nmin = 0.5\nmax = 0.2\n").find("calibrate.alpha3.max: must be greater than min"),
             std::string::npos);
   EXPECT_NE(error_of(base + "[calibrate.beta]\nstart = 0.9\nmax = 0.5\n").find("calibrate.beta.start: must lie within"),

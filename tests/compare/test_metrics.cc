@@ -126,6 +126,12 @@ TEST(CompareNorms, RelativeErrorsAndMaskedRatios) {
   EXPECT_DOUBLE_EQ(r.ratio[0], 1.5);
   EXPECT_DOUBLE_EQ(r.ratio[2], 0.5);
   EXPECT_DOUBLE_EQ(r.median, 1.0);  // of 1.5, 1, 0.5
+  // mask 0: every nonzero reference gives a ratio, a zero one is masked (no x / 0 in cells.csv).
+  const auto r0 = ratios({2.0, 1.0, 0.0}, {4.0, 0.0, 0.0}, 0.0);
+  EXPECT_EQ(r0.masked_count, 2u);
+  EXPECT_EQ(r0.masked[0], 0);
+  EXPECT_DOUBLE_EQ(r0.ratio[0], 0.5);
+  EXPECT_EQ(r0.ratio[1], 0.0);
   EXPECT_EQ(relative_errors({0, 0}, {0, 0}).rel_l2, 0.0);
   EXPECT_TRUE(std::isinf(relative_errors({1, 0}, {0, 0}).rel_l2));
 }

@@ -1,7 +1,7 @@
 // Verification of the deal.II FEM reference (docs/fem-reference.md): manufactured solutions with
 // convergence rates, Cook's membrane, the Timoshenko-Goodier cantilever, equilibrium of reactions,
 // and bad input. Only the plain-data API is used (no deal.II here).
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/error.h>
 
 #include <gtest/gtest.h>
@@ -334,13 +334,7 @@ TEST(FemCantilever, ThinStripResidualFloorIsRounding) {
 // Equilibrium: the reactions balance the applied load.
 // ------------------------------------------------------------------------------------------------
 
-fs::path write_case(const std::string& name, const std::string& body) {
-  const fs::path dir = test_support::scratch_folder();
-  fs::create_directories(dir);
-  const fs::path file = dir / name;
-  std::ofstream(file) << body;
-  return file;
-}
+using test_support::write_file;
 
 std::string plate_case(const std::string& boundary = "rigid = [\"base\"]", const std::string& fem = "",
                        const std::string& mesh = "/meshes/plate2d.geo",
@@ -386,9 +380,9 @@ TEST(FemEquilibrium, SeedPlateReactionsBalanceTheLoad) {
 }
 
 TEST(FemEquilibrium, PointLoadQ2AndAmgMatchDirect) {
-  const auto direct = run_case(write_case("point_direct.toml",
+  const auto direct = run_case(write_file("point_direct.toml",
                                           plate_case("rigid = [\"base\"]", "degree = 2\nload = \"point\"\nsolver = \"direct\"")));
-  const auto amg = run_case(write_case("point_amg.toml",
+  const auto amg = run_case(write_file("point_amg.toml",
                                        plate_case("rigid = [\"base\"]", "degree = 2\nload = \"point\"\nsolver = \"amg\"\ntolerance = 1e-12")));
   expect_balance(direct, 2.0);
   expect_balance(amg, 2.0);
@@ -406,7 +400,7 @@ TEST(FemEquilibrium, PointLoadQ2AndAmgMatchDirect) {
 
 TEST(FemEquilibrium, RollersAndClampBalanceInPlaneStrain) {
   // Base on rollers (u_y = 0) and the left side clamped: both carry load.
-  const auto r = run_case(write_case(
+  const auto r = run_case(write_file(
       "rollers.toml", plate_case("rigid = [\"free\"]\nrollers = [\"base\"]", "model = \"plane_strain\"")));
   ASSERT_EQ(r.reactions.size(), 2u);
   EXPECT_EQ(r.reactions[1].kind, "roller");
@@ -422,7 +416,7 @@ TEST(FemEquilibrium, Block3DWithBodyForce) {
       "/meshes/block3d.geo\"\n[mesh.parameters]\nh = 0.004\nlw = 0.008\n[material]\nyoung = 206e9\npoisson = 0.3\n"
       "[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\ndirection = \"-y\"\nforce = 5.0\n"
       "[fem]\nbody_force = [0, -77000, 0]\nsolver = \"amg\"\ntolerance = 1e-12\n";
-  const auto r = run_case(write_case("block.toml", body));
+  const auto r = run_case(write_file("block.toml", body));
   const double weight = 77000 * 0.04 * 0.04 * 0.04;
   EXPECT_EQ(r.dim, 3);
   EXPECT_NEAR(r.applied[1], -5.0 - weight, 1e-9);
@@ -431,7 +425,7 @@ TEST(FemEquilibrium, Block3DWithBodyForce) {
 }
 
 TEST(FemEquilibrium, TrianglesP2Serial) {
-  const auto r = run_case(write_case(
+  const auto r = run_case(write_file(
       "triangles.toml", plate_case("rigid = [\"base\"]", "degree = 2", "/tests/fem/meshes/tri_plate.geo", "")));
   EXPECT_EQ(r.cells, "triangle");
   expect_balance(r, 2.0);
@@ -469,9 +463,9 @@ double relative_difference(const FemResult& a, const FemResult& b) {
 void expect_mg_matches_direct(const std::string& name, const std::string& boundary, const std::string& fem,
                               const std::string& mesh = "/meshes/plate2d.geo",
                               const std::string& parameters = "h = 0.01\nlw = 0.02\n") {
-  const auto direct = run_case(write_case(name + "_direct.toml", plate_case(boundary, fem + "\nsolver = \"direct\"", mesh, parameters)));
+  const auto direct = run_case(write_file(name + "_direct.toml", plate_case(boundary, fem + "\nsolver = \"direct\"", mesh, parameters)));
   const auto mg = run_case(
-      write_case(name + "_mg.toml", plate_case(boundary, fem + "\nsolver = \"mg\"\ntolerance = 1e-12", mesh, parameters)));
+      write_file(name + "_mg.toml", plate_case(boundary, fem + "\nsolver = \"mg\"\ntolerance = 1e-12", mesh, parameters)));
   EXPECT_EQ(direct.solver, "direct (Amesos_Klu)");
   EXPECT_EQ(mg.solver.rfind("cg+gmg (matrix-free", 0), 0u) << mg.solver;
   EXPECT_GT(mg.iterations, 0);
@@ -501,8 +495,8 @@ TEST(FemMultigrid, Block3DWithBodyForceMatchesDirect) {
       "/meshes/block3d.geo\"\n[mesh.parameters]\nh = 0.008\nlw = 0.008\n[material]\nyoung = 206e9\npoisson = 0.3\n"
       "[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\ndirection = \"-y\"\nforce = 5.0\n"
       "[fem]\nbody_force = [0, -77000, 0]\nrefine = 1\n";
-  const auto direct = run_case(write_case("mg_block_direct.toml", body + "solver = \"direct\"\n"));
-  const auto mg = run_case(write_case("mg_block_mg.toml", body + "solver = \"mg\"\ntolerance = 1e-12\n"));
+  const auto direct = run_case(write_file("mg_block_direct.toml", body + "solver = \"direct\"\n"));
+  const auto mg = run_case(write_file("mg_block_mg.toml", body + "solver = \"mg\"\ntolerance = 1e-12\n"));
   EXPECT_EQ(mg.dim, 3);
   EXPECT_LT(mg.iterations, 25);
   EXPECT_LT(mg.residual, 1e-12);
@@ -537,16 +531,16 @@ TEST(FemMultigrid, CoarseMlCycleMatchesDirect) {
 
 TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
   // 13 122 DoFs > direct_limit, coarse mesh 882 DoFs <= direct_limit: geometric multigrid.
-  const auto r = run_case(write_case("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
+  const auto r = run_case(write_file("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
   EXPECT_EQ(r.solver.rfind("cg+gmg (matrix-free", 0), 0u) << r.solver;
   EXPECT_LT(r.residual, 1e-10);  // the default tolerance
   // Coarse mesh above direct_limit: still multigrid, its coarse level one ML cycle.
   const auto ml_coarse =
-      run_case(write_case("mg_auto_ml_coarse.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 500")));
+      run_case(write_file("mg_auto_ml_coarse.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 500")));
   EXPECT_NE(ml_coarse.solver.find("coarse ML AMG cycle"), std::string::npos) << ml_coarse.solver;
   EXPECT_LT(relative_difference(r, ml_coarse), 1e-8);
   // An unrefined mesh above direct_limit (multigrid would have a single level): ML on the whole problem.
-  const auto ml = run_case(write_case("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "direct_limit = 500")));
+  const auto ml = run_case(write_file("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "direct_limit = 500")));
   EXPECT_EQ(ml.n_dofs, 882u);
   EXPECT_EQ(ml.solver, "cg+amg (ML)");
 }
@@ -557,7 +551,7 @@ TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
 
 std::string error_of(const std::string& name, const std::string& body) {
   try {
-    run_case(write_case(name, body));
+    run_case(write_file(name, body));
   } catch (const workbench::Error& e) {
     return e.what();
   }

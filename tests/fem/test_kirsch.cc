@@ -1,6 +1,6 @@
 // Kirsch's plate with a circular hole in tension: the FEM reference's stress concentration on a
 // fine mesh of the true (smooth) geometry against the closed form (factor 3 at the hole's top).
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_case.h>
 #include <workbench/case_file.h>
 
 #include <gtest/gtest.h>

@@ -134,8 +134,10 @@ def run_one(binary, work, index, command, case_text, extra_file, timeout):
         _, stderr = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
         os.killpg(p.pid, signal.SIGKILL)
-        p.communicate()
-        return "hang (no exit within %d s)" % timeout
+        _, stderr = p.communicate()
+        # The last progress line says which step it was in (meshing, "fem: assembled ...", ...).
+        last = stderr.strip().splitlines()[-1:] if stderr.strip() else ["no output"]
+        return "hang (no exit within %d s) | last line: %s" % (timeout, last[0][:300])
     problem = None
     if p.returncode < 0:
         problem = "signal %s" % signal.Signals(-p.returncode).name

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support/error_of.h"
 #include "../support/scratch_folder.h"
 
 namespace fs = std::filesystem;
@@ -35,16 +36,7 @@ struct TempDir {
   }
 };
 
-/// The message of the workbench::Error that `f` throws, or "" if it does not throw.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const workbench::Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::error_of;
 
 }  // namespace
 
@@ -151,40 +143,13 @@ TEST(PbdStudy, CaseKeysAreCheckedAndUnknownKeysRejected) {
   EXPECT_FALSE(load("gravity = [0, 0, -9.81]\n").model.planar);  // out-of-plane load: unsigned form
 }
 
-TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
-  TempDir tmp;
-  const auto f = tmp.write("c.toml", "[pbd]\nmesh = \"" + (kSource / "meshes/rod2d.geo").string() +
-                                         "\"\nmesh_parameters = { N = 8, L = 1.0 }\npinned = [\"clamp\"]\n"
-                                         "frames = 6\noutput_every = 2\nbending_stiffness = 1.0\nmasses = \"lumped\"\n");
-  workbench::CaseFile file(f);
-  auto setup = pbd_study::read_pbd_case(file);
-  file.reject_unknown_keys();
-  auto study = pbd_study::load_pbd_study(file, setup);
-  std::ostringstream log;
-  pbd_study::run_pbd_study(study, tmp.path / "out", false, log);
-  for (const char* name : {"pbd.pvd", "diagnostics.csv", "nodes.csv", "centreline.csv", "frames/frame_00000.vtu",
-                           "frames/frame_00006.vtu"})
-    EXPECT_TRUE(fs::exists(tmp.path / "out" / name)) << name;
-  EXPECT_FALSE(fs::exists(tmp.path / "out/frames/frame_00001.vtu"));
-  std::ifstream in(tmp.path / "out/centreline.csv");
-  std::string line;
-  std::vector<std::string> rows;
-  while (std::getline(in, line)) rows.push_back(line);
-  ASSERT_EQ(rows.size(), 11u);  // header + ghost + 9 rod nodes
-  EXPECT_EQ(rows[0], "s [m],x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m]");
-  EXPECT_EQ(rows[1].rfind("-0.125,-0.125,0,0,-0.125,0,0,0,0,0", 0), 0u) << rows[1];  // ghost node in the clamp
-  EXPECT_EQ(rows[2].rfind("0,0,0,0,0,0,0,0,0,0", 0), 0u) << rows[2];                   // s = 0 at the clamp face
-  double tip_uy = std::stod(rows.back().substr(rows.back().rfind(',', rows.back().rfind(',') - 1) + 1));
-  EXPECT_LT(tip_uy, 0.0);  // sags
-  EXPECT_NE(log.str().find("pbd: frame 6/6"), std::string::npos);
-}
-
 namespace {
-/// Runs an N = 8 rod case with `extra` [pbd] keys into tmp/out; returns the log.
-std::string run_rod_case(TempDir& tmp, const std::string& extra) {
+/// Runs `frames` frames of an N = 8 rod case with `extra` [pbd] keys into tmp/out; returns the log.
+std::string run_rod_case(TempDir& tmp, const std::string& extra, int frames = 20) {
   const auto f = tmp.write("c.toml", "[pbd]\nmesh = \"" + (kSource / "meshes/rod2d.geo").string() +
                                          "\"\nmesh_parameters = { N = 8, L = 1.0 }\npinned = [\"clamp\"]\n"
-                                         "frames = 20\nbending_stiffness = 1.0\nmasses = \"lumped\"\n" + extra);
+                                         "frames = " + std::to_string(frames) +
+                                         "\nbending_stiffness = 1.0\nmasses = \"lumped\"\n" + extra);
   workbench::CaseFile file(f);
   auto setup = pbd_study::read_pbd_case(file);
   file.reject_unknown_keys();
@@ -200,6 +165,27 @@ std::string read_text(const fs::path& file) {
   return s.str();
 }
 }  // namespace
+
+TEST(PbdStudy, WritesFramesSeriesAndCentreline) {
+  TempDir tmp;
+  const std::string log = run_rod_case(tmp, "output_every = 2\n", 6);
+  for (const char* name : {"pbd.pvd", "diagnostics.csv", "nodes.csv", "centreline.csv", "frames/frame_00000.vtu",
+                           "frames/frame_00006.vtu"})
+    EXPECT_TRUE(fs::exists(tmp.path / "out" / name)) << name;
+  EXPECT_FALSE(fs::exists(tmp.path / "out/frames/frame_00001.vtu"));
+  std::ifstream in(tmp.path / "out/centreline.csv");
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(in, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 11u);  // header + ghost + 9 rod nodes
+  EXPECT_EQ(rows[0], "s [m],x0 [m],y0 [m],z0 [m],x [m],y [m],z [m],u_x [m],u_y [m],u_z [m]");
+  EXPECT_EQ(rows[1].rfind("-0.125,-0.125,0,0,-0.125,0,0,0,0,0", 0), 0u) << rows[1];  // ghost node in the clamp
+  EXPECT_EQ(rows[2].rfind("0,0,0,0,0,0,0,0,0,0", 0), 0u) << rows[2];                   // s = 0 at the clamp face
+  double tip_uy = std::stod(rows.back().substr(rows.back().rfind(',', rows.back().rfind(',') - 1) + 1));
+  EXPECT_LT(tip_uy, 0.0);  // sags
+  EXPECT_NE(log.find("pbd: frame 6/6"), std::string::npos);
+}
+
 
 TEST(PbdStudy, ChosenSubstepsConvergeAndAnUnderResolvedRunWarns) {
   {

@@ -2,9 +2,11 @@
 // A scratch folder no other test can touch: ctest runs every test in its own process, in parallel,
 // and other build trees may run the same tests at the same time, so the folder is named by the
 // test and the process id. It is created on first use and removed when the process exits.
+// write_file puts a file (a case file, a mesh) there.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <unistd.h>
@@ -27,6 +29,13 @@ inline const std::filesystem::path& scratch_folder() {
   };
   static const Folder folder;
   return folder.path;
+}
+
+/// Writes `text` to the scratch folder's file `name` and returns its path.
+inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  const std::filesystem::path file = scratch_folder() / name;
+  std::ofstream(file) << text;
+  return file;
 }
 
 }  // namespace test_support

@@ -24,6 +24,8 @@ struct MeshError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+}  // namespace
+
 std::string point_text(const Eigen::Vector3d& x, int dim) {
   std::ostringstream s;
   s << "(" << x[0] << ", " << x[1];
@@ -31,8 +33,6 @@ std::string point_text(const Eigen::Vector3d& x, int dim) {
   s << ")";
   return s.str();
 }
-
-}  // namespace
 
 double study_bytes_per_slot(int dim) {
   // Solver: 2 dim face forces and a generation per slot, the grid's flag byte; study: stress,

@@ -9,9 +9,12 @@
 //   out.close();                              // throws "nodes.csv: write failed" on a failed write
 //
 // Lines starting with '#' are comments. A row may have more fields than the header (the last
-// column then holds a list, e.g. a cell's nodes).
+// column then holds a list, e.g. a cell's nodes). A value that is undefined on purpose (a ratio
+// whose denominator is masked) is written as std::nullopt: an empty field, the one marker of "no
+// number here" (pandas and numpy.genfromtxt read it as NaN); a non-finite number is never written.
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -31,6 +34,8 @@ class CsvFile {
   /// not a finite number".
   CsvFile& operator<<(double v);
   CsvFile& operator<<(float v) { return *this << double(v); }
+  /// A number where there is one; std::nullopt leaves the field empty (undefined on purpose, see above).
+  CsvFile& operator<<(const std::optional<double>& v) { return v ? *this << *v : *this; }
   template <class Int, class = std::enable_if_t<std::is_integral_v<Int> && !std::is_same_v<Int, char>>>
   CsvFile& operator<<(Int v) {
     return text(std::to_string(v));

@@ -4,6 +4,8 @@
 // parallel, of a weighted sum of relative errors of the agent fields against a reference.
 #include <compare/reference.h>
 
+#include <agent_study.h>  // a calibration case is an agent study
+
 #include <array>
 #include <cstdint>
 #include <iosfwd>

@@ -4,13 +4,16 @@
 // reference itself: the same geometry refined and/or of higher degree, with its own
 // discretisation error estimated from a second refinement level (docs/compare.md).
 #include <agent/mesh_import.h>
-#include <agent_study.h>
 #include <fem_reference/fem.h>
 
 #include <filesystem>
 #include <iosfwd>
 #include <string>
 #include <vector>
+
+namespace agent_study {
+struct AgentState;  // agent_study.h; the reference itself needs no study glue
+}
 
 namespace compare {
 

@@ -1,19 +1,20 @@
 #pragma once
 // The deal.II linear-elastic FEM reference (docs/fem-reference.md), seen through plain data only:
-// this header includes no deal.II, so the comparison module and the tests compile against it
-// cheaply. The deal.II code lives in fem_reference/src/elastic_problem.cc.
+// this header includes no deal.II and no case-file reader, so the comparison module, the tests and
+// programs that build a FemProblem themselves compile against it cheaply. The deal.II code lives in
+// fem_reference/src/elastic_problem.cc and mg_solver.cc; reading a case file into a FemProblem is
+// fem_reference/fem_case.h.
 //
-//   workbench::CaseFile file("cases/seed_plate.toml");
-//   auto problem = fem_reference::problem_from_case(file);   // [mesh], [material], [boundary], [[load]], [fem]
-//   file.reject_unknown_keys();
+//   fem_reference::FemProblem problem;
+//   problem.box = fem_reference::Box{{0, 0, 0}, {1, 0.1, 0}, {40, 4, 0}};
+//   problem.supports.push_back({"x0", fem_reference::SupportKind::Clamped, {}});
+//   problem.tractions.push_back({"x1", {0, -1e3, 0}, {}});
 //   auto result = fem_reference::solve_fem(problem);          // result.sigma_y[e]: element e in gmsh order
 //
 // Small-strain linear elasticity: 2D plane stress (per unit thickness, forces reported times the
 // thickness) or plane strain, and 3D; Q1/Q2 on quadrilateral/hexahedral meshes (serial or MPI on a
 // p4est mesh), P1/P2 on triangle/tetrahedron meshes (serial only). Units: SI (m, N, Pa).
 // Every bad input raises a workbench::Error with a one-line message naming the file and the cause.
-#include <workbench/case_file.h>
-
 #include <array>
 #include <filesystem>
 #include <functional>
@@ -44,15 +45,6 @@ struct FemOptions {
   LoadKind load = LoadKind::Traction;   ///< how [[load]] acts: traction on the group or point force
   bool write_vtu = true;                ///< VTU/PVTU + PVD next to the CSV files
 };
-
-/// Everything the [fem] section of a case holds.
-struct FemSection {
-  FemOptions options;
-  std::array<double, 3> body_force{};   ///< fem.body_force [N/m^3], zero if not given
-};
-
-/// Reads [fem] from the case root; range-checks every key.
-FemSection read_fem_section(const workbench::CaseTable& root);
 
 /// f(x, value): x has 3 entries (z = 0 in 2D), value has dim entries.
 using VectorFunction = std::function<void(const double* x, double* value)>;
@@ -112,10 +104,6 @@ struct FemProblem {
   GradientFunction exact_gradient;
   FemOptions options;
 };
-
-/// Reads [mesh], [material], [boundary], [[load]] (workbench::read_study_setup) and [fem]. Does not
-/// reject unknown keys: the caller does, once every module has read its sections.
-FemProblem problem_from_case(const workbench::CaseFile& file);
 
 struct GroupReaction {
   std::string group;

@@ -23,6 +23,9 @@ struct ImportedMesh {
   std::vector<std::string> parameters;
 };
 
+/// "(x, y)" or "(x, y, z)": a point or vector in messages and logs.
+std::string point_text(const Eigen::Vector3d& x, int dim);
+
 /// Bytes a study holds per slot of the grid's bounding box (agents and air), for the up-front
 /// memory check.
 double study_bytes_per_slot(int dim);

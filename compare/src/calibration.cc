@@ -52,7 +52,7 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
                                 w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
     std::vector<double> a[3], r[3];
     for (std::size_t cell = 0; cell < grid.count(); ++cell)
-      if (!near.cells[cell])
+      if (!near.cells[cell] && !grid.is_air(cell))
         for (int f = 0; f < 2; ++f) {
           a[f].push_back(agent.sigma[2 * cell + f]);
           r[f].push_back(c.reference.sigma[2 * cell + f]);
@@ -73,7 +73,7 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
   } else {
     std::vector<double> a[3], r[3];
     for (const auto& line : load_lines(grid, load_frames(c.study.mesh, c.study.setup.loads), w.depths))
-      for (int i = 0; i < line.samples; ++i) {
+      for (int i : line.body_samples) {  // a line stops at air
         const Eigen::Vector3d p = line.point(i);
         for (int f = 0; f < 2; ++f) {
           a[f].push_back(sample_cells(grid, agent.sigma, 2, f, p));

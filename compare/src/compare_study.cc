@@ -113,10 +113,15 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
   const auto& grid = in.study.mesh.grid;
   in.reference = options.reference.resolved(grid.dim);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
-  in.lines = load_lines(grid, in.loads, options.depths);
-  for (std::size_t i = 0; i < options.lines.size(); ++i)
-    in.lines.push_back(make_line(grid, options.lines[i][0], options.lines[i][1],
-                                 "line " + std::to_string(i + 1) + " of [[compare.line]]", "user"));
+  // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
+  for (auto& l : load_lines(grid, in.loads, options.depths))
+    if (l.body_samples.size() >= 2) in.lines.push_back(std::move(l));
+  for (std::size_t i = 0; i < options.lines.size(); ++i) {
+    const std::string what = "line " + std::to_string(i + 1) + " of [[compare.line]]";
+    in.lines.push_back(make_line(grid, options.lines[i][0], options.lines[i][1], what, "user"));
+    if (in.lines.back().body_samples.size() < 2)
+      file.root().table("compare").fail("line", what + " has fewer than 2 samples inside the agents (the rest is air or outside)");
+  }
   in.far_distance = options.far_distance_mm > 0 ? 1e-3 * options.far_distance_mm : 5 * grid.size[0];
   in.near = near_load(in.study.mesh, in.study.setup.loads, in.far_distance);
   std::vector<std::string> names;
@@ -140,7 +145,7 @@ struct LineSamples {
 
 LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFields* fields[3]) {
   LineSamples s;
-  for (int i = 0; i < line.samples; ++i) {
+  for (int i : line.body_samples) {
     const Eigen::Vector3d p = line.point(i);
     for (int m = 0; m < 3; ++m) {
       s.sx[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 0, p));
@@ -172,18 +177,26 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
   }
 }
 
-/// The body's cells (grid order) and nodes, and the far field's.
+/// The grid nodes (Grid::node_index order) that are a corner of an agent: air has none.
+std::vector<char> body_nodes_of(const agent::ImportedMesh& mesh) {
+  const auto& grid = mesh.grid;
+  std::vector<char> nodes(grid.node_count(), 0);
+  for (std::size_t cell : mesh.cell_of_element) {
+    const auto c = grid.coords(cell);
+    for (int corner = 0; corner < (1 << grid.dim); ++corner)
+      nodes[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
+                            c[2] + (grid.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
+  }
+  return nodes;
+}
+
+/// The body's cells (grid order) and nodes, and the far field's: air counts in neither.
 void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[3], double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
-  std::vector<char> body_cells(grid.count(), 0), body_nodes(grid.node_count(), 0);
-  for (std::size_t cell : mesh.cell_of_element) {
-    body_cells[cell] = 1;
-    const auto c = grid.coords(cell);
-    for (int corner = 0; corner < (1 << grid.dim); ++corner)
-      body_nodes[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
-                                 c[2] + (grid.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
-  }
+  std::vector<char> body_cells(grid.count(), 0);
+  for (std::size_t cell : mesh.cell_of_element) body_cells[cell] = 1;
+  std::vector<char> body_nodes = body_nodes_of(mesh);
   std::vector<char> far_cells = body_cells, far_nodes = body_nodes;
   for (std::size_t c = 0; c < far_cells.size(); ++c) far_cells[c] = far_cells[c] && !in.near.cells[c];
   for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
@@ -231,8 +244,8 @@ void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::v
   csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
   for (std::size_t li = 0; li < lines.size(); ++li)
     for (int m = 0; m < 2; ++m)
-      for (int i = 0; i < lines[li].samples; ++i) {
-        const Eigen::Vector3d p = lines[li].point(i);
+      for (std::size_t i = 0; i < lines[li].body_samples.size(); ++i) {  // the samples in the body only
+        const Eigen::Vector3d p = lines[li].point(lines[li].body_samples[i]);
         const auto& s = samples[li];
         csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
         for (int a = 0; a < dim; ++a) csv << ',' << p[a];
@@ -291,6 +304,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
               << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0  // + 0.0: no "-0"
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
+  const std::vector<char> body_nodes = body_nodes_of(study.mesh);  // air has no nodes
   auto nodes_csv = open_out(dir / "nodes.csv");
   const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
@@ -300,6 +314,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
     for (int j = 0; j < nn[1]; ++j)
       for (int i = 0; i < nn[0]; ++i) {
         const std::size_t n = grid.node_index(i, j, k);
+        if (!body_nodes[n]) continue;
         nodes_csv << i << ',' << j;
         if (dim == 3) nodes_csv << ',' << k;
         for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];

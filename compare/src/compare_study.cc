@@ -177,26 +177,13 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
   }
 }
 
-/// The grid nodes (Grid::node_index order) that are a corner of an agent: air has none.
-std::vector<char> body_nodes_of(const agent::ImportedMesh& mesh) {
-  const auto& grid = mesh.grid;
-  std::vector<char> nodes(grid.node_count(), 0);
-  for (std::size_t cell : mesh.cell_of_element) {
-    const auto c = grid.coords(cell);
-    for (int corner = 0; corner < (1 << grid.dim); ++corner)
-      nodes[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
-                            c[2] + (grid.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
-  }
-  return nodes;
-}
-
 /// The body's cells (grid order) and nodes, and the far field's: air counts in neither.
 void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[3], double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
   std::vector<char> body_cells(grid.count(), 0);
   for (std::size_t cell : mesh.cell_of_element) body_cells[cell] = 1;
-  std::vector<char> body_nodes = body_nodes_of(mesh);
+  std::vector<char> body_nodes = compare::body_nodes(grid);
   std::vector<char> far_cells = body_cells, far_nodes = body_nodes;
   for (std::size_t c = 0; c < far_cells.size(); ++c) far_cells[c] = far_cells[c] && !in.near.cells[c];
   for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
@@ -304,7 +291,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
               << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << rx.ratio[cell] + 0.0 << ',' << ry.ratio[cell] + 0.0  // + 0.0: no "-0"
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
-  const std::vector<char> body_nodes = body_nodes_of(study.mesh);  // air has no nodes
+  const std::vector<char> body_nodes = compare::body_nodes(grid);  // air has no nodes
   auto nodes_csv = open_out(dir / "nodes.csv");
   const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")

@@ -64,6 +64,17 @@ bool in_body(const agent::Grid& g, const Eigen::Vector3d& p) {
   return !g.is_air(g.index(idx[0], idx[1], idx[2]));
 }
 
+std::vector<char> body_nodes(const agent::Grid& g) {
+  std::vector<char> nodes(g.node_count(), 0);
+  for (std::size_t cell = 0; cell < g.count(); ++cell) {
+    if (g.is_air(cell)) continue;
+    const auto c = g.coords(cell);
+    for (int corner = 0; corner < (1 << g.dim); ++corner)
+      nodes[g.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + (g.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
+  }
+  return nodes;
+}
+
 double sample_cells(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p) {
   return sample_lattice(g, values, comps, comp, p, false);

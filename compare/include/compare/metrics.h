@@ -28,6 +28,9 @@ double sample_cells(const agent::Grid& grid, const std::vector<double>& values, 
 double sample_nodes(const agent::Grid& grid, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p);
 
+/// The grid nodes (Grid::node_index order) that are a corner of an agent: air has none.
+std::vector<char> body_nodes(const agent::Grid& grid);
+
 /// A straight sample line through the body.
 struct Line {
   std::string name;        ///< line_name(from, to): the same in every file and in the gate

@@ -34,7 +34,10 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
     const auto r = t.table("reference");
     o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
     if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
-    if (r.has("mesh")) o.reference.mesh = r.path("mesh", std::nullopt);
+    if (r.has("mesh")) {
+      o.reference.mesh = r.path("mesh", std::nullopt);
+      if (!fs::is_regular_file(o.reference.mesh)) r.fail("mesh", o.reference.mesh.string() + ": no such mesh file");
+    }
     o.far_distance_mm = t.number("far_distance_mm", o.far_distance_mm, workbench::Range::non_negative());
     o.min_reaction_share = t.number("min_reaction_share", o.min_reaction_share, workbench::Range::closed(0.0, 1.0));
     for (const auto& line : t.tables("line")) {

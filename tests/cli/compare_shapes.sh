@@ -112,6 +112,10 @@ sys.exit(0 if 0 <= worst[0] <= 1e-9 else 1)
 PY
 check identity_staircase_error_vanishes $? "see above"
 
+# A true geometry that is not there is bad input, refused before anything runs.
+sed 's#^mesh = .*#mesh = "no_such.geo"#' "$work/identity.toml" >"$work/missing.toml"
+refused reference_mesh_missing "compare.reference.mesh" "$work" "$bin" compare "$work/missing.toml" -o "$work/missing"
+
 # The four shapes through calibrate (fewer evaluations than the shipped file); its starting scores
 # are the body norms compare wrote for the L-bracket (the same coefficients, the same reference).
 sed -e "s#^file = \"#file = \"$src/cases/#" -e 's/^starts = .*/starts = 1/' -e 's/^max_evaluations = .*/max_evaluations = 20/' \

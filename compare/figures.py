@@ -84,8 +84,16 @@ def line_groups(meta):
 
 
 def line_data(lines, model, name):
+    """One model's samples along one line, with a NaN row where the line crosses air (lines.csv has
+    only the samples inside the agents; the gap is wider than the sample spacing), so that the
+    plotted line stops at air instead of bridging it."""
     sel = (lines["model"] == model) & (lines["line"] == name)
-    return {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line")}
+    d = {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line")}
+    step = np.diff(d["arc_length"])
+    if len(step) > 1:
+        gaps = np.nonzero(step > 1.5 * step.min())[0] + 1
+        d = {k: np.insert(v, gaps, np.nan) for k, v in d.items()}
+    return d
 
 
 def main():
@@ -136,8 +144,9 @@ def main():
                 for m in group:
                     a, f = line_data(lines, "agent", m["name"]), line_data(lines, "fem", m["name"])
                     ref = f[comp]
-                    scale = np.abs(ref).max()
-                    valid = np.abs(ref) >= args.mask * scale if scale > 0 else np.zeros(len(ref), bool)
+                    scale = np.nanmax(np.abs(ref))
+                    with np.errstate(invalid="ignore"):  # NaN: the line crosses air
+                        valid = np.abs(ref) >= args.mask * scale if scale > 0 else np.zeros(len(ref), bool)
                     ratio = np.where(valid, a[comp] / np.where(valid, ref, 1.0), np.nan)
                     s_mm = 1e3 * a["arc_length"]
                     ax_r.plot(s_mm, ratio, "o-", ms=2, label=m["description"])
@@ -175,8 +184,14 @@ def main():
         save(fig, out, "fig9_stress_lines")
 
     x, y = num(cells["x"]), num(cells["y"])
-    xs, ys = np.unique(x), np.unique(y)
-    ix, iy = np.searchsorted(xs, x), np.searchsorted(ys, y)
+    # The agents' lattice over their bounding box: a row or column that is all air keeps its place.
+    def lattice(c):
+        u = np.unique(c)
+        h = np.diff(u).min() if len(u) > 1 else 1.0
+        index = np.rint((c - u[0]) / h).astype(int)
+        return u[0] + h * np.arange(index.max() + 1), index
+
+    (xs, ix), (ys, iy) = lattice(x), lattice(y)
 
     def grid_of(values):
         g = np.full((len(ys), len(xs)), np.nan)
@@ -203,28 +218,34 @@ def main():
 
     def fig10():
         # Fig. 10: deformed shape, (a) FEM and (b) agents, one magnification for both.
-        nx_, ny_ = int(num(nodes["i"]).max()) + 1, int(num(nodes["j"]).max()) + 1
-        X = num(nodes["x"]).reshape(ny_, nx_)
-        Y = num(nodes["y"]).reshape(ny_, nx_)
-        span = max(X.max() - X.min(), Y.max() - Y.min())
+        # nodes.csv has the body's nodes only: air stays NaN, so no grid line is drawn across it.
+        ni, nj = num(nodes["i"]).astype(int), num(nodes["j"]).astype(int)
+        nx_, ny_ = ni.max() + 1, nj.max() + 1
+
+        def node_grid(values):
+            g = np.full((ny_, nx_), np.nan)
+            g[nj, ni] = values
+            return g
+
+        X, Y = node_grid(num(nodes["x"])), node_grid(num(nodes["y"]))
+        span = max(np.nanmax(X) - np.nanmin(X), np.nanmax(Y) - np.nanmin(Y))
         u_max = max(np.abs(num(nodes["fem_u_x"])).max(), np.abs(num(nodes["fem_u_y"])).max(),
                     np.abs(num(nodes["agent_u_x"])).max(), np.abs(num(nodes["agent_u_y"])).max(), 1e-300)
         magnification = 0.1 * span / u_max
         every = max(1, (nx_ - 1) // 25)
         fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True)
         for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
-            U = num(nodes[f"{model}_u_x"]).reshape(ny_, nx_)
-            V = num(nodes[f"{model}_u_y"]).reshape(ny_, nx_)
+            U, V = node_grid(num(nodes[f"{model}_u_x"])), node_grid(num(nodes[f"{model}_u_y"]))
             Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
             ax.plot(1e3 * X[:, ::every], 1e3 * Y[:, ::every], color="0.85", lw=0.5)
             ax.plot(1e3 * X[::every, :].T, 1e3 * Y[::every, :].T, color="0.85", lw=0.5)
             ax.plot(Xd[:, ::every], Yd[:, ::every], color="C0", lw=0.6)
             ax.plot(Xd[::every, :].T, Yd[::every, :].T, color="C0", lw=0.6)
             ax.set_aspect("equal")
-            ax.set_title(f"{label}, |u|max = {np.hypot(U, V).max():.3g} m")
+            ax.set_title(f"{label}, |u|max = {np.nanmax(np.hypot(U, V)):.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-        h_mm = 1e3 * (X[0, 1] - X[0, 0])
+        h_mm = 1e3 * (xs[1] - xs[0])
         fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
                      f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
         save(fig, out, "fig10_deformed")
@@ -255,11 +276,15 @@ def main():
         cell_index = {c: k for k, c in enumerate(cells["cell"])}
         order = np.array([cell_index[c] for c in steps["cell"]])
         fig, ax = plt.subplots(figsize=(6, 5.5))
-        # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey.
+        # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey,
+        # air blank (white, drawn over the grey).
         cmap = plt.get_cmap("magma_r").copy()
         cmap.set_bad("0.85")
         image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
-        fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached)")
+        air = np.isnan(grid_of(np.zeros(len(x))))
+        if air.any():
+            ax.imshow(np.where(air, 1.0, np.nan), origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1)
+        fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached; white: air)")
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
         label = ax.set_title("")

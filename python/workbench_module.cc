@@ -416,10 +416,9 @@ class Objective {
         compare::check_every_section(*file);
         // The case's own reference, as `workbench calibrate` solves it ([compare.reference]).
         const auto reference = compare::read_compare_options(file->root()).reference.resolved(cc.study.mesh.grid.dim);
-        problem.options.degree = reference.degree;
-        problem.options.refine = reference.refine;
-        const auto fem = fem_reference::solve_fem(problem, {}, &log);
-        cc.reference = compare::fem_on_grid(cc.study.mesh, fem, file->path().string());
+        const auto fem = fem_reference::solve_fem(compare::reference_problem(problem, reference, cc.study.mesh.grid), {}, &log);
+        std::array<std::size_t, 2> outside{};
+        cc.reference = compare::reference_on_grid(reference, cc.study.mesh, fem, file->path().string(), outside);
         out.push_back(std::move(cc));
       }
       return out;

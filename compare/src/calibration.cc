@@ -46,19 +46,20 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
   const auto& grid = c.study.mesh.grid;
   const int dim = grid.dim;
   Score s;
-  if (w.far) {  // the far field of docs/compare.md: what is at least the distance from every loaded face
-    const auto& mesh = c.study.mesh;
-    const auto near = near_load(mesh, c.study.setup.loads,
-                                w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
+  if (w.far || !w.lines) {  // the body, or its far field (docs/compare.md): agents and their nodes only, air left out
+    NearLoad near;
+    if (w.far)
+      near = near_load(c.study.mesh, c.study.setup.loads, w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
+    const auto body = body_nodes(grid);
     std::vector<double> a[3], r[3];
     for (std::size_t cell = 0; cell < grid.count(); ++cell)
-      if (!near.cells[cell])
+      if (!grid.is_air(cell) && !(w.far && near.cells[cell]))
         for (int f = 0; f < 2; ++f) {
           a[f].push_back(agent.sigma[2 * cell + f]);
           r[f].push_back(c.reference.sigma[2 * cell + f]);
         }
     for (std::size_t n = 0; n < grid.node_count(); ++n)
-      if (!near.nodes[n])
+      if (body[n] && !(w.far && near.nodes[n]))
         for (int comp = 0; comp < dim; ++comp) {
           a[2].push_back(agent.u[n * dim + comp]);
           r[2].push_back(c.reference.u[n * dim + comp]);
@@ -66,14 +67,10 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
     s.sigma_x = l2_error(a[0], r[0]);
     s.sigma_y = l2_error(a[1], r[1]);
     s.displacement = l2_error(a[2], r[2]);
-  } else if (!w.lines) {
-    s.sigma_x = l2_error(component(agent.sigma, 2, 0), component(c.reference.sigma, 2, 0));
-    s.sigma_y = l2_error(component(agent.sigma, 2, 1), component(c.reference.sigma, 2, 1));
-    s.displacement = l2_error(agent.u, c.reference.u);
   } else {
     std::vector<double> a[3], r[3];
     for (const auto& line : load_lines(grid, load_frames(c.study.mesh, c.study.setup.loads), w.depths))
-      for (int i = 0; i < line.samples; ++i) {
+      for (int i : line.body_samples) {  // a line stops at air
         const Eigen::Vector3d p = line.point(i);
         for (int f = 0; f < 2; ++f) {
           a[f].push_back(sample_cells(grid, agent.sigma, 2, f, p));

@@ -242,12 +242,11 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     case_file.reject_unknown_keys();
     // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
     const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
-    problem.options.degree = reference.degree;
-    problem.options.refine = reference.refine;
     log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving the reference ("
         << reference.describe() << ") once\n" << std::flush;
-    const auto fem = fem_reference::solve_fem(problem);
-    c.reference = fem_on_grid(c.study.mesh, fem, case_file.path().string());
+    const auto fem = fem_reference::solve_fem(reference_problem(problem, reference, c.study.mesh.grid));
+    std::array<std::size_t, 2> outside{};
+    c.reference = reference_on_grid(reference, c.study.mesh, fem, case_file.path().string(), outside);
     c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }

@@ -36,6 +36,10 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
     const auto r = t.table("reference");
     o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
     if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
+    if (r.has("mesh")) {
+      o.reference.mesh = r.path("mesh", std::nullopt);
+      if (!fs::is_regular_file(o.reference.mesh)) r.fail("mesh", o.reference.mesh.string() + ": no such mesh file");
+    }
     o.far_distance_mm = t.number("far_distance_mm", o.far_distance_mm, workbench::Range::non_negative());
     o.min_reaction_share = t.number("min_reaction_share", o.min_reaction_share, workbench::Range::closed(0.0, 1.0));
     for (const auto& line : t.tables("line")) {
@@ -115,10 +119,15 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
   const auto& grid = in.study.mesh.grid;
   in.reference = options.reference.resolved(grid.dim);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
-  in.lines = load_lines(grid, in.loads, options.depths);
-  for (std::size_t i = 0; i < options.lines.size(); ++i)
-    in.lines.push_back(make_line(grid, options.lines[i][0], options.lines[i][1],
-                                 "line " + std::to_string(i + 1) + " of [[compare.line]]", "user"));
+  // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
+  for (auto& l : load_lines(grid, in.loads, options.depths))
+    if (l.body_samples.size() >= 2) in.lines.push_back(std::move(l));
+  for (std::size_t i = 0; i < options.lines.size(); ++i) {
+    const std::string what = "line " + std::to_string(i + 1) + " of [[compare.line]]";
+    in.lines.push_back(make_line(grid, options.lines[i][0], options.lines[i][1], what, "user"));
+    if (in.lines.back().body_samples.size() < 2)
+      file.root().table("compare").fail("line", what + " has fewer than 2 samples inside the agents (the rest is air or outside)");
+  }
   in.far_distance = options.far_distance_mm > 0 ? 1e-3 * options.far_distance_mm : 5 * grid.size[0];
   in.near = near_load(in.study.mesh, in.study.setup.loads, in.far_distance);
   std::vector<std::string> names;
@@ -137,14 +146,17 @@ std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& st
 
 // Step 4: both models and the reference's second level along each line.
 struct LineSamples {
-  std::vector<double> sx[3], sy[3], u[3];  ///< agent, reference, estimate; u: (u_x, u_y) per sample
+  /// agent, reference, estimate, staircase (FEM on the agents' mesh beside a true-geometry
+  /// reference; else empty); u: (u_x, u_y) per sample
+  std::vector<double> sx[4], sy[4], u[4];
 };
 
-LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFields* fields[3]) {
+LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFields* fields[4]) {
   LineSamples s;
-  for (int i = 0; i < line.samples; ++i) {
+  for (int i : line.body_samples) {
     const Eigen::Vector3d p = line.point(i);
-    for (int m = 0; m < 3; ++m) {
+    for (int m = 0; m < 4; ++m) {
+      if (!fields[m]) continue;
       s.sx[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 0, p));
       s.sy[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 1, p));
       for (int a = 0; a < 2; ++a) s.u[m].push_back(sample_nodes(grid, fields[m]->u, grid.dim, a, p));
@@ -153,16 +165,20 @@ LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFie
   return s;
 }
 
-// Step 5: the metrics of one scope; each error norm with the reference's own error beside it.
+// Step 5: the metrics of one scope; each error norm with the reference's own error beside it (and
+// the staircase's own error beside a true-geometry reference).
 void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<double>* sx,
                const std::vector<double>* sy, const std::vector<double>* u, double mask) {
-  const std::vector<double>* fields[3] = {sx, sy, u};  // each: agent, reference, estimate
+  const std::vector<double>* fields[3] = {sx, sy, u};  // each: agent, reference, estimate, staircase
   for (int f = 0; f < 3; ++f) {
     const auto e = relative_errors(fields[f][0], fields[f][1]);
     const auto r = relative_errors(fields[f][2], fields[f][1]);
-    out.metrics.push_back({scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2});
+    const bool staircase = !fields[f][3].empty();
+    const auto st = staircase ? relative_errors(fields[f][3], fields[f][1]) : Errors{NAN, NAN};
     out.metrics.push_back(
-        {scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max});
+        {scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2, st.rel_l2});
+    out.metrics.push_back(
+        {scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max, st.rel_max});
   }
   for (int f = 0; f < 2; ++f) {
     const auto r = ratios(fields[f][0], fields[f][1], mask);
@@ -174,25 +190,21 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
   }
 }
 
-/// The body's cells (grid order) and nodes, and the far field's.
-void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[3], double mask) {
+/// The body's cells (grid order) and nodes, and the far field's: air counts in neither.
+void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[4], double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
-  std::vector<char> body_cells(grid.count(), 0), body_nodes(grid.node_count(), 0);
-  for (std::size_t cell : mesh.cell_of_element) {
-    body_cells[cell] = 1;
-    const auto c = grid.coords(cell);
-    for (int corner = 0; corner < (1 << grid.dim); ++corner)
-      body_nodes[grid.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1),
-                                 c[2] + (grid.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
-  }
+  std::vector<char> body_cells(grid.count(), 0);
+  for (std::size_t cell : mesh.cell_of_element) body_cells[cell] = 1;
+  std::vector<char> body_nodes = compare::body_nodes(grid);
   std::vector<char> far_cells = body_cells, far_nodes = body_nodes;
   for (std::size_t c = 0; c < far_cells.size(); ++c) far_cells[c] = far_cells[c] && !in.near.cells[c];
   for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
   for (const auto& [scope, cells, nodes] : {std::tuple{"body", &body_cells, &body_nodes},
                                             std::tuple{"far", &far_cells, &far_nodes}}) {
-    std::vector<double> sx[3], sy[3], u[3];
-    for (int m = 0; m < 3; ++m) {
+    std::vector<double> sx[4], sy[4], u[4];
+    for (int m = 0; m < 4; ++m) {
+      if (!fields[m]) continue;
       const auto sigma = select(fields[m]->sigma, 2, *cells);
       sx[m] = component(sigma, 2, 0);
       sy[m] = component(sigma, 2, 1);
@@ -233,8 +245,8 @@ void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::v
   csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
   for (std::size_t li = 0; li < lines.size(); ++li)
     for (int m = 0; m < 2; ++m)
-      for (int i = 0; i < lines[li].samples; ++i) {
-        const Eigen::Vector3d p = lines[li].point(i);
+      for (std::size_t i = 0; i < lines[li].body_samples.size(); ++i) {  // the samples in the body only
+        const Eigen::Vector3d p = lines[li].point(lines[li].body_samples[i]);
         const auto& s = samples[li];
         csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
         for (int a = 0; a < dim; ++a) csv << ',' << p[a];
@@ -296,6 +308,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
               << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell)
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
+  const std::vector<char> body_nodes = compare::body_nodes(grid);  // air has no nodes
   auto nodes_csv = open_csv(dir / "nodes.csv");
   const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
@@ -305,6 +318,7 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
     for (int j = 0; j < nn[1]; ++j)
       for (int i = 0; i < nn[0]; ++i) {
         const std::size_t n = grid.node_index(i, j, k);
+        if (!body_nodes[n]) continue;
         nodes_csv << i << ',' << j;
         if (dim == 3) nodes_csv << ',' << k;
         for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
@@ -363,6 +377,13 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
                        {"estimate_seconds", reference.estimate_seconds},
                        {"reference_error", "each error metric's reference_error: the same norm of the estimate "
                                            "level against the reference"}};
+  if (reference.staircase_fields)
+    json["reference"]["staircase"] = {
+        {"dofs", reference.staircase_dofs},
+        {"staircase_error", "each error metric's staircase_error: the same norm of FEM on the agents' own "
+                            "(staircase) mesh at the reference's level against the reference"},
+        {"agents_outside", reference.outside[0]},
+        {"agent_nodes_outside", reference.outside[1]}};
   json["far_distance"] = in.far_distance;
   json["mask"] = options.mask;
   for (const auto& l : in.lines)
@@ -392,7 +413,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 4. Everything on the agent grid and along the lines.
   t = std::chrono::steady_clock::now();
   const auto agent_fields = agent_on_grid(grid, agent_state);
-  const GridFields* fields[3] = {&agent_fields, &reference.fields, &reference.estimate_fields};
+  const GridFields* fields[4] = {&agent_fields, &reference.fields, &reference.estimate_fields,
+                                 reference.staircase_fields ? &*reference.staircase_fields : nullptr};
   std::vector<LineSamples> samples;
   for (const auto& line : in.lines) samples.push_back(sample_line(grid, line, fields));
 
@@ -427,12 +449,18 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
 
   // 8. The gate, summary.json / summary.txt / junit.xml.
-  const std::vector<std::string> notes{
+  std::vector<std::string> notes{
       "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
           " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
           " DoFs) against it",
       "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
           " mm from every loaded face"};
+  if (reference.staircase_fields)
+    notes.push_back("the staircase's own error (column staircase_error): the same norm of FEM on the agents' mesh (" +
+                    std::to_string(reference.staircase_dofs) + " DoFs, the reference's degree and refinement) against "
+                    "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
+                    std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
+                    "nearest element's stress / nearest node's displacement");
   report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log);
   return outcome;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace compare {
 
@@ -32,7 +33,7 @@ double sample_lattice(const agent::Grid& g, const std::vector<double>& values, i
   double t[3] = {0, 0, 0};
   for (int a = 0; a < g.dim; ++a)
     bracket(p[a], g.origin[a], g.size[a], nodes ? 0.0 : 0.5, g.cells[a] + (nodes ? 1 : 0), i[a], t[a]);
-  double sum = 0;
+  double sum = 0, weight = 0;
   for (int c = 0; c < (1 << g.dim); ++c) {
     int idx[3] = {0, 0, 0};
     double w = 1;
@@ -42,13 +43,37 @@ double sample_lattice(const agent::Grid& g, const std::vector<double>& values, i
       w *= bit ? t[a] : 1 - t[a];
     }
     if (w == 0) continue;
+    // Cell fields: air slots hold no value; the agents' weights are renormalised.
+    if (!nodes && g.is_air(g.index(idx[0], idx[1], idx[2]))) continue;
     const std::size_t at = nodes ? g.node_index(idx[0], idx[1], idx[2]) : g.index(idx[0], idx[1], idx[2]);
     sum += w * values[at * comps + comp];
+    weight += w;
   }
-  return sum;
+  return weight > 0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
+
+bool in_body(const agent::Grid& g, const Eigen::Vector3d& p) {
+  int idx[3] = {0, 0, 0};
+  for (int a = 0; a < g.dim; ++a) {
+    const double f = std::floor((p[a] - g.origin[a]) / g.size[a]);
+    if (!(f >= 0 && f < g.cells[a])) return false;
+    idx[a] = int(f);
+  }
+  return !g.is_air(g.index(idx[0], idx[1], idx[2]));
+}
+
+std::vector<char> body_nodes(const agent::Grid& g) {
+  std::vector<char> nodes(g.node_count(), 0);
+  for (std::size_t cell = 0; cell < g.count(); ++cell) {
+    if (g.is_air(cell)) continue;
+    const auto c = g.coords(cell);
+    for (int corner = 0; corner < (1 << g.dim); ++corner)
+      nodes[g.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + (g.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
+  }
+  return nodes;
+}
 
 double sample_cells(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p) {
@@ -117,6 +142,8 @@ Line make_line(const agent::Grid& g, const Eigen::Vector3d& from, const Eigen::V
   double agents = 0;  // agents crossed along the line's main axis
   for (int a = 0; a < g.dim; ++a) agents = std::max(agents, std::abs(to[a] - from[a]) / g.size[a]);
   l.samples = std::max(2, int(std::lround(agents)) + 1);
+  for (int i = 0; i < l.samples; ++i)
+    if (in_body(g, l.point(i))) l.body_samples.push_back(i);
   l.name = line_name(from, to, g.dim);
   l.description = description;
   return l;

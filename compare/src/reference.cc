@@ -5,6 +5,7 @@
 #include "report.h"
 
 #include <agent_study.h>
+#include <compare/metrics.h>
 #include <workbench/error.h>
 
 #include <chrono>
@@ -88,6 +89,82 @@ GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::Fem
   return out;
 }
 
+std::vector<std::array<double, 3>> agent_probe_points(const agent::Grid& grid) {
+  std::vector<std::array<double, 3>> points;
+  const double g = 0.5 / std::sqrt(3.0);  // the 2-point Gauss rule on [-1/2, 1/2]
+  for (std::size_t cell = 0; cell < grid.count(); ++cell)
+    if (!grid.is_air(cell)) {
+      const Eigen::Vector3d c = grid.centre(cell);
+      for (int corner = 0; corner < (1 << grid.dim); ++corner) {
+        std::array<double, 3> p{0, 0, 0};
+        for (int a = 0; a < grid.dim; ++a) p[a] = c[a] + ((corner >> a) & 1 ? g : -g) * grid.size[a];
+        points.push_back(p);
+      }
+    }
+  const auto body = body_nodes(grid);
+  const auto nn = grid.node_counts();
+  for (int k = 0; k < nn[2]; ++k)
+    for (int j = 0; j < nn[1]; ++j)
+      for (int i = 0; i < nn[0]; ++i)
+        if (body[grid.node_index(i, j, k)])
+          points.push_back({grid.origin[0] + i * grid.size[0], grid.origin[1] + j * grid.size[1],
+                            grid.dim == 3 ? grid.origin[2] + k * grid.size[2] : 0.0});
+  return points;
+}
+
+GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult& fem, std::array<std::size_t, 2>& outside) {
+  const auto points = agent_probe_points(grid);
+  if (fem.probes.size() != points.size()) throw Error("compare: the FEM result was not evaluated at the agents");
+  const int dim = grid.dim;
+  auto nearest_element = [&](const std::array<double, 3>& p) {
+    std::size_t best = 0;
+    double best_d2 = INFINITY;
+    for (std::size_t e = 0; e < fem.cell_count(); ++e) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(fem.cell_centres[3 * e + a] - p[a], 2);
+      if (d2 < best_d2) best_d2 = d2, best = e;
+    }
+    return best;
+  };
+  GridFields out;
+  out.sigma.assign(grid.count() * 2, 0.0);
+  out.u.assign(grid.node_count() * dim, 0.0);
+  outside = {0, 0};
+  std::size_t at = 0;
+  const int gauss = 1 << dim;
+  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+    if (grid.is_air(cell)) continue;
+    int found = 0;
+    for (int q = 0; q < gauss; ++q) {
+      const auto& probe = fem.probes[at + q];
+      if (!probe.found) continue;
+      out.sigma[2 * cell] += probe.sigma[0];
+      out.sigma[2 * cell + 1] += probe.sigma[1];
+      ++found;
+    }
+    if (found > 0) {
+      out.sigma[2 * cell] /= found;
+      out.sigma[2 * cell + 1] /= found;
+    } else {  // the whole agent lies outside the true body
+      const std::size_t e = nearest_element(points[at]);
+      out.sigma[2 * cell] = fem.sigma_x[e];
+      out.sigma[2 * cell + 1] = fem.sigma_y[e];
+      ++outside[0];
+    }
+    at += gauss;
+  }
+  const auto body = body_nodes(grid);
+  for (std::size_t node = 0; node < grid.node_count(); ++node) {  // node_index order: i fastest, as agent_probe_points
+    if (!body[node]) continue;
+    const auto& probe = fem.probes[at];
+    const auto u = probe.found ? probe.u : fem.displacement_at(points[at]);
+    outside[1] += !probe.found;
+    for (int a = 0; a < dim; ++a) out.u[node * dim + a] = u[a];
+    ++at;
+  }
+  return out;
+}
+
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state) {
   GridFields out;
   out.sigma.resize(grid.count() * 2);
@@ -100,31 +177,61 @@ GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState&
 }
 
 std::string ReferenceOptions::describe() const {
-  return "FEM Q" + std::to_string(degree) + (refine == 0 ? std::string(" on the agents' mesh")
-                                                          : ", the agents' mesh refined " + std::to_string(refine) +
-                                                                (refine == 1 ? " time" : " times"));
+  const std::string on = mesh.empty() ? "the agents' mesh" : "the true geometry " + mesh.filename().string();
+  return "FEM Q" + std::to_string(degree) +
+         (refine == 0 ? " on " + on : ", " + on + " refined " + std::to_string(refine) + (refine == 1 ? " time" : " times"));
+}
+
+fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
+                                            const agent::Grid& grid) {
+  problem.options.degree = options.degree;
+  problem.options.refine = options.refine;
+  if (!options.mesh.empty()) {  // the same body, loads and supports on the true geometry's mesh, evaluated at the agents
+    problem.mesh_file = options.mesh;
+    problem.mesh_parameters.clear();
+    problem.box.reset();
+    problem.probe_points = agent_probe_points(grid);
+  }
+  return problem;
+}
+
+GridFields reference_on_grid(const ReferenceOptions& options, const agent::ImportedMesh& mesh,
+                             const fem_reference::FemResult& fem, const std::string& case_name,
+                             std::array<std::size_t, 2>& outside) {
+  return options.mesh.empty() ? fem_on_grid(mesh, fem, case_name) : fem_at_agents(mesh.grid, fem, outside);
 }
 
 Reference solve_reference(fem_reference::FemProblem problem, const ReferenceOptions& options,
                           const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
   Reference r;
   const std::string name = problem.name;
-  problem.options.degree = options.degree;
-  problem.options.refine = options.refine;
+  const bool true_geometry = !options.mesh.empty();
+  fem_reference::FemProblem reference = reference_problem(problem, options, mesh.grid);
+  auto on_grid = [&](const fem_reference::FemResult& fem) { return reference_on_grid(options, mesh, fem, name, r.outside); };
   log << "compare: reference " << options.describe() << "\n";
-  r.fem = report::run_fem(problem, dir, log, r.seconds);
-  r.fields = fem_on_grid(mesh, r.fem, name);
+  r.fem = report::run_fem(reference, dir, log, r.seconds);
+  r.fields = on_grid(r.fem);
 
   const auto start = std::chrono::steady_clock::now();
   r.estimate = options.estimate();
-  problem.options.degree = r.estimate.degree;
-  problem.options.refine = r.estimate.refine;
-  problem.options.write_vtu = false;
+  reference.options.degree = r.estimate.degree;
+  reference.options.refine = r.estimate.refine;
+  reference.options.write_vtu = false;
   log << "compare: the reference's error estimate: against " << r.estimate.describe() << "\n";
-  const auto estimate = fem_reference::solve_fem(problem, {}, &log);
-  r.estimate_fields = fem_on_grid(mesh, estimate, name);
+  const auto estimate = fem_reference::solve_fem(reference, {}, &log);
+  r.estimate_fields = on_grid(estimate);
   r.estimate_dofs = estimate.n_dofs;
   r.estimate_seconds = report::seconds_since(start);
+
+  if (true_geometry) {
+    problem.options.degree = options.degree;
+    problem.options.refine = options.refine;
+    problem.options.write_vtu = false;
+    log << "compare: the staircase's own error: FEM on the agents' mesh at the reference's level\n";
+    const auto staircase = fem_reference::solve_fem(problem, {}, &log);
+    r.staircase_fields = fem_on_grid(mesh, staircase, name);
+    r.staircase_dofs = staircase.n_dofs;
+  }
   return r;
 }
 

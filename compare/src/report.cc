@@ -99,6 +99,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   for (const auto& m : outcome.metrics) {
     nlohmann::json entry{{"value", m.value}, {"meaning", m.meaning}};
     if (std::isfinite(m.reference_error)) entry["reference_error"] = m.reference_error;
+    if (std::isfinite(m.staircase_error)) entry["staircase_error"] = m.staircase_error;
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;
       entry["passed"] = m.value <= it->second;
@@ -124,6 +125,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     else table << "";
     if (auto it = gate.find(m.name); it != gate.end())
       table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
+    if (std::isfinite(m.staircase_error)) table << "  staircase_error " << m.staircase_error;
     table << "\n";
   }
   write_text(dir / "summary.txt", table.str());

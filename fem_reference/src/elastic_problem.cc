@@ -39,6 +39,7 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -244,6 +245,10 @@ class ElasticProblem {
   double backward_error();
   void compute_reactions();
   void postprocess();
+  /// The stress (xx yy zz xy yz xz) of a displacement gradient.
+  void stress_of(const Tensor<2, dim>& g, double* s) const;
+  /// FemResult::probes: the solution at FemProblem::probe_points.
+  void evaluate_probes();
   void compute_errors();
   void write_vtu(const fs::path& dir);
 
@@ -359,7 +364,8 @@ bool all_finite(const TrilinosWrappers::MPI::Vector& v) {
   return true;
 }
 
-bool all_finite(const std::vector<double>& v) {
+template <class Container>
+bool all_finite(const Container& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
 }
 
@@ -912,7 +918,6 @@ void ElasticProblem<dim>::postprocess() {
   const FEValuesExtractors::Vector displacement(0);
   std::vector<Tensor<2, dim>> grads(quadrature_->size());
   cell_fields_.assign(7, Vector<float>(tria_->n_active_cells()));
-  const bool plane_strain = dim == 2 && problem_.options.model == Model::PlaneStrain;
   auto von_mises = [](const double* s) {
     const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
     return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
@@ -924,21 +929,8 @@ void ElasticProblem<dim>::postprocess() {
     double local[K] = {};
     for (unsigned q = 0; q < grads.size(); ++q) {
       const double JxW = fe_values.JxW(q);
-      const Tensor<2, dim>& g = grads[q];
-      double tr = 0;
-      for (int a = 0; a < dim; ++a) tr += g[a][a];
       double s[6];  // xx yy zz xy yz xz
-      s[0] = lambda_ * tr + 2 * mu_ * g[0][0];
-      s[1] = lambda_ * tr + 2 * mu_ * g[1][1];
-      s[3] = mu_ * (g[0][1] + g[1][0]);
-      if (dim == 3) {
-        s[2] = lambda_ * tr + 2 * mu_ * g[dim - 1][dim - 1];
-        s[4] = mu_ * (g[1][dim - 1] + g[dim - 1][1]);
-        s[5] = mu_ * (g[0][dim - 1] + g[dim - 1][0]);
-      } else {
-        s[2] = plane_strain ? lambda_solid_ * tr : 0.0;
-        s[4] = s[5] = 0;
-      }
+      stress_of(grads[q], s);
       local[0] += JxW;
       for (int a = 0; a < dim; ++a) local[1 + a] += JxW * fe_values.quadrature_point(q)[a];
       for (int k = 0; k < 6; ++k) local[4 + k] += JxW * s[k];
@@ -991,6 +983,65 @@ void ElasticProblem<dim>::postprocess() {
   for (std::size_t i = 0; i < n_nodes; ++i) {
     const double count = u[i * (dim + 1) + dim];
     for (int c = 0; c < dim; ++c) r.node_displacement[i * dim + c] = count > 0 ? u[i * (dim + 1) + c] / count : 0.0;
+  }
+}
+
+template <int dim>
+void ElasticProblem<dim>::stress_of(const Tensor<2, dim>& g, double* s) const {
+  double tr = 0;
+  for (int a = 0; a < dim; ++a) tr += g[a][a];
+  s[0] = lambda_ * tr + 2 * mu_ * g[0][0];
+  s[1] = lambda_ * tr + 2 * mu_ * g[1][1];
+  s[3] = mu_ * (g[0][1] + g[1][0]);
+  if (dim == 3) {
+    s[2] = lambda_ * tr + 2 * mu_ * g[dim - 1][dim - 1];
+    s[4] = mu_ * (g[1][dim - 1] + g[dim - 1][1]);
+    s[5] = mu_ * (g[0][dim - 1] + g[dim - 1][0]);
+  } else {
+    s[2] = problem_.options.model == Model::PlaneStrain ? lambda_solid_ * tr : 0.0;
+    s[4] = s[5] = 0;
+  }
+}
+
+/// Each probe point located in the mesh (a bounding-box tree, GridTools::Cache), the solution's
+/// value and gradient there from FEValues on a one-point quadrature at its unit-cell position.
+template <int dim>
+void ElasticProblem<dim>::evaluate_probes() {
+  const auto& points = problem_.probe_points;
+  if (points.empty()) return;
+  constexpr int K = 1 + 3 + 6;  // found, u, sigma
+  std::vector<double> acc(points.size() * K, 0.0);
+  GridTools::Cache<dim> cache(*tria_, *mapping_);
+  typename Triangulation<dim>::active_cell_iterator hint;
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<Tensor<1, dim>> value(1);
+  std::vector<Tensor<2, dim>> grad(1);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Point<dim> p;
+    for (int a = 0; a < dim; ++a) p[a] = points[i][a];
+    const auto [cell, unit] = GridTools::find_active_cell_around_point(cache, p, hint);
+    if (cell == tria_->end() || !cell->is_locally_owned()) continue;
+    hint = cell;
+    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&*tria_, cell->level(), cell->index(), &dof_handler_);
+    const Quadrature<dim> at(mesh_.simplex ? unit : GeometryInfo<dim>::project_to_unit_cell(unit));
+    FEValues<dim> fe_values(*mapping_, *fe_, at, update_values | update_gradients);
+    fe_values.reinit(dof_cell);
+    fe_values[displacement].get_function_values(ghosted_, value);
+    fe_values[displacement].get_function_gradients(ghosted_, grad);
+    double* out = &acc[i * K];
+    out[0] = 1;
+    for (int a = 0; a < dim; ++a) out[1 + a] = value[0][a];
+    stress_of(grad[0], out + 4);
+  }
+  Utilities::MPI::sum(acc, comm_, acc);
+  result_.probes.assign(points.size(), {});
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double* in = &acc[i * K];
+    if (in[0] == 0) continue;
+    auto& probe = result_.probes[i];
+    probe.found = true;
+    for (int a = 0; a < 3; ++a) probe.u[a] = in[1 + a] / in[0];
+    for (int k = 0; k < 6; ++k) probe.sigma[k] = in[4 + k] / in[0];
   }
 }
 
@@ -1124,6 +1175,7 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
   timer_.enter_subsection("output");
   compute_reactions();
   postprocess();
+  evaluate_probes();
   compute_errors();
   result_.applied = applied_;
   {
@@ -1133,6 +1185,8 @@ FemResult ElasticProblem<dim>::run(const fs::path& output_dir) {
       finite = finite && all_finite(*v);
     for (const auto& g : result_.reactions)
       for (double f : g.force) finite = finite && std::isfinite(f);
+    for (const auto& probe : result_.probes)
+      finite = finite && all_finite(probe.u) && all_finite(probe.sigma);
     for (const auto& cell_field : cell_fields_)
       for (float x : cell_field) finite = finite && std::isfinite(x);
     require_finite(finite, "stress, displacement or reaction");

@@ -135,3 +135,37 @@ TEST(CompareNorms, RelativeErrorsAndMaskedRatios) {
   EXPECT_EQ(relative_errors({0, 0}, {0, 0}).rel_l2, 0.0);
   EXPECT_TRUE(std::isinf(relative_errors({1, 0}, {0, 0}).rel_l2));
 }
+
+// Issue 13: air slots hold no value. A cell field sampled next to air is the bilinear weights of the
+// agents only, renormalised; a line stops at air.
+TEST(CompareAir, SamplingNextToAirUsesTheAgentsOnlyWithRenormalisedWeights) {
+  auto g = grid2d();  // 8 x 5 agents of 0.5 x 0.25; the slots i >= 5, j >= 3 are air (a notch)
+  for (int j = 3; j < 5; ++j)
+    for (int i = 5; i < 8; ++i) g.make_air(g.index(i, j, 0));
+  std::vector<double> cells(g.count());
+  for (std::size_t c = 0; c < g.count(); ++c) cells[c] = g.is_air(c) ? 1e9 : double(c);  // air: a value that must not show
+  // (2.4, 0.7): t = 0.3 along x between centres 2.25 and 2.75, 0.3 along y between 0.625 and 0.875;
+  // the stencil (4,2) (5,2) (4,3) (5,3) has weights 0.49, 0.21, 0.21 and 0.09 on the air slot (5,3).
+  const Eigen::Vector3d p(2.4, 0.7, 0);
+  EXPECT_TRUE(in_body(g, p));
+  EXPECT_NEAR(sample_cells(g, cells, 1, 0, p), (0.49 * 20 + 0.21 * 21 + 0.21 * 28) / 0.91, 1e-12);
+  // Away from air the weights are the plain bilinear ones.
+  EXPECT_NEAR(sample_cells(g, cells, 1, 0, Eigen::Vector3d(1.4, 0.7, 0)), 0.49 * 18 + 0.21 * 19 + 0.21 * 26 + 0.09 * 27,
+              1e-12);
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(2.5, 0.75, 0)));   // the notch's corner slot (5,3)
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(3.9, 1.2, 0)));    // deep in the notch
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(4.1, 0.5, 0)));    // outside the box
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(-0.1, 0.5, 0)));
+  EXPECT_TRUE(std::isnan(sample_cells(g, cells, 1, 0, Eigen::Vector3d(3.9, 1.2, 0))));  // no agent around it
+}
+
+TEST(CompareAir, ALineAcrossAHoleStopsAtItsRim) {
+  auto g = agent::Grid::box(2, {10, 5, 1}, Eigen::Vector3d(1, 1, 1));
+  for (int j = 1; j <= 3; ++j)
+    for (int i = 4; i <= 5; ++i) g.make_air(g.index(i, j, 0));  // a 2 x 3 hole
+  const auto l = make_line(g, Eigen::Vector3d(0.5, 2.5, 0), Eigen::Vector3d(9.5, 2.5, 0), "across", "user");
+  EXPECT_EQ(l.samples, 10);
+  EXPECT_EQ(l.body_samples, (std::vector<int>{0, 1, 2, 3, 6, 7, 8, 9}));
+  // Below the hole the same line runs through.
+  EXPECT_EQ(make_line(g, Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(9.5, 0.5, 0), "below", "user").body_samples.size(), 10u);
+}

@@ -597,3 +597,44 @@ TEST(FemBadInput, NoConvergenceIsReported) {
 }
 
 }  // namespace
+
+// FemResult::probes: the solution evaluated at given points. A linear displacement u = B x
+// prescribed on the whole boundary is the exact solution (no body force), which Q2 on a refined mesh
+// of oblong cells reproduces: at any point inside, u = B x and the plane-stress stress of B's
+// strain, to rounding; a point outside the mesh is reported as not found.
+TEST(FemProbes, PointValuesReproduceALinearFieldAndMissOutsidePoints) {
+  const double B[2][2] = {{1e-3, 2e-4}, {-5e-4, 3e-4}};
+  FemProblem p;
+  p.young = 200e9;
+  p.poisson = 0.25;
+  Box box;
+  box.lo = {0, 0, 0};
+  box.hi = {0.3, 0.2, 0};
+  box.cells = {3, 4, 0};
+  p.box = box;
+  for (const char* g : {"x0", "x1", "y0", "y1"})
+    p.supports.push_back({g, SupportKind::Displacement, [&](const double* x, double* u) {
+                            for (int i = 0; i < 2; ++i) u[i] = B[i][0] * x[0] + B[i][1] * x[1];
+                          }});
+  p.options.degree = 2;
+  p.options.refine = 1;
+  p.options.write_vtu = false;
+  p.probe_points = {{0.1234, 0.0567, 0}, {0.2999, 0.1999, 0}, {0.15, 0.1, 0}, {0.31, 0.1, 0}, {-0.01, 0.05, 0}};
+  const auto r = solve_fem(p);
+  ASSERT_EQ(r.probes.size(), 5u);
+  const double E = p.young, nu = p.poisson;
+  const double exx = B[0][0], eyy = B[1][1], gxy = B[0][1] + B[1][0];
+  const double sx = E / (1 - nu * nu) * (exx + nu * eyy), sy = E / (1 - nu * nu) * (eyy + nu * exx),
+               txy = E / (2 * (1 + nu)) * gxy;
+  for (int i = 0; i < 3; ++i) {
+    const auto& q = r.probes[i];
+    const auto& x = p.probe_points[i];
+    ASSERT_TRUE(q.found) << "point " << i;
+    for (int a = 0; a < 2; ++a) EXPECT_NEAR(q.u[a], B[a][0] * x[0] + B[a][1] * x[1], 1e-12) << "point " << i;
+    EXPECT_NEAR(q.sigma[0], sx, 1e-6 * std::abs(sx)) << "point " << i;
+    EXPECT_NEAR(q.sigma[1], sy, 1e-6 * std::abs(sx)) << "point " << i;
+    EXPECT_NEAR(q.sigma[3], txy, 1e-6 * std::abs(sx)) << "point " << i;
+  }
+  EXPECT_FALSE(r.probes[3].found);
+  EXPECT_FALSE(r.probes[4].found);
+}

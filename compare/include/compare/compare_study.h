@@ -45,6 +45,9 @@ struct Metric {
   /// The same error of the reference's second level against the reference (docs/compare.md):
   /// how much of `value` may be the reference's own discretisation error. NaN: not an error norm.
   double reference_error = std::numeric_limits<double>::quiet_NaN();
+  /// Beside a reference on the true geometry ([compare.reference] mesh): the same error of FEM on
+  /// the agents' own staircase mesh against it, the staircase's own share. NaN otherwise.
+  double staircase_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The names of the metrics a study with these options produces (for checking the gate's keys):

@@ -12,8 +12,14 @@
 
 namespace compare {
 
+/// Whether `p` lies in an agent (not in air, not outside the grid's box); a point on a face between
+/// two slots belongs to the upper one.
+bool in_body(const agent::Grid& grid, const Eigen::Vector3d& p);
+
 /// Value of component `comp` of a cell field (`comps` values per cell, grid order) at point `p`:
-/// bilinear (trilinear in 3D) between cell centres, constant past the outer centres.
+/// bilinear (trilinear in 3D) between the centres of the agents around `p`, air slots left out and
+/// the agents' weights renormalised (so a value never mixes in air), constant past the outer
+/// centres; NaN when no agent is around `p` (it is not in the body).
 double sample_cells(const agent::Grid& grid, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p);
 
@@ -22,6 +28,9 @@ double sample_cells(const agent::Grid& grid, const std::vector<double>& values, 
 double sample_nodes(const agent::Grid& grid, const std::vector<double>& values, int comps, int comp,
                     const Eigen::Vector3d& p);
 
+/// The grid nodes (Grid::node_index order) that are a corner of an agent: air has none.
+std::vector<char> body_nodes(const agent::Grid& grid);
+
 /// A straight sample line through the body.
 struct Line {
   std::string name;        ///< line_name(from, to): the same in every file and in the gate
@@ -29,6 +38,7 @@ struct Line {
   std::string kind;        ///< "along" a load, "across" a load, or "user" ([[compare.line]])
   Eigen::Vector3d from, to;
   int samples = 0;
+  std::vector<int> body_samples;  ///< the samples (0 .. samples-1) in the body: a line stops at air
   Eigen::Vector3d point(int i) const { return from + (to - from) * (samples > 1 ? double(i) / (samples - 1) : 0.0); }
   double length() const { return (to - from).norm(); }
 };
@@ -39,7 +49,7 @@ struct Line {
 std::string line_name(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int dim);
 
 /// A line from `from` to `to` with one sample per agent along its main axis (at least 2), named by
-/// line_name.
+/// line_name; body_samples lists those in_body.
 Line make_line(const agent::Grid& grid, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                const std::string& description, const std::string& kind);
 

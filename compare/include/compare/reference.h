@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,25 +33,53 @@ struct GridFields {
 GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::FemResult& fem,
                        const std::string& case_name);
 
+/// The points where a FEM on another mesh (the true geometry) is evaluated for the agents, as
+/// FemProblem::probe_points: the 2 x 2 (2 x 2 x 2) Gauss points of every agent (grid order, air
+/// left out), then every grid node of the body (Grid::node_index order).
+std::vector<std::array<double, 3>> agent_probe_points(const agent::Grid& grid);
+
+/// A FEM result solved with agent_probe_points(grid) as its probe points, on the agent grid: an
+/// agent's stress is the mean of the FEM stress at its Gauss points inside the FEM mesh (the
+/// agent's mean, as fem_on_grid gives on the agents' own mesh), a node's displacement the FEM
+/// displacement at it. An agent wholly outside the FEM mesh (in the true body's hole or notch)
+/// takes the stress of the FEM element whose centre is nearest, a node outside it the displacement
+/// of the nearest FEM node; `outside` gets how many agents ([0]) and nodes ([1]) did.
+GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult& fem, std::array<std::size_t, 2>& outside);
+
 /// An agent state in the same layout.
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state);
 
-/// [compare.reference]: FEM on the agents' geometry with `refine` global refinements of the gmsh
-/// mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the agents' own mesh.
+/// [compare.reference]: FEM on the agents' geometry (or on `mesh`, the true geometry) with `refine`
+/// global refinements of the gmsh mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the
+/// agents' own mesh.
 struct ReferenceOptions {
   int degree = 2;
   int refine = -1;  ///< -1 (the default): 1 in 2D, 0 in 3D (a refined 3D mesh costs 8 times more)
+  /// The true (smooth) geometry the agents' staircase was voxelized from (.geo or .msh with the same
+  /// physical groups); empty: the agents' own mesh.
+  std::filesystem::path mesh;
   /// These options with the default refinement resolved for a `dim`-dimensional mesh.
-  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0}; }
-  /// The level beside the reference for its error estimate: one refinement coarser; on the agents'
-  /// own mesh Q1 for Q2, and for Q1 itself one refinement finer.
+  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh}; }
+  /// The level beside the reference for its error estimate: one refinement coarser; on the
+  /// unrefined mesh Q1 for Q2, and for Q1 itself one refinement finer.
   ReferenceOptions estimate() const {
-    if (refine > 0) return {degree, refine - 1};
-    if (degree == 2) return {1, 0};
-    return {1, 1};
+    if (refine > 0) return {degree, refine - 1, mesh};
+    if (degree == 2) return {1, 0, mesh};
+    return {1, 1, mesh};
   }
-  std::string describe() const;  ///< e.g. "FEM Q2, agent mesh refined 1 time(s)"
+  std::string describe() const;  ///< e.g. "FEM Q2, the agents' mesh refined 1 time"
 };
+
+/// `problem` set to the level `options`: its degree and refinement, and with options.mesh (the true
+/// geometry) that mesh instead of the agents' and the agent_probe_points as probes.
+fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
+                                            const agent::Grid& grid);
+
+/// A result of reference_problem(.., options, ..) on the agent grid: fem_at_agents on the true
+/// geometry (counting in `outside`), else fem_on_grid.
+GridFields reference_on_grid(const ReferenceOptions& options, const agent::ImportedMesh& mesh,
+                             const fem_reference::FemResult& fem, const std::string& case_name,
+                             std::array<std::size_t, 2>& outside);
 
 /// The reference at two refinement levels, on the agent grid.
 struct Reference {
@@ -59,11 +89,18 @@ struct Reference {
   std::size_t estimate_dofs = 0;
   ReferenceOptions estimate;
   double seconds = 0, estimate_seconds = 0;
+  /// With the true geometry (ReferenceOptions::mesh): FEM on the agents' own staircase mesh at the
+  /// reference's degree and refinement, on the agent grid (its error against the reference is the
+  /// staircase's own), and how many agent centres / nodes lie outside the true geometry.
+  std::optional<GridFields> staircase_fields;
+  std::size_t staircase_dofs = 0;
+  std::array<std::size_t, 2> outside{0, 0};
 };
 
-/// Solves `problem` (the case's FEM problem; its degree and refine are replaced by `options`) at
-/// the reference level, with VTU/CSV output into dir/fem, and at the estimate level without
-/// output; samples both onto the agent grid.
+/// Solves `problem` (the case's FEM problem; its degree and refine are replaced by `options`, its
+/// mesh by options.mesh when given) at the reference level, with VTU/CSV output into dir/fem, and
+/// at the estimate level without output; samples both onto the agent grid. With the true geometry
+/// also solves the case's own (staircase) mesh at the reference level, without output.
 Reference solve_reference(fem_reference::FemProblem problem, const ReferenceOptions& options,
                           const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log);
 

@@ -103,6 +103,9 @@ struct FemProblem {
   VectorFunction exact_displacement;           ///< if set, result.l2_error/h1_error are computed
   GradientFunction exact_gradient;
   FemOptions options;
+  /// Points [m] (z = 0 in 2D) where solve_fem evaluates the solution itself (FemResult::probes),
+  /// e.g. agent centres on a mesh of another shape (docs/compare.md, the true-geometry reference).
+  std::vector<std::array<double, 3>> probe_points;
 };
 
 struct GroupReaction {
@@ -142,6 +145,16 @@ struct FemResult {
   double h1_error = std::numeric_limits<double>::quiet_NaN();  ///< |u - u_exact|_H1 (seminorm)
   double mesh_seconds = 0, setup_seconds = 0, assemble_seconds = 0, solve_seconds = 0, output_seconds = 0;
   double peak_memory_bytes = 0;          ///< this process's peak resident size after solving
+
+  /// The solution at FemProblem::probe_points, in their order (serial runs; under MPI a point on a
+  /// partition boundary may be missed). `found`: the point lies in a cell of the mesh (1e-10 in unit
+  /// cell coordinates); otherwise u and sigma are 0.
+  struct Probe {
+    bool found = false;
+    std::array<double, 3> u{};      ///< displacement [m]
+    std::array<double, 6> sigma{};  ///< stress xx, yy, zz, xy, yz, xz [Pa]
+  };
+  std::vector<Probe> probes;
 
   /// Displacement (3 entries, z = 0 in 2D) at the mesh node nearest to x.
   std::array<double, 3> displacement_at(const std::array<double, 3>& x) const;

@@ -32,6 +32,7 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   check(unit(k.decay()), "poisson_decay must be in [0, 1]");
   check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
   check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
+  if (rules == RuleSet::Directional) check_directional(k.directional);
   faces_.assign(grid.count() * 2 * grid.dim, 0.0);
   generation_.assign(grid.count(), -1);
   std::size_t layer = 0;
@@ -80,6 +81,11 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
   }
   clear_touched();
   diagnostics_ = Diagnostics{};
+  if (rules_ == RuleSet::Directional) {  // its own marching (agent/directional.h); clears the whole grid
+    std::fill(faces_.begin(), faces_.end(), 0.0);
+    std::fill(generation_.begin(), generation_.end(), -1);
+    return directional_transfer(grid_, k_.directional, k_.gamma, loads, faces_, generation_, diagnostics_);
+  }
   for (const auto& load : loads) grid_.dim == 2 ? sweep<2>(load) : sweep<3>(load);
 }
 

@@ -97,12 +97,72 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     const double side_u = g.face_area(l0) / g.face_area(a), side_v = dim == 3 ? g.face_area(l1) / g.face_area(a) : 0.0;
 
     Row now(directions, layer_size), next(directions, layer_size);
+    std::vector<double> row_force(layer_size, 0.0);  // the packets' force through each agent of a row
     const std::size_t entry_slot = eu + std::size_t(n0) * ev;
     for (int dir = 0; dir < directions; ++dir) {
       const double w = fan.weight[dir % n] * (dim == 3 ? fan.weight[dir / n] : 1.0);
       now.force[dir * layer_size + entry_slot] = load.force * w;
       now.box[dir].add(eu, ev);
     }
+
+    // The row's moment balance (statics of the body above a cut along the row): the force through a
+    // row must have its centroid under the load, as in a beam. Packets reflected by a side shift
+    // it; a linear, self-equilibrated correction across the row's agents (zero net force, so the
+    // load balance is untouched) restores it. It puts the far side in tension, as FEM does.
+    auto balance_row_moment = [&](std::size_t layer_base, bool last_layer, std::vector<double>& through) {
+      double count = 0, cu = 0, cv = 0, total = 0, mu = 0, mv = 0;
+      bool exits_rigid = true, exits_free = false;  // how the row's agents meet what is past the row
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u) {
+          const std::size_t cell = layer_base + u * s0 + v * s1;
+          if (air(cell)) continue;
+          count += 1;
+          cu += u;
+          cv += v;
+          const double t = through[u + std::size_t(n0) * v];
+          total += t;
+          mu += t * (u - eu);
+          mv += t * (v - ev);
+          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          exits_rigid = exits_rigid && (!exits || rigid(cell, exit_face));
+          exits_free = exits_free || (exits && !rigid(cell, exit_face));
+        }
+      std::fill(through.begin(), through.end(), 0.0);
+      if (count < 2 || total == 0) return;
+      cu /= count;
+      cv /= count;
+      double suu = 0, suv = 0, svv = 0;
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u)
+          if (!air(layer_base + u * s0 + v * s1)) {
+            suu += (u - cu) * (u - cu);
+            suv += (u - cu) * (v - cv);
+            svv += (v - cv) * (v - cv);
+          }
+      // delta(u, v) = cu_coef (u - cu) + cv_coef (v - cv) with sum delta (u - eu) = -mu, likewise v.
+      double ku = 0, kv = 0;
+      if (dim == 2 || svv == 0) {
+        ku = suu > 0 ? -mu / suu : 0.0;
+      } else {
+        const double det = suu * svv - suv * suv;
+        if (!(std::abs(det) > 0)) return;
+        ku = (-mu * svv + mv * suv) / det;
+        kv = (-mv * suu + mu * suv) / det;
+      }
+      if (ku == 0 && kv == 0) return;
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u) {
+          const std::size_t cell = layer_base + u * s0 + v * s1;
+          if (air(cell)) continue;
+          const double delta = ku * (u - cu) + kv * (v - cv);
+          double* f = faces.data() + cell * nd;
+          f[enter_face] += delta;
+          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          // A boundary face takes it only where the whole row meets one rigid face (net zero there).
+          if (!exits) f[exit_face] += delta;
+          else if (exits_rigid && !exits_free) f[exit_face] += delta;
+        }
+    };
 
     for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
       const std::size_t layer_base = std::size_t(layer) * sa;
@@ -167,6 +227,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
             generation[cell] = std::int32_t(std::min(current, std::uint32_t(gen)));
             double* f = faces.data() + cell * nd;
             f[enter_face] += force;
+            row_force[u + std::size_t(n0) * v] += force;
             f[2 * l0] += force * side_force_u;
             f[2 * l0 + 1] += force * side_force_u;
             if (dim == 3) {
@@ -201,6 +262,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           }
         box = Box{};
       }
+      balance_row_moment(layer_base, last_layer, row_force);
       if (!any) break;
       std::swap(now, next);
     }

@@ -19,9 +19,9 @@ struct Diagnostics;
 /// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
 struct DirectionalCoefficients {
   int directions = 32;      ///< slopes in the fan per lateral axis; even (no straight-down packet)
-  double fan_angle = 80;    ///< half-opening of the entry fan [degrees], in (0, 90)
-  double fan_power = 2;     ///< entry weight of a packet at angle t from the load: cos(t)^fan_power
-  double diffusion = 2;     ///< lateral diffusion [mm]: each row adds diffusion * row height [mm^2] of variance
+  double fan_angle = 66.1;   ///< half-opening of the entry fan [degrees], in (0, 90)
+  double fan_power = 2.59;    ///< entry weight of a packet at angle t from the load: cos(t)^fan_power
+  double diffusion = 2.0;    ///< lateral diffusion [mm]: each row adds diffusion * row height [mm^2] of variance
 };
 
 /// Throws std::invalid_argument naming the coefficient out of its range.

@@ -19,10 +19,12 @@ void check_directional(const DirectionalCoefficients& k) {
         "directions must be an even number in [2, 256] (an odd count has a straight-down packet)");
   check(k.fan_angle > 0 && k.fan_angle < 90, "fan_angle must be in (0, 90) degrees");
   check(k.fan_power >= 0 && k.fan_power <= 100, "fan_power must be in [0, 100]");
+  check(k.fan_power_3d >= 0 && k.fan_power_3d <= 100, "fan_power_3d must be in [0, 100]");
   check(k.diffusion >= 0 && k.diffusion <= 1000, "diffusion must be in [0, 1000] mm");
 }
 
-Fan entry_fan(const DirectionalCoefficients& k) {
+Fan entry_fan(const DirectionalCoefficients& k, int dim) {
+  const double power = dim == 3 ? k.fan_power_3d : k.fan_power;
   // Angles evenly spaced over (-fan_angle, fan_angle), none straight down (an even count).
   const double pi = std::acos(-1.0);
   Fan fan;
@@ -30,7 +32,7 @@ Fan entry_fan(const DirectionalCoefficients& k) {
   for (int i = 0; i < k.directions; ++i) {
     const double angle = k.fan_angle * pi / 180 * ((2.0 * i + 1) / k.directions - 1);
     fan.slope.push_back(std::tan(angle));
-    fan.weight.push_back(std::pow(std::cos(angle), k.fan_power));
+    fan.weight.push_back(std::pow(std::cos(angle), power));
     total += fan.weight.back();
   }
   for (double& w : fan.weight) w /= total;
@@ -67,7 +69,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
                           std::vector<std::int32_t>& generation, Diagnostics& d) {
   const int dim = g.dim, nd = 2 * dim, n = k.directions;
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
-  const Fan fan = entry_fan(k);
+  const Fan fan = entry_fan(k, dim);
   const std::uint8_t* flags = g.flags.data();
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   auto air = [flags](std::size_t cell) { return flags[cell] & Grid::kAirBit; };

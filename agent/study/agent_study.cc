@@ -41,6 +41,7 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   if (dk.directions % 2) t.fail("directions", "must be even (an odd fan has a straight-down packet: a spike under the load)");
   dk.fan_angle = t.number("fan_angle", fan.fan_angle, Range::open(0, 90));
   dk.fan_power = t.number("fan_power", fan.fan_power, Range::closed(0, 100));
+  dk.fan_power_3d = t.number("fan_power_3d", fan.fan_power_3d, Range::closed(0, 100));
   dk.diffusion = t.number("diffusion", fan.diffusion, Range::closed(0, 1000));
 }
 

@@ -18,8 +18,8 @@ namespace compare {
 
 double& coefficient(agent::Coefficients& k, std::size_t i) {
   auto& d = k.directional;
-  double* const all[kCoefficientCount] = {&k.alpha1, &k.alpha2,    &k.alpha3,    &k.beta,
-                                          &k.gamma,  &d.fan_angle, &d.fan_power, &d.diffusion};
+  double* const all[kCoefficientCount] = {&k.alpha1,    &k.alpha2,    &k.alpha3,       &k.beta,     &k.gamma,
+                                          &d.fan_angle, &d.fan_power, &d.fan_power_3d, &d.diffusion};
   return *all[i];
 }
 

@@ -82,6 +82,7 @@ Plan read_plan(const workbench::CaseFile& file) {
       {library.gamma, 0.0, 10 * library.gamma, Range::non_negative()},
       {fan.fan_angle, 20.0, 89.0, Range::open(0, 90)},
       {fan.fan_power, 0.0, 8.0, Range::closed(0, 100)},
+      {fan.fan_power_3d, 0.0, 8.0, Range::closed(0, 100)},
       {fan.diffusion, 0.0, 20.0, Range::closed(0, 1000)},
   }};
   int n_free = 0;

@@ -46,7 +46,7 @@ TEST(Directional, TheFanHasNoStraightDownPacketAndItsWeightsSumToOne) {
   k.directions = 4;
   k.fan_angle = 60;
   k.fan_power = 2;
-  const Fan fan = entry_fan(k);
+  const Fan fan = entry_fan(k, 2);
   // Angles -45, -15, 15, 45 degrees; weights cos^2: 0.5, 0.933, 0.933, 0.5 over 2.866.
   ASSERT_EQ(fan.slope.size(), 4u);
   EXPECT_NEAR(fan.slope[0], -1.0, 1e-15);
@@ -150,7 +150,7 @@ TEST(Directional, TheSpreadGrowsLinearlyWithDepth) {
   Coefficients k;
   k.directional.diffusion = 0;
   k.directional.fan_angle = 60;  // keeps the fan inside the plate down to the base
-  const Fan fan = entry_fan(k.directional);
+  const Fan fan = entry_fan(k.directional, 2);
   double slope_variance = 0;
   for (std::size_t i = 0; i < fan.slope.size(); ++i) slope_variance += fan.weight[i] * fan.slope[i] * fan.slope[i];
   LoadTransfer m(g, kMaterial, k, RuleSet::Directional);

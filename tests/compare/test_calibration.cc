@@ -90,7 +90,7 @@ TEST(Calibration, RecoversKnownCoefficientsFromAgentGeneratedTargets) {
 }
 
 TEST(Calibration, FitsTheDirectionalCoefficients) {
-  // The directional rule set's coefficients are fitted like the seed's (kCoefficientNames 5-7).
+  // The directional rule set's coefficients are fitted like the seed's (kCoefficientNames 5-8).
   // fan_power only changes the packets' shares, so the objective is smooth in it and the fit
   // recovers it; fan_angle and diffusion move packets across agent boundaries (a piecewise
   // objective), so with all three free the fit must improve and come near, not hit the truth.
@@ -113,7 +113,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   o.parameters[4].start = 1e-9;
   o.parameters[5] = {"fan_angle", false, 50, 20, 89};
   o.parameters[6] = {"fan_power", true, 3, 0, 8};
-  o.parameters[7] = {"diffusion", false, 4, 0, 20};
+  o.parameters[8] = {"diffusion", false, 4, 0, 20};
   const auto one = calibrate(cases, o);
   EXPECT_GT(one.objective_start, 1e-4);
   EXPECT_LT(one.objective_best, 1e-12);
@@ -122,7 +122,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   for (const auto& s : one.after) EXPECT_LT(s.equilibrium_dev, 1e-12);
 
   o.parameters[5] = {"fan_angle", true, 70, 20, 89};
-  o.parameters[7] = {"diffusion", true, 2, 0, 20};
+  o.parameters[8] = {"diffusion", true, 2, 0, 20};
   const auto all = calibrate(cases, o);
   EXPECT_EQ(all.sensitivity.size(), 3u);
   // Measured: J 0.035 -> 0.018 at (56.6, 2.94, 3.2) on these 10 mm agents: the piecewise

@@ -20,18 +20,22 @@ struct Diagnostics;
 struct DirectionalCoefficients {
   int directions = 32;      ///< slopes in the fan per lateral axis; even (no straight-down packet)
   double fan_angle = 66.1;   ///< half-opening of the entry fan [degrees], in (0, 90)
-  double fan_power = 2.59;    ///< entry weight of a packet at angle t from the load: cos(t)^fan_power
+  double fan_power = 2.59;    ///< 2D: entry weight of a packet at angle t from the load: cos(t)^fan_power
+  /// 3D: the weight is the product over the two lateral axes of cos(t)^fan_power_3d (a point load
+  /// spreads with a more concentrated fan than a line load: fitted separately)
+  double fan_power_3d = 3.99;
   double diffusion = 2.0;    ///< lateral diffusion [mm]: each row adds diffusion * row height [mm^2] of variance
 };
 
 /// Throws std::invalid_argument naming the coefficient out of its range.
 void check_directional(const DirectionalCoefficients& k);
 
-/// The slopes of the fan (lateral drift per unit depth) and the entry weight of each (sum 1).
+/// The slopes of the fan along one lateral axis (lateral drift per unit depth) and the entry
+/// weight of each (sum 1; in 3D a packet's weight is the product of its two axes' weights).
 struct Fan {
   std::vector<double> slope, weight;
 };
-Fan entry_fan(const DirectionalCoefficients& k);
+Fan entry_fan(const DirectionalCoefficients& k, int dim);
 
 /// Adds the face forces, generations and diagnostics of `loads` (an entry load at or below gamma is
 /// dropped; packets are not: a threshold per packet cuts the tails of the spreading fan, 62 % of

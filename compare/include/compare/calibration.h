@@ -14,8 +14,8 @@ namespace compare {
 
 /// The coefficients a calibration can fit, in this order: the seed's rule sets' (alpha1..gamma),
 /// then the directional rule set's (agent/directional.h; its integer `directions` is not fitted).
-constexpr std::array<const char*, 8> kCoefficientNames{"alpha1", "alpha2",    "alpha3",    "beta",
-                                                       "gamma",  "fan_angle", "fan_power", "diffusion"};
+constexpr std::array<const char*, 9> kCoefficientNames{"alpha1",    "alpha2",    "alpha3",       "beta",     "gamma",
+                                                       "fan_angle", "fan_power", "fan_power_3d", "diffusion"};
 constexpr std::size_t kCoefficientCount = kCoefficientNames.size();
 using CoefficientValues = std::array<double, kCoefficientCount>;
 

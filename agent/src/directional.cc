@@ -74,6 +74,8 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   auto air = [flags](std::size_t cell) { return flags[cell] & Grid::kAirBit; };
 
+  Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
+  std::vector<double> row_force;
   for (const auto& load : loads) {
     d.applied += load.force;
     if (!(load.force > gamma)) {
@@ -98,8 +100,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     // A packet along a ray carries stress along the ray: sigma_ll = slope_l^2 sigma_aa.
     const double side_u = g.face_area(l0) / g.face_area(a), side_v = dim == 3 ? g.face_area(l1) / g.face_area(a) : 0.0;
 
-    Row now(directions, layer_size), next(directions, layer_size);
-    std::vector<double> row_force(layer_size, 0.0);  // the packets' force through each agent of a row
+    // Reused across the loads: every row is consumed back to zero as it is marched.
+    if (now.force.size() < directions * layer_size) {
+      now = Row(directions, layer_size);
+      next = Row(directions, layer_size);
+    }
+    row_force.assign(layer_size, 0.0);  // the packets' force through each agent of a row
     const std::size_t entry_slot = eu + std::size_t(n0) * ev;
     for (int dir = 0; dir < directions; ++dir) {
       const double w = fan.weight[dir % n] * (dim == 3 ? fan.weight[dir / n] : 1.0);

@@ -1,21 +1,26 @@
 // A 3D block of cubes (second embodiment of WO2001052193): W x H x D, resting on a rigid
-// base at y = 0, loaded from above (-y) on a centred square patch lw x lw of the top face.
-// Units: metres. W, D and lw must be multiples of the agent size h, (W - lw)/2 and
-// (D - lw)/2 too. Parameters can be overridden from a case file ([mesh.parameters]).
+// base at y = 0, loaded from above (-y) on a square patch lw x lw of the top face, centred in z
+// and at x = xc (the middle unless given). Units: metres. W, D and lw must be multiples of the
+// agent size h, xc - lw/2 and (D - lw)/2 too. Parameters can be overridden from a case file ([mesh.parameters]).
 DefineConstant[
   W  = {0.04,  Name "W"},    // width along x [m]
   H  = {0.04,  Name "H"},    // height along y [m]
   D  = {0.04,  Name "D"},    // depth along z [m]
   h  = {0.002, Name "h"},    // agent (cube) size [m]
-  lw = {0.004, Name "lw"}    // edge of the square loaded patch [m]
+  lw = {0.004, Name "lw"},   // edge of the square loaded patch [m]
+  xc = {-1,    Name "xc"}    // x of the patch centre [m]; -1: the middle of the top face
 ];
-nx = Round(W / h); ny = Round(H / h); nz = Round(D / h); nl = Round(lw / h);
-sx = Round((nx - nl) / 2); sz = Round((nz - nl) / 2);
-If (Fabs(nx * h - W) > 1e-9 * W || Fabs(ny * h - H) > 1e-9 * H || Fabs(nz * h - D) > 1e-9 * D ||
-    Fabs(nl * h - lw) > 1e-9 * W || nl < 1 || sx < 1 || sz < 1 || 2 * sx + nl != nx || 2 * sz + nl != nz)
-  Error("block3d.geo: W, H, D and lw must be multiples of h, centred patch with (W - lw)/2 and (D - lw)/2 multiples of h");
+If (xc < 0)
+  xc = W / 2;
 EndIf
-xs[] = {0, sx * h, (sx + nl) * h, W}; cx[] = {sx, nl, sx};
+nx = Round(W / h); ny = Round(H / h); nz = Round(D / h); nl = Round(lw / h);
+sx = Round((xc - lw / 2) / h); sz = Round((nz - nl) / 2);
+If (Fabs(nx * h - W) > 1e-9 * W || Fabs(ny * h - H) > 1e-9 * H || Fabs(nz * h - D) > 1e-9 * D ||
+    Fabs(nl * h - lw) > 1e-9 * W || nl < 1 || sx < 1 || sz < 1 || nx - sx - nl < 1 || 2 * sz + nl != nz ||
+    Fabs(sx * h - (xc - lw / 2)) > 1e-9 * W)
+  Error("block3d.geo: W, H, D and lw must be multiples of h, xc - lw/2 and (D - lw)/2 multiples of h, the patch inside the top face");
+EndIf
+xs[] = {0, sx * h, (sx + nl) * h, W}; cx[] = {sx, nl, nx - sx - nl};
 zs[] = {0, sz * h, (sz + nl) * h, D}; cz[] = {sz, nl, sz};
 // Base (y = 0) as 3 x 3 structured patches in the x-z plane, extruded upwards in ny layers.
 For i In {0:3}

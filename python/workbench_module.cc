@@ -427,13 +427,13 @@ class Objective {
   /// J(alpha1, alpha2, alpha3, beta, gamma); poisson_decay follows alpha2 as in `workbench calibrate`.
   double operator()(const std::array<double, 5>& values) const {
     py::gil_scoped_release release;
-    return compare::objective(cases_, compare::coefficients_from(values), rules_, weights_);
+    return compare::objective(cases_, seed_coefficients(values), rules_, weights_);
   }
   py::list scores(const std::array<double, 5>& values) const {
     std::vector<compare::Score> per_case;
     {
       py::gil_scoped_release release;
-      compare::objective(cases_, compare::coefficients_from(values), rules_, weights_, &per_case);
+      compare::objective(cases_, seed_coefficients(values), rules_, weights_, &per_case);
     }
     py::list out;
     for (std::size_t i = 0; i < per_case.size(); ++i) {
@@ -449,6 +449,12 @@ class Objective {
 
  private:
   std::vector<compare::CalibrationCase> cases_;
+  /// The seed's rule sets' coefficients (alpha1..gamma, the first of compare::kCoefficientNames).
+  static agent::Coefficients seed_coefficients(const std::array<double, 5>& values) {
+    agent::Coefficients k;
+    for (std::size_t i = 0; i < values.size(); ++i) compare::coefficient(k, i) = values[i];
+    return k;
+  }
   agent::RuleSet rules_ = agent::RuleSet::Conserving;
   compare::ObjectiveWeights weights_;
 };

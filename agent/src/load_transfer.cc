@@ -32,6 +32,7 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   check(unit(k.decay()), "poisson_decay must be in [0, 1]");
   check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
   check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
+  if (rules == RuleSet::Directional) check_directional(k.directional);
   faces_.assign(grid.count() * 2 * grid.dim, 0.0);
   generation_.assign(grid.count(), -1);
   std::size_t layer = 0;
@@ -89,6 +90,12 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
           "entry load outside the body (cell " + std::to_string(load.cell) + ")");
     check(load.dir >= 0 && load.dir < 2 * grid_.dim, "entry load direction out of range");
     check(load.force >= 0 && std::isfinite(load.force), "entry load force must be finite and >= 0");
+  }
+  if (rules_ == RuleSet::Directional) {  // its own marching (agent/directional.h); clears the whole grid
+    diagnostics_ = Diagnostics{};
+    std::fill(faces_.begin(), faces_.end(), 0.0);
+    std::fill(generation_.begin(), generation_.end(), -1);
+    return directional_transfer(grid_, k_.directional, k_.gamma, loads, faces_, generation_, diagnostics_);
   }
   // What the previous solve wrote is cleared. When it was all swept along the first load's axis,
   // the first sweep clears each layer just before it writes there (the layer is then in cache

@@ -21,8 +21,9 @@ using workbench::Range;
 
 void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules) {
   const auto t = root.table("agent");
-  const std::string rule_set = t.text("rule_set", "patent", {"patent", "conserving"});
-  rules = rule_set == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
+  const std::string rule_set = t.text("rule_set", "patent", {"patent", "conserving", "directional"});
+  rules = rule_set == "patent" ? agent::RuleSet::Patent
+          : rule_set == "conserving" ? agent::RuleSet::Conserving : agent::RuleSet::Directional;
   const auto unit = Range::closed(0, 1);
   const agent::Coefficients defaults;  // the library's defaults, the seed's values
   k.alpha1 = t.number("alpha1", defaults.alpha1, unit);
@@ -33,6 +34,15 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   k.poisson_decay = t.has("poisson_decay") ? std::optional<double>(t.number("poisson_decay", {}, unit)) : std::nullopt;
   if (rules == agent::RuleSet::Conserving && k.alpha2 + k.alpha3 <= 0)
     t.fail("alpha2", "the conserving rule set needs alpha2 + alpha3 > 0");
+  // The directional rule set's coefficients (its defaults are the calibrated ones).
+  const agent::DirectionalCoefficients fan;
+  auto& dk = k.directional;
+  dk.directions = t.integer("directions", fan.directions, 2, 256);
+  if (dk.directions % 2) t.fail("directions", "must be even (an odd fan has a straight-down packet: a spike under the load)");
+  dk.fan_angle = t.number("fan_angle", fan.fan_angle, Range::open(0, 90));
+  dk.fan_power = t.number("fan_power", fan.fan_power, Range::closed(0, 100));
+  dk.fan_power_3d = t.number("fan_power_3d", fan.fan_power_3d, Range::closed(0, 100));
+  dk.diffusion = t.number("diffusion", fan.diffusion, Range::closed(0, 1000));
 }
 
 AgentStudy load_agent_study(const workbench::CaseFile& file) {
@@ -223,7 +233,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   const int dim = study.mesh.grid.dim;
   const Eigen::Vector3d v = load_vector(study, 1.0);
   nlohmann::json j;
-  j["rule_set"] = study.rules == agent::RuleSet::Patent ? "patent" : "conserving";
+  j["rule_set"] = agent::rule_set_name(study.rules);
   j["load_vector"] = std::vector<double>(v.data(), v.data() + dim);
   j["load_balance"] = {{"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},

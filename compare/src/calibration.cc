@@ -11,28 +11,42 @@
 #include <mutex>
 #include <ostream>
 #include <random>
+#include <string>
 #include <thread>
 
 namespace compare {
 
-agent::Coefficients coefficients_from(const std::array<double, 5>& v) {
+double& coefficient(agent::Coefficients& k, std::size_t i) {
+  auto& d = k.directional;
+  double* const all[kCoefficientCount] = {&k.alpha1,    &k.alpha2,    &k.alpha3,       &k.beta,     &k.gamma,
+                                          &d.fan_angle, &d.fan_power, &d.fan_power_3d, &d.diffusion};
+  return *all[i];
+}
+
+double coefficient(const agent::Coefficients& k, std::size_t i) {
+  return coefficient(const_cast<agent::Coefficients&>(k), i);
+}
+
+bool uses(agent::RuleSet rules, std::size_t i) {
+  const std::string name = kCoefficientNames[i];
+  if (rules == agent::RuleSet::Directional) return name == "gamma" || i >= 5;
+  if (i >= 5) return false;
+  return !(name == "alpha1" && rules == agent::RuleSet::Conserving);
+}
+
+agent::Coefficients coefficients_from(const CoefficientValues& v) {
   agent::Coefficients k;
-  k.alpha1 = v[0];
-  k.alpha2 = v[1];
-  k.alpha3 = v[2];
-  k.beta = v[3];
-  k.gamma = v[4];
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) coefficient(k, i) = v[i];
   return k;
 }
 
 agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
-                             const std::array<bool, 5>& held) {
+                             const std::array<bool, kCoefficientCount>& held) {
   agent::Coefficients k = fitted;
-  double* out[5] = {&k.alpha1, &k.alpha2, &k.alpha3, &k.beta, &k.gamma};
-  const double theirs[5] = {own.alpha1, own.alpha2, own.alpha3, own.beta, own.gamma};
-  for (int i = 0; i < 5; ++i)
-    if (held[i]) *out[i] = theirs[i];
+  for (std::size_t i = 0; i < kCoefficientCount; ++i)
+    if (held[i]) coefficient(k, i) = coefficient(own, i);
   k.poisson_decay = own.poisson_decay;  // a case's own value is held; unset, it follows alpha2
+  k.directional.directions = own.directional.directions;  // an integer: not fitted
   return k;
 }
 
@@ -125,17 +139,17 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   CalibrationOptions o = options;
   o.weights.equilibrium_ceiling.clear();
   std::vector<int> free;
-  for (int i = 0; i < 5; ++i)
-    if (o.parameters[i].free) free.push_back(i);
-  std::array<double, 5> start_values{};
-  for (int i = 0; i < 5; ++i) start_values[i] = o.parameters[i].start;
+  for (std::size_t i = 0; i < kCoefficientCount; ++i)
+    if (o.parameters[i].free) free.push_back(int(i));
+  CoefficientValues start_values{};
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) start_values[i] = o.parameters[i].start;
 
   auto full = [&](const std::vector<double>& x) {
-    std::array<double, 5> v = start_values;
+    CoefficientValues v = start_values;
     for (std::size_t j = 0; j < free.size(); ++j) v[free[j]] = x[j];
     return v;
   };
-  auto J = [&](const std::array<double, 5>& v) { return objective(cases, coefficients_from(v), o.rules, o.weights); };
+  auto J = [&](const CoefficientValues& v) { return objective(cases, coefficients_from(v), o.rules, o.weights); };
 
   // The starts: the given point, then uniform random points in the bounds (seeded).
   std::vector<std::vector<double>> starts;
@@ -227,7 +241,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     if (best_f[s] < best_f[best]) best = int(s);
   result.start_objectives = best_f;
   for (long e : evaluations) result.evaluations += e;
-  std::array<double, 5> v = full(best_x[best]);
+  CoefficientValues v = full(best_x[best]);
   // Never worse than the start.
   if (!(best_f[best] <= result.objective_start)) v = start_values;
   result.best = coefficients_from(v);
@@ -238,7 +252,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     const auto& p = o.parameters[i];
     const double h = 0.1 * (p.hi - p.lo);
     auto at = [&](double value) {
-      std::array<double, 5> w = v;
+      CoefficientValues w = v;
       w[i] = std::min(p.hi, std::max(p.lo, value));
       return J(w);
     };

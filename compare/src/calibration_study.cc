@@ -30,7 +30,7 @@ struct Plan {
   bool cross_validate = true;
   std::vector<fs::path> case_files;
   std::vector<double> case_weights;
-  std::array<bool, 5> start_given{};  ///< else the start is the first case's own [agent] value
+  std::array<bool, kCoefficientCount> start_given{};  ///< else the start is the first case's own [agent] value
 };
 
 Plan read_plan(const workbench::CaseFile& file) {
@@ -39,8 +39,9 @@ Plan read_plan(const workbench::CaseFile& file) {
   const auto t = root.table("calibrate");
   Plan plan;
   auto& o = plan.options;
-  const std::string rules = t.text("rule_set", "conserving", {"patent", "conserving"});
-  o.rules = rules == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
+  const std::string rules = t.text("rule_set", "conserving", {"patent", "conserving", "directional"});
+  o.rules = rules == "patent" ? agent::RuleSet::Patent
+            : rules == "conserving" ? agent::RuleSet::Conserving : agent::RuleSet::Directional;
   o.starts = t.integer("starts", 8, 1, 1000);
   o.seed = std::uint64_t(t.integer("seed", 1, 0, 2147483647));
   o.max_evaluations = t.integer("max_evaluations", 400, 1, 1000000);
@@ -66,23 +67,38 @@ Plan read_plan(const workbench::CaseFile& file) {
     plan.case_files.push_back(c.path("file", std::nullopt));
     plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
   }
-  // Defaults for the coefficients: the seed's values, free except gamma (and alpha1, which the
-  // conserving rule set does not use).
-  const std::array<double, 5> seed_values{0.5, 0.5, 0.25, 0.5, 1e-3};
+  // Defaults per coefficient: the library's value (the seed's for alpha1..gamma), the bounds of
+  // the fit and the values a case file accepts. Free by default: what the rule set uses, but gamma.
+  struct Default {
+    double start, lo, hi;
+    Range valid;
+  };
+  const agent::Coefficients library;
+  const auto& fan = library.directional;
+  const Range unit = Range::closed(0, 1);
+  const std::array<Default, kCoefficientCount> defaults{{
+      {library.alpha1, 0.0, 1.0, unit},
+      {library.alpha2, 0.01, 1.0, unit},  // a small floor: the conserving split needs alpha2 + alpha3 > 0
+      {library.alpha3, 0.0, 1.0, unit},
+      {library.beta, 0.0, 1.0, unit},
+      {library.gamma, 0.0, 10 * library.gamma, Range::non_negative()},
+      {fan.fan_angle, 20.0, 89.0, Range::open(0, 90)},
+      {fan.fan_power, 0.0, 8.0, Range::closed(0, 100)},
+      {fan.fan_power_3d, 0.0, 8.0, Range::closed(0, 100)},
+      {fan.diffusion, 0.0, 20.0, Range::closed(0, 1000)},
+  }};
   int n_free = 0;
-  for (int i = 0; i < 5; ++i) {
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) {
     const std::string name = kCoefficientNames[i];
     const auto p = t.table(name);
+    const auto& def = defaults[i];
     auto& param = o.parameters[i];
     param.name = name;
-    const bool gamma = name == "gamma";
-    const bool used = !(name == "alpha1" && o.rules == agent::RuleSet::Conserving);
-    param.free = p.flag("free", !gamma && used);
-    // alpha2 keeps a small floor by default: the conserving split needs alpha2 + alpha3 > 0.
-    param.lo = p.number("min", name == "alpha2" ? 0.01 : 0.0, gamma ? Range::non_negative() : Range::closed(0, 1));
-    param.hi = p.number("max", gamma ? 10 * seed_values[4] : 1.0, gamma ? Range::non_negative() : Range::closed(0, 1));
+    param.free = p.flag("free", name != "gamma" && uses(o.rules, i));
+    param.lo = p.number("min", def.lo, def.valid);
+    param.hi = p.number("max", def.hi, def.valid);
     plan.start_given[i] = p.has("start");
-    param.start = p.number("start", seed_values[i], gamma ? Range::non_negative() : Range::closed(0, 1));
+    param.start = p.number("start", def.start, def.valid);
     if (param.free && !(param.lo < param.hi))
       p.fail("max", "must be greater than min (" + std::to_string(param.lo) + ")");
     if (param.free && plan.start_given[i] && (param.start < param.lo || param.start > param.hi))
@@ -150,11 +166,14 @@ std::string set_value(const std::string& line, const std::string& value) {
 std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
                               agent::RuleSet rules) {
   const toml::table original = toml::parse(text);
-  std::vector<std::pair<std::string, std::string>> wanted{
-      {"rule_set", rules == agent::RuleSet::Patent ? "\"patent\"" : "\"conserving\""},
-      {"alpha1", shortest(k.alpha1)}, {"alpha2", shortest(k.alpha2)}, {"alpha3", shortest(k.alpha3)},
-      {"beta", shortest(k.beta)}, {"gamma", shortest(k.gamma)}, {"poisson_decay", shortest(k.decay())}};
-  const double values[] = {0, k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma, k.decay()};
+  std::vector<std::pair<std::string, std::string>> wanted{{"rule_set", quoted(agent::rule_set_name(rules))}};
+  std::vector<double> values{0};
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) {
+    wanted.push_back({kCoefficientNames[i], shortest(coefficient(k, i))});
+    values.push_back(coefficient(k, i));
+  }
+  wanted.push_back({"poisson_decay", shortest(k.decay())});
+  values.push_back(k.decay());
   std::vector<std::string> lines;
   {
     std::istringstream in(text);
@@ -178,8 +197,7 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
       if (key != wanted[w].first) continue;
       done[w] = true;
       const auto old = original["agent"][key];
-      const bool same = w == 0 ? old.value<std::string>() == std::optional<std::string>(
-                                                                  rules == agent::RuleSet::Patent ? "patent" : "conserving")
+      const bool same = w == 0 ? old.value<std::string>() == std::optional<std::string>(agent::rule_set_name(rules))
                                : old.value<double>() == std::optional<double>(values[w]);
       if (!same) lines[n] = set_value(lines[n], wanted[w].second);
     }
@@ -216,8 +234,8 @@ void write_calibrated_case(const fs::path& original, const fs::path& target, con
 
 std::string coefficient_row(const agent::Coefficients& k) {
   std::ostringstream s;
-  s << std::setprecision(4) << "alpha1 " << k.alpha1 << ", alpha2 " << k.alpha2 << ", alpha3 " << k.alpha3 << ", beta "
-    << k.beta << ", gamma " << k.gamma;
+  s << std::setprecision(4);
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) s << (i ? ", " : "") << kCoefficientNames[i] << " " << coefficient(k, i);
   return s.str();
 }
 
@@ -253,12 +271,10 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
 
   // Start from the first case's own coefficients, and hold each case's own where not fitted,
   // unless the calibration file gives a start.
-  for (int i = 0; i < 5; ++i) {
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) {
     if (plan.start_given[i]) continue;
     auto& p = plan.options.parameters[i];
-    const auto& k = cases.front().study.coefficients;
-    const double own[5] = {k.alpha1, k.alpha2, k.alpha3, k.beta, k.gamma};
-    p.start = own[i];
+    p.start = coefficient(cases.front().study.coefficients, i);
     plan.options.weights.held_from_case[i] = !p.free;
     if (p.free && (p.start < p.lo || p.start > p.hi))
       file.root().table("calibrate").table(p.name).fail(
@@ -293,7 +309,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   // Report.
   std::ostringstream r;
   r << std::setprecision(4);
-  r << "Calibration of " << file.path().string() << " (" << (o.rules == agent::RuleSet::Patent ? "patent" : "conserving")
+  r << "Calibration of " << file.path().string() << " (" << (agent::rule_set_name(o.rules))
     << " rule set, " << o.starts << " starts, seed " << o.seed << ", " << result.evaluations << " evaluations, "
     << seconds << " s)\n\n";
   r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x)^2 + " << o.weights.sigma_y
@@ -355,11 +371,12 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
 
   nlohmann::json j;
   auto coeffs = [](const agent::Coefficients& k) {
-    return nlohmann::json{{"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
-                          {"gamma", k.gamma}, {"poisson_decay", k.decay()}};
+    nlohmann::json j{{"poisson_decay", k.decay()}, {"directions", k.directional.directions}};
+    for (std::size_t i = 0; i < kCoefficientCount; ++i) j[kCoefficientNames[i]] = coefficient(k, i);
+    return j;
   };
   j["calibration"] = file.path().string();
-  j["rule_set"] = o.rules == agent::RuleSet::Patent ? "patent" : "conserving";
+  j["rule_set"] = agent::rule_set_name(o.rules);
   j["start"] = coeffs(result.start);
   j["fitted"] = coeffs(result.best);
   j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};

@@ -358,7 +358,7 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["case"] = file.path().string();
   json["title"] = study.setup.title;
   json["model"] = "agent";
-  json["agent"] = {{"rule_set", study.rules == agent::RuleSet::Patent ? "patent" : "conserving"},
+  json["agent"] = {{"rule_set", agent::rule_set_name(study.rules)},
                    {"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
                    {"gamma", k.gamma}, {"poisson_decay", k.decay()},
                    {"agents", study.mesh.cell_of_element.size()}, {"agent_size", study.mesh.grid.size[0]},

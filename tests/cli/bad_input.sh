@@ -52,6 +52,8 @@ expect unknown_key "unknown_key.toml: unknown key 'material.yuong'" "$(with youn
 expect out_of_range "out_of_range.toml: agent.alpha1: in [0, 1] (got 1.5)" "$(base_case; echo 'alpha1 = 1.5')"
 expect wrong_type "wrong_type.toml: load[0].force: must be a number, not a string" "$(with force 'force = "two"')"
 expect bad_choice "bad_choice.toml: agent.rule_set: must be one of" "$(with rule_set 'rule_set = "literal"')"
+expect odd_fan "odd_fan.toml: agent.directions: must be even" "$(with rule_set 'rule_set = "directional"'; echo 'directions = 31')"
+expect flat_fan "flat_fan.toml: agent.fan_angle: in (0, 90) (got 90)" "$(with rule_set 'rule_set = "directional"'; echo 'fan_angle = 90')"
 expect missing_group "missing_group.toml: boundary.rigid: group 'floor' is not a physical group" "$(with rigid 'rigid = ["floor"]')"
 expect no_rigid "no_rigid.toml: boundary.rigid: no rigid faces" "$(with rigid 'rigid = []')"
 expect triangles "triangles.geo: has Triangle 3 elements" "$(with file "file = \"$src/tests/data/triangles.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d' | sed 's/"load"/"load"/')"

@@ -10,6 +10,7 @@
 //
 // Cost grows with the agents a load reaches, not with the body: solve() clears only what the
 // previous solve touched.
+#include <agent/directional.h>
 #include <agent/grid.h>
 
 #include <cstdint>
@@ -18,11 +19,17 @@
 
 namespace agent {
 
-/// The two readings of the seed's transfer rules (docs/agent-model.md).
+/// The two readings of the seed's transfer rules and the project's extension (docs/agent-model.md).
 enum class RuleSet {
   Patent,      ///< literal: entry x alpha1, each step down x alpha2, friction alpha3 re-entered with alpha1
   Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
+  Directional, ///< not the seed's: packets with slopes from a fan (agent/directional.h); uses gamma only
 };
+
+/// The rule set's name in case files and reports ("patent", "conserving", "directional").
+constexpr const char* rule_set_name(RuleSet r) {
+  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : "directional";
+}
 
 struct Coefficients {
   double alpha1 = 0.5;         ///< entry coefficient (seed: P1 = alpha1 P0)
@@ -34,6 +41,7 @@ struct Coefficients {
   /// ("the same rule set turned 90 degrees", docs/agent-model.md). Read it through decay().
   std::optional<double> poisson_decay;
   double decay() const { return poisson_decay.value_or(alpha2); }
+  DirectionalCoefficients directional;  ///< the directional rule set's own coefficients
 };
 
 struct Material {
@@ -55,6 +63,7 @@ struct EntryLoad {
 struct Diagnostics {
   std::size_t agents_generated = 0;  ///< agents reached (generation >= 0)
   std::size_t agent_updates = 0;     ///< agent visits by the sweeps (the cost measure)
+  std::size_t packet_moves = 0;      ///< packets moved by the directional rule set (its cost measure)
   double applied = 0;                ///< sum of the entry loads [N]
   double rigid_reaction = 0;         ///< load returned by rigid boundary agents [N]
   double passed_out = 0;             ///< load passed out through free faces [N]

@@ -14,12 +14,22 @@
 
 namespace compare {
 
-/// The coefficients a calibration can fit, in this order.
-constexpr std::array<const char*, 5> kCoefficientNames{"alpha1", "alpha2", "alpha3", "beta", "gamma"};
+/// The coefficients a calibration can fit, in this order: the seed's rule sets' (alpha1..gamma),
+/// then the directional rule set's (agent/directional.h; its integer `directions` is not fitted).
+constexpr std::array<const char*, 9> kCoefficientNames{"alpha1",    "alpha2",    "alpha3",       "beta",     "gamma",
+                                                       "fan_angle", "fan_power", "fan_power_3d", "diffusion"};
+constexpr std::size_t kCoefficientCount = kCoefficientNames.size();
+using CoefficientValues = std::array<double, kCoefficientCount>;
+
+/// Coefficient `i` (in kCoefficientNames order) of a set of coefficients.
+double& coefficient(agent::Coefficients& k, std::size_t i);
+double coefficient(const agent::Coefficients& k, std::size_t i);
+/// Whether the rule set uses coefficient `i` (so a calibration fits it by default).
+bool uses(agent::RuleSet rules, std::size_t i);
 
 struct Parameter {
   std::string name;
-  bool free = true;
+  bool free = false;
   double start = 0, lo = 0, hi = 1;
 };
 
@@ -37,8 +47,8 @@ struct ObjectiveWeights {
   bool keep_load = true;
   /// Per case: the start's deviation + kLoadTolerance; set by calibrate().
   std::vector<double> equilibrium_ceiling;
-  /// Coefficients (alpha1..gamma) that are not fitted and come from each case's own [agent].
-  std::array<bool, 5> held_from_case{};
+  /// Coefficients (kCoefficientNames) that are not fitted and come from each case's own [agent].
+  std::array<bool, kCoefficientCount> held_from_case{};
 };
 
 struct CalibrationCase {
@@ -50,7 +60,7 @@ struct CalibrationCase {
 
 struct CalibrationOptions {
   agent::RuleSet rules = agent::RuleSet::Conserving;
-  std::array<Parameter, 5> parameters;  ///< alpha1, alpha2, alpha3, beta, gamma
+  std::array<Parameter, kCoefficientCount> parameters;  ///< in kCoefficientNames order
   ObjectiveWeights weights;
   int starts = 8;               ///< the given start, then random points in the bounds
   std::uint64_t seed = 1;
@@ -95,11 +105,13 @@ struct CalibrationResult {
 CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress = nullptr);
 
-/// Coefficients from a parameter vector (alpha1..gamma); poisson_decay is left to follow alpha2.
-agent::Coefficients coefficients_from(const std::array<double, 5>& values);
+/// Coefficients from a parameter vector (kCoefficientNames order; the library's defaults for the
+/// rest): poisson_decay is left to follow alpha2, the directional `directions` at its default.
+agent::Coefficients coefficients_from(const CoefficientValues& values);
 
-/// A case's coefficients: the fitted ones, with those `held` taken from the case's `own`.
+/// A case's coefficients: the fitted ones, with those `held` (and poisson_decay, directions) taken
+/// from the case's `own`.
 agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
-                             const std::array<bool, 5>& held);
+                             const std::array<bool, kCoefficientCount>& held);
 
 }  // namespace compare

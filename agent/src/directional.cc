@@ -1,0 +1,280 @@
+// The directional rule set (the project's extension): load packets with slopes, marched row by row.
+#include <agent/directional.h>
+#include <agent/load_transfer.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace agent {
+
+void check_directional(const DirectionalCoefficients& k) {
+  auto check = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument(what);
+  };
+  check(k.directions >= 2 && k.directions <= 256 && k.directions % 2 == 0,
+        "directions must be an even number in [2, 256] (an odd count has a straight-down packet)");
+  check(k.fan_angle > 0 && k.fan_angle < 90, "fan_angle must be in (0, 90) degrees");
+  check(k.fan_power >= 0 && k.fan_power <= 100, "fan_power must be in [0, 100]");
+  check(k.fan_power_3d >= 0 && k.fan_power_3d <= 100, "fan_power_3d must be in [0, 100]");
+  check(k.diffusion >= 0 && k.diffusion <= 1000, "diffusion must be in [0, 1000] mm");
+}
+
+Fan entry_fan(const DirectionalCoefficients& k, int dim) {
+  const double power = dim == 3 ? k.fan_power_3d : k.fan_power;
+  // Angles evenly spaced over (-fan_angle, fan_angle), none straight down (an even count).
+  const double pi = std::acos(-1.0);
+  Fan fan;
+  double total = 0;
+  for (int i = 0; i < k.directions; ++i) {
+    const double angle = k.fan_angle * pi / 180 * ((2.0 * i + 1) / k.directions - 1);
+    fan.slope.push_back(std::tan(angle));
+    fan.weight.push_back(std::pow(std::cos(angle), power));
+    total += fan.weight.back();
+  }
+  for (double& w : fan.weight) w /= total;
+  return fan;
+}
+
+namespace {
+
+struct Box {
+  int u_lo = INT_MAX, u_hi = INT_MIN, v_lo = INT_MAX, v_hi = INT_MIN;
+  bool empty() const { return u_lo > u_hi; }
+  void add(int u, int v) {
+    u_lo = std::min(u_lo, u);
+    u_hi = std::max(u_hi, u);
+    v_lo = std::min(v_lo, v);
+    v_hi = std::max(v_hi, v);
+  }
+};
+
+/// The packets of one row: per direction and lateral agent, the force and its first moments
+/// (force times the offset from the agent's centre, in agents), which keep each packet's
+/// position inside its agent when packets of one direction merge.
+struct Row {
+  std::vector<double> force, moment_u, moment_v;
+  std::vector<Box> box;
+  Row(std::size_t directions, std::size_t layer)
+      : force(directions * layer), moment_u(directions * layer), moment_v(directions * layer), box(directions) {}
+};
+
+}  // namespace
+
+void directional_transfer(const Grid& g, const DirectionalCoefficients& k, double gamma,
+                          const std::vector<EntryLoad>& loads, std::vector<double>& faces,
+                          std::vector<std::int32_t>& generation, Diagnostics& d) {
+  const int dim = g.dim, nd = 2 * dim, n = k.directions;
+  const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
+  const Fan fan = entry_fan(k, dim);
+  const std::uint8_t* flags = g.flags.data();
+  auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
+  auto air = [flags](std::size_t cell) { return flags[cell] & Grid::kAirBit; };
+
+  Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
+  std::vector<double> row_force;
+  for (const auto& load : loads) {
+    d.applied += load.force;
+    if (!(load.force > gamma)) {
+      d.dropped += load.force;
+      continue;
+    }
+    const int a = axis_of(load.dir);
+    const bool forward = is_positive(load.dir);
+    const int step = forward ? 1 : -1;
+    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;  // lateral axes (l1 has one cell in 2D)
+    const int n0 = g.cells[l0], n1 = g.cells[l1];
+    const std::size_t sa = g.stride(a), s0 = g.stride(l0), s1 = g.stride(l1), layer_size = std::size_t(n0) * n1;
+    const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
+    const auto entry = g.coords(load.cell);
+    const int eu = entry[l0], ev = entry[l1];
+    // Per row: the drift of a unit slope and the diffusion step, in lateral agents. Diffusion is
+    // given in mm, so the spread at a depth does not depend on the agent size.
+    const double row = g.size[a];
+    const double drift_u = row / g.size[l0], drift_v = row / g.size[l1];
+    const double spread_m = std::sqrt(k.diffusion * 1e-3 * row);
+    const double r_u = spread_m / g.size[l0], r_v = spread_m / g.size[l1];
+    // A packet along a ray carries stress along the ray: sigma_ll = slope_l^2 sigma_aa.
+    const double side_u = g.face_area(l0) / g.face_area(a), side_v = dim == 3 ? g.face_area(l1) / g.face_area(a) : 0.0;
+
+    // Reused across the loads: every row is consumed back to zero as it is marched.
+    if (now.force.size() < directions * layer_size) {
+      now = Row(directions, layer_size);
+      next = Row(directions, layer_size);
+    }
+    row_force.assign(layer_size, 0.0);  // the packets' force through each agent of a row
+    const std::size_t entry_slot = eu + std::size_t(n0) * ev;
+    for (int dir = 0; dir < directions; ++dir) {
+      const double w = fan.weight[dir % n] * (dim == 3 ? fan.weight[dir / n] : 1.0);
+      now.force[dir * layer_size + entry_slot] = load.force * w;
+      now.box[dir].add(eu, ev);
+    }
+
+    // The row's moment balance (statics of the body above a cut along the row): the force through a
+    // row must have its centroid under the load, as in a beam. Packets reflected by a side shift
+    // it; a linear, self-equilibrated correction across the row's agents (zero net force, so the
+    // load balance is untouched) restores it. It puts the far side in tension, as FEM does.
+    auto balance_row_moment = [&](std::size_t layer_base, bool last_layer, std::vector<double>& through) {
+      double count = 0, cu = 0, cv = 0, total = 0, mu = 0, mv = 0;
+      bool exits_rigid = true, exits_free = false;  // how the row's agents meet what is past the row
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u) {
+          const std::size_t cell = layer_base + u * s0 + v * s1;
+          if (air(cell)) continue;
+          count += 1;
+          cu += u;
+          cv += v;
+          const double t = through[u + std::size_t(n0) * v];
+          total += t;
+          mu += t * (u - eu);
+          mv += t * (v - ev);
+          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          exits_rigid = exits_rigid && (!exits || rigid(cell, exit_face));
+          exits_free = exits_free || (exits && !rigid(cell, exit_face));
+        }
+      std::fill(through.begin(), through.end(), 0.0);
+      if (count < 2 || total == 0) return;
+      cu /= count;
+      cv /= count;
+      double suu = 0, suv = 0, svv = 0;
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u)
+          if (!air(layer_base + u * s0 + v * s1)) {
+            suu += (u - cu) * (u - cu);
+            suv += (u - cu) * (v - cv);
+            svv += (v - cv) * (v - cv);
+          }
+      // delta(u, v) = cu_coef (u - cu) + cv_coef (v - cv) with sum delta (u - eu) = -mu, likewise v.
+      double ku = 0, kv = 0;
+      if (dim == 2 || svv == 0) {
+        ku = suu > 0 ? -mu / suu : 0.0;
+      } else {
+        const double det = suu * svv - suv * suv;
+        if (!(std::abs(det) > 0)) return;
+        ku = (-mu * svv + mv * suv) / det;
+        kv = (-mv * suu + mu * suv) / det;
+      }
+      if (ku == 0 && kv == 0) return;
+      for (int v = 0; v < n1; ++v)
+        for (int u = 0; u < n0; ++u) {
+          const std::size_t cell = layer_base + u * s0 + v * s1;
+          if (air(cell)) continue;
+          const double delta = ku * (u - cu) + kv * (v - cv);
+          double* f = faces.data() + cell * nd;
+          f[enter_face] += delta;
+          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          // A boundary face takes it only where the whole row meets one rigid face (net zero there).
+          if (!exits) f[exit_face] += delta;
+          else if (exits_rigid && !exits_free) f[exit_face] += delta;
+        }
+    };
+
+    for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
+      const std::size_t layer_base = std::size_t(layer) * sa;
+      const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
+      const std::size_t next_base = last_layer ? 0 : std::size_t(layer + step) * sa;
+      // A packet piece arriving at lateral position (x, y) of the next row, in agents, with
+      // direction indices (du, dv): folded back into the box by the free sides (a mirror: the
+      // slope changes sign), absorbed by a rigid side, passed out where the next row is air.
+      auto deposit = [&](double x, double y, int du, int dv, double force) {
+        auto fold = [&](double& pos, int cells, int& index, int lateral, std::size_t across) {
+          while (pos < 0 || pos > cells) {
+            const bool low = pos < 0;
+            const std::size_t edge = next_base + (low ? 0 : std::size_t(cells - 1)) * g.stride(lateral) + across;
+            if (rigid(edge, direction(lateral, !low))) return false;
+            pos = low ? -pos : 2.0 * cells - pos;
+            index = n - 1 - index;
+          }
+          return true;
+        };
+        const int iv_guess = std::min(std::max(int(y), 0), n1 - 1);
+        if (!fold(x, n0, du, l0, iv_guess * s1)) {
+          d.rigid_reaction += force;
+          return;
+        }
+        const int iu = std::min(int(x), n0 - 1);
+        if (dim == 3 && !fold(y, n1, dv, l1, iu * s0)) {
+          d.rigid_reaction += force;
+          return;
+        }
+        const int iv = dim == 3 ? std::min(int(y), n1 - 1) : 0;
+        if (air(next_base + iu * s0 + iv * s1)) {
+          d.passed_out += force;
+          return;
+        }
+        const int dir = du + n * dv;
+        const std::size_t slot = dir * layer_size + iu + std::size_t(n0) * iv;
+        next.force[slot] += force;
+        next.moment_u[slot] += force * (x - iu - 0.5);
+        if (dim == 3) next.moment_v[slot] += force * (y - iv - 0.5);
+        next.box[dir].add(iu, iv);
+      };
+
+      bool any = false;
+      for (int dir = 0; dir < directions; ++dir) {
+        Box& box = now.box[dir];
+        if (box.empty()) continue;
+        const int du0 = dir % n, dv0 = dim == 3 ? dir / n : 0;
+        const double su = fan.slope[du0], sv = dim == 3 ? fan.slope[dv0] : 0.0;
+        const double side_force_u = su * su * side_u, side_force_v = sv * sv * side_v;
+        for (int v = box.v_lo; v <= box.v_hi; ++v)
+          for (int u = box.u_lo; u <= box.u_hi; ++u) {
+            const std::size_t slot = dir * layer_size + u + std::size_t(n0) * v;
+            const double force = now.force[slot];
+            if (force == 0) continue;
+            const double off_u = now.moment_u[slot] / force, off_v = dim == 3 ? now.moment_v[slot] / force : 0.0;
+            now.force[slot] = now.moment_u[slot] = now.moment_v[slot] = 0;
+            ++d.packet_moves;
+            const std::size_t cell = layer_base + u * s0 + v * s1;
+            const int gen = depth + std::abs(u - eu) + std::abs(v - ev);
+            const auto current = std::uint32_t(generation[cell]);
+            d.agents_generated += current == UINT32_MAX;
+            generation[cell] = std::int32_t(std::min(current, std::uint32_t(gen)));
+            double* f = faces.data() + cell * nd;
+            f[enter_face] += force;
+            row_force[u + std::size_t(n0) * v] += force;
+            f[2 * l0] += force * side_force_u;
+            f[2 * l0 + 1] += force * side_force_u;
+            if (dim == 3) {
+              f[2 * l1] += force * side_force_v;
+              f[2 * l1 + 1] += force * side_force_v;
+            }
+            if (last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)))) {
+              if (rigid(cell, exit_face)) {
+                f[exit_face] += force;
+                d.rigid_reaction += force;
+              } else {
+                d.passed_out += force;
+              }
+              continue;
+            }
+            f[exit_face] += force;
+            any = true;
+            // Move one row on, drift by the slope, and diffuse: two (3D: four) equal pieces
+            // at +-r, which adds r^2 of variance per lateral axis exactly.
+            const double x = u + 0.5 + off_u + su * drift_u, y = v + 0.5 + off_v + sv * drift_v;
+            if (dim == 2) {
+              if (r_u == 0) {
+                deposit(x, y, du0, dv0, force);
+              } else {
+                deposit(x - r_u, y, du0, dv0, 0.5 * force);
+                deposit(x + r_u, y, du0, dv0, 0.5 * force);
+              }
+            } else {
+              for (int i = 0; i < 4; ++i)
+                deposit(x + (i & 1 ? r_u : -r_u), y + (i & 2 ? r_v : -r_v), du0, dv0, 0.25 * force);
+            }
+          }
+        box = Box{};
+      }
+      balance_row_moment(layer_base, last_layer, row_force);
+      if (!any) break;
+      std::swap(now, next);
+    }
+  }
+}
+
+}  // namespace agent

@@ -64,6 +64,14 @@ TEST(AgentReadings, NonCompoundingEntryPassesAlpha2OfTheWholeLoad) {
   // Lost: 1 - alpha2 of each agent's input, 0.5 + 0.25 + 0.125 + 0.0625.
   EXPECT_DOUBLE_EQ(m.diagnostics().lost, 0.9375);
   expect_load_balance(m.diagnostics());
+  // Reading 4 on a one-agent entry: the entry agent's stress is alpha1 P0 / A = 0.500 P0/A
+  // (the mean of its faces would give 0.5 (0.5 + 0.5) = 0.5 here too, and 0.375 without reading 1).
+  Readings both = only(&Readings::non_compounding_entry);
+  both.entering_face_stress = true;
+  const auto sigma = agent_stresses(g, m.face_forces(), both, kMinusY, 1.0, 0.3);
+  EXPECT_DOUBLE_EQ(sigma[2 * g.index(2, 3, 0) + 1], -0.5);
+  EXPECT_DOUBLE_EQ(sigma[2 * g.index(2, 2, 0) + 1], -0.5);
+  EXPECT_DOUBLE_EQ(sigma[2 * g.index(2, 1, 0) + 1], -0.25);
 }
 
 TEST(AgentReadings, NonCompoundingEntryLetsFrictionGoOnWithAlpha2WithoutAlpha1) {

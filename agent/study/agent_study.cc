@@ -51,8 +51,7 @@ std::vector<std::string> names_of(const agent::Readings& r) {
   return out;
 }
 
-agent::Readings read_readings(const workbench::CaseTable& root, agent::RuleSet rules) {
-  const auto t = root.table("agent");
+agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rules) {
   agent::Readings r;
   const auto& names = reading_names();
   for (const auto& name : t.texts("readings", std::vector<std::string>{})) {
@@ -67,12 +66,19 @@ agent::Readings read_readings(const workbench::CaseTable& root, agent::RuleSet r
   return r;
 }
 
+void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTable& t) {
+  const bool stress_readings = study.readings.entering_face_stress || study.readings.lateral_strain_stress;
+  for (const auto& l : study.loads)
+    if (stress_readings && l.dir != study.loads.front().dir)
+      t.fail("readings", "entering_face_stress and lateral_strain_stress need every load in one direction");
+}
+
 AgentStudy load_agent_study(const workbench::CaseFile& file) {
   AgentStudy study;
   const auto root = file.root();
   study.setup = workbench::read_study_setup(root);
   read_agent_section(root, study.coefficients, study.rules);
-  study.readings = read_readings(root, study.rules);
+  study.readings = read_readings(root.table("agent"), study.rules);
   try {
     study.mesh = agent::import_mesh(study.setup.mesh_file, study.setup.mesh_parameters);
   } catch (const std::runtime_error& e) {
@@ -109,10 +115,7 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
       study.loads.push_back({f.cell, agent::direction(spec.axis, spec.sign > 0),
                              spec.force * grid.face_area(agent::axis_of(f.side)) / area});
   }
-  const bool stress_readings = study.readings.entering_face_stress || study.readings.lateral_strain_stress;
-  for (const auto& l : study.loads)
-    if (stress_readings && l.dir != study.loads.front().dir)
-      root.table("agent").fail("readings", "entering_face_stress and lateral_strain_stress need every load in one direction");
+  check_readings_fit_loads(study, root.table("agent"));
   return study;
 }
 

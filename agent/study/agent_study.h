@@ -32,8 +32,12 @@ const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_name
 /// The names of the readings set in `r`, in reading_names() order.
 std::vector<std::string> names_of(const agent::Readings& r);
 
-/// Reads [agent] readings (docs/case-file.md): the names of the seed readings to apply.
-agent::Readings read_readings(const workbench::CaseTable& root, agent::RuleSet rules);
+/// Reads the key `readings` of table `t` ([agent] or [calibrate], docs/case-file.md): the names
+/// of the seed readings to apply.
+agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rules);
+
+/// Fails at `t`.readings when a stress reading meets loads in more than one direction.
+void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTable& t);
 
 /// Reads the common setup and [agent], builds the mesh and the entry loads. Does not reject
 /// unknown keys: the caller does, once every module has read its sections.

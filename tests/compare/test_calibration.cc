@@ -131,6 +131,14 @@ TEST(Calibration, RefusesBadCalibrationFiles) {
   EXPECT_NE(error_of(base + "[calibrate.alpha2]\nmin = 0\n").find("calibrate.alpha2.min: alpha2 and alpha3 may not both reach 0"),
             std::string::npos);
   EXPECT_NE(error_of(base + "[calibrate.alhpa2]\nmin = 0.1\n").find("unknown key 'calibrate.alhpa2'"), std::string::npos);
+  auto with_readings = [&](const std::string& readings) {
+    std::string text = base;
+    return text.insert(text.find("[[calibrate.case]]"), "readings = [" + readings + "]\n");
+  };
+  EXPECT_NE(error_of(with_readings("\"curvy\"")).find("calibrate.readings: unknown reading \"curvy\""), std::string::npos);
+  EXPECT_NE(error_of(with_readings("\"non_compounding_entry\""))
+                .find("calibrate.readings: non_compounding_entry is a reading of the patent rule set"),
+            std::string::npos);
   EXPECT_NE(error_of(base + "starts = 0\n").find("unknown key"), std::string::npos);  // after [[calibrate.case]]
   EXPECT_NE(error_of("[calibrate]\nstarts = 0\n").find("calibrate.starts: must be in [1, 1000] (got 0)"), std::string::npos);
   EXPECT_NE(error_of("[calibrate]\n").find("calibrate.case: missing"), std::string::npos);

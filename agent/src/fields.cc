@@ -17,6 +17,22 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
   return sigma;
 }
 
+std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces, const Readings& readings,
+                                   int load_dir, double beta, double poisson) {
+  auto sigma = agent_stresses(grid, face_forces);
+  if (!readings.entering_face_stress && !readings.lateral_strain_stress) return sigma;
+  const int dim = grid.dim, nd = 2 * dim, a = axis_of(load_dir), enter_face = opposite(load_dir);
+  const double area = grid.face_area(a);
+  for (std::size_t c = 0; c < grid.count(); ++c) {
+    double* s = &sigma[c * dim];
+    if (readings.entering_face_stress) s[a] = -face_forces[c * nd + enter_face] / area;
+    if (readings.lateral_strain_stress)
+      for (int l = 0; l < dim; ++l)
+        if (l != a) s[l] = -beta * poisson * s[a];
+  }
+  return sigma;
+}
+
 std::vector<double> agent_strains(const Grid& grid, const Material& m, const std::vector<double>& stresses) {
   const int dim = grid.dim;
   const double E = m.young, nu = m.poisson;

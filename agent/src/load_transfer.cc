@@ -18,8 +18,8 @@ void check(bool ok, const std::string& what) {
 }
 }  // namespace
 
-LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules)
-    : grid_(grid), material_(material), k_(k), rules_(rules) {
+LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules, Readings readings)
+    : grid_(grid), material_(material), k_(k), rules_(rules), readings_(readings) {
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
   check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
   check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
@@ -132,6 +132,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
   const std::ptrdiff_t next_layer = forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa);  // cell offset below
   const bool patent = rules_ == RuleSet::Patent;
+  const bool once_alpha1 = patent && readings_.non_compounding_entry;  // reading 1
   constexpr bool three_d = Dim == 3;
   constexpr int lateral_dirs = three_d ? 4 : 2;
   const double alpha1 = k_.alpha1, alpha2 = k_.alpha2, alpha3 = k_.alpha3, gamma = k_.gamma;
@@ -271,7 +272,13 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
         double* f = faces + cell * nd;
         double top, down_t;
-        if (patent) {
+        if (once_alpha1) {
+          // Reading 1: the entry agent takes P1 = alpha1 P0 and passes P2 = alpha2 P0 on; friction
+          // enters whole and goes on with alpha2.
+          top = from_side + from_above;
+          if (b == entry_buf && depth == 0) top -= (1 - alpha1) * entry_load;
+          down_t = alpha2 * (from_side + from_above);
+        } else if (patent) {
           // Fresh loads (the entry, friction) enter with alpha1.
           top = alpha1 * from_side + from_above;
           if (b == entry_buf && depth == 0) top -= (1 - alpha1) * entry_load;

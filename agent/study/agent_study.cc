@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -45,11 +46,49 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   dk.diffusion = t.number("diffusion", fan.diffusion, Range::closed(0, 1000));
 }
 
+const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_names() {
+  static const std::vector<std::pair<std::string, bool agent::Readings::*>> names = {
+      {"non_compounding_entry", &agent::Readings::non_compounding_entry},
+      {"entering_face_stress", &agent::Readings::entering_face_stress},
+      {"lateral_strain_stress", &agent::Readings::lateral_strain_stress}};
+  return names;
+}
+
+std::vector<std::string> names_of(const agent::Readings& r) {
+  std::vector<std::string> out;
+  for (const auto& [name, member] : reading_names())
+    if (r.*member) out.push_back(name);
+  return out;
+}
+
+agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rules) {
+  agent::Readings r;
+  const auto& names = reading_names();
+  for (const auto& name : t.texts("readings", std::vector<std::string>{})) {
+    const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return name == n.first; });
+    if (it == names.end())
+      t.fail("readings", "unknown reading \"" + name +
+                             "\" (known: non_compounding_entry, entering_face_stress, lateral_strain_stress)");
+    r.*(it->second) = true;
+  }
+  if (r.non_compounding_entry && rules != agent::RuleSet::Patent)
+    t.fail("readings", "non_compounding_entry is a reading of the patent rule set");
+  return r;
+}
+
+void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTable& t) {
+  const bool stress_readings = study.readings.entering_face_stress || study.readings.lateral_strain_stress;
+  for (const auto& l : study.loads)
+    if (stress_readings && l.dir != study.loads.front().dir)
+      t.fail("readings", "entering_face_stress and lateral_strain_stress need every load in one direction");
+}
+
 AgentStudy load_agent_study(const workbench::CaseFile& file) {
   AgentStudy study;
   const auto root = file.root();
   study.setup = workbench::read_study_setup(root);
   read_agent_section(root, study.coefficients, study.rules);
+  study.readings = read_readings(root.table("agent"), study.rules);
   try {
     study.mesh = agent::import_mesh(study.setup.mesh_file, study.setup.mesh_parameters);
   } catch (const std::runtime_error& e) {
@@ -86,6 +125,7 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
       study.loads.push_back({f.cell, agent::direction(spec.axis, spec.sign > 0),
                              spec.force * grid.face_area(agent::axis_of(f.side)) / area});
   }
+  check_readings_fit_loads(study, root.table("agent"));
   return study;
 }
 
@@ -98,7 +138,8 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   s.face_forces = model.face_forces();
   s.generation = model.generation();
   s.diagnostics = model.diagnostics();
-  s.stress = agent::agent_stresses(grid, s.face_forces);
+  s.stress = agent::agent_stresses(grid, s.face_forces, model.readings(), study.loads.front().dir,
+                                  model.coefficients().beta, model.material().poisson);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
   s.displacement = agent::node_displacements(grid, s.strain, agent::choose_datums(grid, loads));
   // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
@@ -234,6 +275,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   const Eigen::Vector3d v = load_vector(study, 1.0);
   nlohmann::json j;
   j["rule_set"] = agent::rule_set_name(study.rules);
+  j["readings"] = names_of(study.readings);
   j["load_vector"] = std::vector<double>(v.data(), v.data() + dim);
   j["load_balance"] = {{"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},
@@ -252,7 +294,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
 
 std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
   agent::Material material{study.setup.young, study.setup.poisson};
-  agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules);
+  agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules, study.readings);
   const auto mesh = output_mesh(study);
   const int steps = study.setup.steps;
   std::vector<std::pair<double, std::string>> series;

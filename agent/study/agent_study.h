@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace agent_study {
@@ -19,11 +20,24 @@ struct AgentStudy {
   agent::ImportedMesh mesh;  ///< grid with the rigid groups set
   agent::Coefficients coefficients;
   agent::RuleSet rules = agent::RuleSet::Patent;
+  agent::Readings readings;  ///< [agent] readings
   std::vector<agent::EntryLoad> loads;  ///< one per loaded face, at the full load
 };
 
 /// Reads the [agent] section (docs/case-file.md) into coefficients and a rule set.
 void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules);
+
+/// The case-file name of each reading (docs/case-file.md) and the flag it sets.
+const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_names();
+/// The names of the readings set in `r`, in reading_names() order.
+std::vector<std::string> names_of(const agent::Readings& r);
+
+/// Reads the key `readings` of table `t` ([agent] or [calibrate], docs/case-file.md): the names
+/// of the seed readings to apply.
+agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rules);
+
+/// Fails at `t`.readings when a stress reading meets loads in more than one direction.
+void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTable& t);
 
 /// Reads the common setup and [agent], builds the mesh and the entry loads. Does not reject
 /// unknown keys: the caller does, once every module has read its sections.

@@ -115,7 +115,8 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const auto& c = cases[ci];
     const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
-    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules);
+    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules,
+                              c.study.readings);
     const auto state = agent_study::evaluate(c.study, model, 1.0);
     Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
     const auto& d = state.diagnostics;

@@ -31,6 +31,7 @@ struct Plan {
   std::vector<fs::path> case_files;
   std::vector<double> case_weights;
   std::array<bool, kCoefficientCount> start_given{};  ///< else the start is the first case's own [agent] value
+  std::optional<agent::Readings> readings;  ///< calibrate.readings: every case's, else each case's own
 };
 
 Plan read_plan(const workbench::CaseFile& file) {
@@ -42,6 +43,7 @@ Plan read_plan(const workbench::CaseFile& file) {
   const std::string rules = t.text("rule_set", "conserving", {"patent", "conserving", "directional"});
   o.rules = rules == "patent" ? agent::RuleSet::Patent
             : rules == "conserving" ? agent::RuleSet::Conserving : agent::RuleSet::Directional;
+  if (t.has("readings")) plan.readings = agent_study::read_readings(t, o.rules);
   o.starts = t.integer("starts", 8, 1, 1000);
   o.seed = std::uint64_t(t.integer("seed", 1, 0, 2147483647));
   o.max_evaluations = t.integer("max_evaluations", 400, 1, 1000000);
@@ -164,7 +166,7 @@ std::string set_value(const std::string& line, const std::string& value) {
 }  // namespace
 
 std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
-                              agent::RuleSet rules) {
+                              agent::RuleSet rules, const std::optional<agent::Readings>& readings) {
   const toml::table original = toml::parse(text);
   std::vector<std::pair<std::string, std::string>> wanted{{"rule_set", quoted(agent::rule_set_name(rules))}};
   std::vector<double> values{0};
@@ -180,6 +182,11 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
     for (std::string line; std::getline(in, line);) lines.push_back(line);
   }
   std::vector<bool> done(wanted.size(), false);
+  const auto reading_names = readings ? agent_study::names_of(*readings) : std::vector<std::string>{};
+  std::string readings_value = "[";
+  for (const auto& name : reading_names) readings_value += (readings_value.size() > 1 ? ", " : "") + quoted(name);
+  readings_value += "]";
+  bool readings_done = !readings;
   std::string table;
   int agent_end = -1;  // index after the last line of [agent]
   for (std::size_t n = 0; n < lines.size(); ++n) {
@@ -193,6 +200,10 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
         lines[n] = set_value(lines[n], quoted(fs::absolute(case_dir / *file).lexically_normal().string()));
     if (table != "agent") continue;
     if (lines[n].find_first_not_of(" \t") != std::string::npos) agent_end = int(n) + 1;  // after its last line
+    if (readings && key == "readings") {
+      lines[n] = set_value(lines[n], readings_value);
+      readings_done = true;
+    }
     for (std::size_t w = 0; w < wanted.size(); ++w) {
       if (key != wanted[w].first) continue;
       done[w] = true;
@@ -205,6 +216,7 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
   std::vector<std::string> missing;
   for (std::size_t w = 0; w < wanted.size(); ++w)
     if (!done[w]) missing.push_back(wanted[w].first + " = " + wanted[w].second);
+  if (!readings_done) missing.push_back("readings = " + readings_value);
   if (agent_end < 0) {
     if (!missing.empty()) lines.push_back("\n[agent]");
     agent_end = int(lines.size());
@@ -213,10 +225,22 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
   std::string out;
   for (const auto& l : lines) out += l + "\n";
   // What was written must read back as exactly the fitted values.
-  const toml::table check = toml::parse(out);
+  toml::table check;
+  try {
+    check = toml::parse(out);
+  } catch (const toml::parse_error& e) {  // e.g. the rest of a readings array over several lines
+    throw Error("calibrate: the calibrated case does not parse (" + std::string(e.description()) +
+                "): write [agent] readings on one line");
+  }
   for (std::size_t w = 1; w < wanted.size(); ++w)
     if (check["agent"][wanted[w].first].value<double>() != std::optional<double>(values[w]))
       throw Error("calibrate: the calibrated case does not read back " + wanted[w].first + " = " + wanted[w].second);
+  if (readings) {  // e.g. a readings array over several lines, which the line edit above cannot replace
+    std::vector<std::string> back;
+    if (const auto* array = check["agent"]["readings"].as_array())
+      for (const auto& name : *array) back.push_back(name.value_or(std::string()));
+    if (back != reading_names) throw Error("calibrate: the calibrated case does not read back readings = " + readings_value);
+  }
   return out;
 }
 
@@ -224,11 +248,11 @@ namespace {
 
 /// The case file again, with the fitted [agent] coefficients and an absolute mesh path.
 void write_calibrated_case(const fs::path& original, const fs::path& target, const agent::Coefficients& k,
-                           agent::RuleSet rules, const std::string& note) {
+                           agent::RuleSet rules, const std::optional<agent::Readings>& readings, const std::string& note) {
   std::ifstream in(original);
   std::stringstream text;
   text << in.rdbuf();
-  const std::string out = with_coefficients(text.str(), original.parent_path(), k, rules);
+  const std::string out = with_coefficients(text.str(), original.parent_path(), k, rules, readings);
   report::write_text(target, "# " + note + "\n" + out);
 }
 
@@ -253,6 +277,10 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     CalibrationCase c;
     c.name = plan.case_files[i].stem().string();
     c.study = agent_study::load_agent_study(case_file);
+    if (plan.readings) {
+      c.study.readings = *plan.readings;
+      agent_study::check_readings_fit_loads(c.study, file.root().table("calibrate"));
+    }
     auto problem = fem_reference::problem_from_case(case_file);
     const auto compare_options = read_compare_options(case_file.root());
     if (compare_options.model != "agent")
@@ -377,6 +405,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   };
   j["calibration"] = file.path().string();
   j["rule_set"] = agent::rule_set_name(o.rules);
+  if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
   j["start"] = coeffs(result.start);
   j["fitted"] = coeffs(result.best);
   j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
@@ -402,7 +431,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   for (std::size_t i = 0; i < cases.size(); ++i)
     write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
                           for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
-                          "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
+                          plan.readings, "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
                               std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
   return result;
 }

@@ -174,6 +174,14 @@ TEST(Calibration, RefusesBadCalibrationFiles) {
   EXPECT_NE(error_of(base + "[calibrate.alpha2]\nmin = 0\n").find("calibrate.alpha2.min: alpha2 and alpha3 may not both reach 0"),
             std::string::npos);
   EXPECT_NE(error_of(base + "[calibrate.alhpa2]\nmin = 0.1\n").find("unknown key 'calibrate.alhpa2'"), std::string::npos);
+  auto with_readings = [&](const std::string& readings) {
+    std::string text = base;
+    return text.insert(text.find("[[calibrate.case]]"), "readings = [" + readings + "]\n");
+  };
+  EXPECT_NE(error_of(with_readings("\"curvy\"")).find("calibrate.readings: unknown reading \"curvy\""), std::string::npos);
+  EXPECT_NE(error_of(with_readings("\"non_compounding_entry\""))
+                .find("calibrate.readings: non_compounding_entry is a reading of the patent rule set"),
+            std::string::npos);
   EXPECT_NE(error_of(base + "starts = 0\n").find("unknown key"), std::string::npos);  // after [[calibrate.case]]
   EXPECT_NE(error_of("[calibrate]\nstarts = 0\n").find("calibrate.starts: must be in [1, 1000] (got 0)"), std::string::npos);
   EXPECT_NE(error_of("[calibrate]\n").find("calibrate.case: missing"), std::string::npos);
@@ -242,4 +250,49 @@ TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
   w.far = false;
   objective({c}, truth, agent::RuleSet::Conserving, w, &body);
   EXPECT_GT(body[0].sigma_y, 0.1);
+}
+
+TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
+  // A target made under the patent rule set with reading 1 and both stress readings: the agent
+  // model against itself only when the case carries the same readings.
+  const agent::Coefficients truth = coefficients_from({0.5, 0.5, 0.25, 0.5, 1e-9});
+  agent::Readings all;
+  all.non_compounding_entry = all.entering_face_stress = all.lateral_strain_stress = true;
+  workbench::CaseFile file(write_file("plate_readings.toml", plate_case()));
+  CalibrationCase c;
+  c.name = "plate_readings";
+  c.study = agent_study::load_agent_study(file);
+  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
+                            agent::RuleSet::Patent, all);
+  c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
+  auto w = options().weights;
+  std::vector<Score> without, with;
+  objective({c}, truth, agent::RuleSet::Patent, w, &without);
+  EXPECT_GT(without[0].sigma_y, 0.05);
+  EXPECT_GT(without[0].sigma_x, 0.5);  // tension against compression
+  c.study.readings = all;
+  objective({c}, truth, agent::RuleSet::Patent, w, &with);
+  EXPECT_LT(with[0].objective, 1e-20);
+}
+
+TEST(Calibration, CalibratedCaseCarriesTheCalibrationsReadings) {
+  agent::Readings r;
+  r.non_compounding_entry = r.entering_face_stress = true;
+  const agent::Coefficients k = coefficients_from({0.5, 0.5, 0.25, 0.5, 1e-3});
+  const std::string base = "[mesh]\nfile = \"/m.geo\"\n[agent]\nrule_set = \"patent\"\n";
+  const auto added = with_coefficients(base + "[compare]\nmask = 0.01\n", "/cases", k, agent::RuleSet::Patent, r);
+  EXPECT_NE(added.find("readings = [\"non_compounding_entry\", \"entering_face_stress\"]\n"), std::string::npos) << added;
+  EXPECT_LT(added.find("readings ="), added.find("[compare]"));
+  const auto replaced = with_coefficients(base + "readings = [\"lateral_strain_stress\"]  # old\n", "/cases", k,
+                                          agent::RuleSet::Patent, r);
+  EXPECT_NE(replaced.find("readings = [\"non_compounding_entry\", \"entering_face_stress\"]  # old\n"), std::string::npos)
+      << replaced;
+  EXPECT_EQ(replaced.find("lateral_strain_stress"), std::string::npos);
+  // An array over several lines is not rewritten line by line: refused, not written wrong.
+  EXPECT_THROW(with_coefficients(base + "readings = [\n  \"lateral_strain_stress\",\n]\n", "/cases", k,
+                                 agent::RuleSet::Patent, r),
+               workbench::Error);
+  // Without readings from the calibration, the case's own stay as they are.
+  const auto own = with_coefficients(base + "readings = [\"lateral_strain_stress\"]\n", "/cases", k, agent::RuleSet::Patent);
+  EXPECT_NE(own.find("readings = [\"lateral_strain_stress\"]\n"), std::string::npos);
 }

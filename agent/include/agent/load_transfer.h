@@ -44,6 +44,25 @@ struct Coefficients {
   DirectionalCoefficients directional;  ///< the directional rule set's own coefficients
 };
 
+/// Readings of the patent rule set where the seed's Japanese original supports more than one
+/// (docs/agent-model.md, "Readings of the patent rules"). The defaults are the rules as first
+/// implemented; a case names the readings it wants ([agent] readings, docs/case-file.md).
+struct Readings {
+  /// 1: alpha1 acts once, at entry: the entry agent passes P2 = alpha2 P0 on (not alpha2 alpha1 P0)
+  /// and an agent reached by friction P3 passes alpha2 P3 on (not alpha2 alpha1 P3).
+  bool non_compounding_entry = false;
+  /// 4: an agent's stress along the load from the force on its entering face, not the mean of
+  /// its two faces (agent_stresses).
+  bool entering_face_stress = false;
+  /// 5: an agent's stress across the load from its own lateral strain, eps_x = -beta nu eps_y
+  /// (tension), not from the Poisson pushes on its faces (agent_stresses).
+  bool lateral_strain_stress = false;
+  bool operator==(const Readings& o) const {
+    return non_compounding_entry == o.non_compounding_entry && entering_face_stress == o.entering_face_stress &&
+           lateral_strain_stress == o.lateral_strain_stress;
+  }
+};
+
 struct Material {
   double young = 206e9;  ///< E [Pa]
   double poisson = 0.3;  ///< nu
@@ -80,13 +99,16 @@ struct Diagnostics {
 class LoadTransfer {
  public:
   /// Throws std::invalid_argument for coefficients outside their ranges (docs/agent-model.md).
-  LoadTransfer(const Grid& grid, Material material, Coefficients coefficients, RuleSet rules);
+  /// `readings` apply to the patent rule set only (the conserving one has its own normalised splits).
+  LoadTransfer(const Grid& grid, Material material, Coefficients coefficients, RuleSet rules, Readings readings = {});
 
   /// Propagates the loads from a clean state. Loads superpose: each entry load is swept on its own.
   void solve(const std::vector<EntryLoad>& loads);
 
   const Grid& grid() const { return grid_; }
   const Material& material() const { return material_; }
+  const Coefficients& coefficients() const { return k_; }
+  const Readings& readings() const { return readings_; }
   /// Compressive normal force on each face of each agent [N], 2*dim per agent, by direction.
   const std::vector<double>& face_forces() const { return faces_; }
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
@@ -114,6 +136,7 @@ class LoadTransfer {
   Material material_;
   Coefficients k_;
   RuleSet rules_;
+  Readings readings_;
   std::vector<double> faces_;
   std::vector<std::int32_t> generation_;
   Diagnostics diagnostics_;

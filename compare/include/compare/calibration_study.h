@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 
 namespace compare {
 
@@ -13,8 +14,10 @@ namespace compare {
 /// mesh file made absolute against `case_dir`: the original's lines, comments and layout are kept,
 /// only the values that change are rewritten, shortest-exact (0.3, not 0.29999999999999999), and
 /// missing keys are added at the end of [agent] (a new [agent] table at the end if there is none).
+/// Given `readings`, [agent] readings is set to them (a one-line array replaced, or added).
 std::string with_coefficients(const std::string& text, const std::filesystem::path& case_dir,
-                              const agent::Coefficients& k, agent::RuleSet rules);
+                              const agent::Coefficients& k, agent::RuleSet rules,
+                              const std::optional<agent::Readings>& readings = std::nullopt);
 
 /// Reads the calibration file and every case it lists, solves FEM for each, fits, cross-validates,
 /// and writes report.txt, report.json and calibrated/<case>.toml into `dir`.

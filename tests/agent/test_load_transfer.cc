@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "../support/agent_coefficients.h"
+
 using namespace agent;
 
 namespace {
@@ -28,16 +30,7 @@ Grid plate(int w, int h, bool rigid_base = true) {
 
 double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
 
-Coefficients coefficients(double a1, double a2, double a3, double beta, double gamma) {
-  Coefficients k;
-  k.alpha1 = a1;
-  k.alpha2 = a2;
-  k.alpha3 = a3;
-  k.beta = beta;
-  k.gamma = gamma;
-  k.poisson_decay = 0.5;
-  return k;
-}
+using test_support::coefficients;
 
 const Material kMaterial{1.0, 0.3};
 

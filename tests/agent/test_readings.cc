@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support/agent_coefficients.h"
 #include "../support/scratch_folder.h"
 
 using namespace agent;
@@ -25,15 +26,7 @@ Grid plate(int w, int h) {
 
 double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
 
-Coefficients coefficients(double a1, double a2, double a3, double beta) {
-  Coefficients k;
-  k.alpha1 = a1;
-  k.alpha2 = a2;
-  k.alpha3 = a3;
-  k.beta = beta;
-  k.gamma = 0;
-  return k;
-}
+using test_support::coefficients;
 
 const Material kMaterial{1.0, 0.3};
 
@@ -51,7 +44,7 @@ void expect_load_balance(const Diagnostics& d) {
 
 TEST(AgentReadings, NonCompoundingEntryPassesAlpha2OfTheWholeLoad) {
   const Grid g = plate(5, 4);
-  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.0, 1.0), RuleSet::Patent,
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.0, 1.0, 0.0), RuleSet::Patent,
                  only(&Readings::non_compounding_entry));
   m.solve({{g.index(2, 3, 0), direction(1, false), 1.0}});
   // P1 = alpha1 P0 = 0.5 on the entry's top, P2 = alpha2 P0 = 0.5 below (not alpha2 alpha1 P0 = 0.25).
@@ -76,7 +69,7 @@ TEST(AgentReadings, NonCompoundingEntryPassesAlpha2OfTheWholeLoad) {
 
 TEST(AgentReadings, NonCompoundingEntryLetsFrictionGoOnWithAlpha2WithoutAlpha1) {
   const Grid g = plate(3, 2);
-  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0), RuleSet::Patent,
+  LoadTransfer m(g, kMaterial, coefficients(0.5, 0.5, 0.25, 1.0, 0.0), RuleSet::Patent,
                  only(&Readings::non_compounding_entry));
   m.solve({{g.index(1, 1, 0), direction(1, false), 1.0}});
   // Row 1: friction P3 = alpha3 P0 = 0.25 enters each side agent whole and goes down as

@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """Figures 8-11 of WO2001052193 and the load-step animation, from a comparison's CSV output.
 
-    /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01]
+    /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01] [--formats png,pdf] [--wait]
 
 Reads OUT_DIR/{lines,cells,nodes,steps}.csv and lines.json (written by `workbench compare`) and
 writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed,
-fig11_displacement (.png and .pdf) and agent_steps.gif. Lines are named by their coordinates and
-described in the legends; 3D studies are drawn in the slice through the first load's centre.
-Uses Debian's python3-matplotlib and python3-numpy only; call it with /usr/bin/python3.
+fig11_displacement (in each of --formats, default png) and agent_steps.gif. Lines are named by
+their coordinates and described in the legends; 3D studies are drawn in the slice through the
+first load's centre. With --wait (how `workbench compare` runs it, beside the FEM reference) it
+draws the animation from steps.csv and lines.json first, then waits for a line "draw" on its
+standard input before it reads the other files.
+Uses Debian's python3-matplotlib, python3-numpy and python3-pil only; call it with /usr/bin/python3.
 """
 import argparse
 import csv
@@ -22,7 +25,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib import animation  # noqa: E402
+from PIL import Image  # noqa: E402  (matplotlib's own dependency)
 
 
 def column_name(header):
@@ -69,9 +72,10 @@ def progress(text):
         print("figures: " + text, file=sys.stderr, flush=True)
 
 
-def save(fig, out, name):
-    for ext in ("png", "pdf"):
+def save(fig, out, name, formats):
+    for ext in formats:
         fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150)  # constrained layout: no "tight" redraw
+        fig.set_layout_engine("none")  # the layout is done: the second format keeps it (9 % less CPU)
     plt.close(fig)
     progress(f"{name} drawn")
 
@@ -96,38 +100,118 @@ def line_data(lines, model, name):
     return d
 
 
+def in_slice(table, zc):
+    """The rows of a 3D table in the lattice plane nearest z = zc (all rows of a 2D table)."""
+    if "z" not in table:
+        return table
+    z = num(table["z"])
+    keep = np.isclose(z, z[np.argmin(abs(z - zc))])
+    return {k: v[keep] for k, v in table.items()}
+
+
+def lattice(x, y):
+    """The agents' lattice over their bounding box (a row or column that is all air keeps its
+    place): the image extent [mm] and grid_of(values), which puts one value per agent at its slot
+    (NaN elsewhere)."""
+    def axis(c):
+        u = np.unique(c)
+        h = np.diff(u).min() if len(u) > 1 else 1.0
+        index = np.rint((c - u[0]) / h).astype(int)
+        return u[0] + h * np.arange(index.max() + 1), index, h
+
+    (xs, ix, hx), (ys, iy, hy) = axis(x), axis(y)
+
+    def grid_of(values):
+        g = np.full((len(ys), len(xs)), np.nan)
+        g[iy, ix] = values
+        return g
+
+    extent = [1e3 * (xs[0] - hx / 2), 1e3 * (xs[-1] + hx / 2), 1e3 * (ys[0] - hy / 2), 1e3 * (ys[-1] + hy / 2)]
+    return extent, grid_of, 1e3 * hx
+
+
+def animation_gif(steps, out, name="agent_steps.gif"):
+    """The seed's animation: the agents' sigma_y as the load rises step by step (steps.csv only)."""
+    step = num(steps["step"]).astype(int)
+    step_ids = np.unique(step)
+    first = step == step_ids[0]  # every agent once, in cell order
+    extent, grid_of, _ = lattice(num(steps["x"][first]), num(steps["y"][first]))
+    n = int(first.sum())
+    sy = num(steps["sigma_y"])
+    generation = num(steps["generation"])
+    load = num(steps["load"])
+    lim = max(np.abs(sy).max(), 1e-300)
+    fig, ax = plt.subplots(figsize=(6, 5.5))
+    # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey,
+    # air blank (white, drawn over the grey).
+    cmap = plt.get_cmap("magma_r").copy()
+    cmap.set_bad("0.85")
+    image = ax.imshow(grid_of(np.zeros(n)), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+    air = np.isnan(grid_of(np.zeros(n)))
+    if air.any():
+        ax.imshow(np.where(air, 1.0, np.nan), origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1)
+    fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached; white: air)")
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    label = ax.set_title("")
+    # Blitting: the figure is drawn once without the artists that change (the agents' image, the air
+    # over it, the title) and the axes' frame drawn over them; each frame restores that and draws
+    # only these, in a full draw's order (the same pixels, a third of the CPU of 20 full draws).
+    changing = [image] + ax.images[1:] + list(ax.spines.values()) + [label]  # in drawing order
+    for artist in changing:
+        artist.set_animated(True)
+    fig.canvas.draw()
+    background = fig.canvas.copy_from_bbox(fig.bbox)
+    frames = []
+    for k in step_ids:
+        sel = step == k  # the same cell order in every step
+        image.set_data(grid_of(np.where(generation[sel] >= 0, -sy[sel] / 1e3, np.nan)))
+        label.set_text(f"agents, load {load[sel][0]:.3g} N (step {k}/{step_ids[-1]})")
+        fig.canvas.restore_region(background)
+        for artist in changing:
+            fig.draw_artist(artist)
+        frames.append(Image.frombuffer("RGBA", fig.canvas.get_width_height(), bytes(fig.canvas.buffer_rgba()),
+                                       "raw", "RGBA", 0, 1))
+    plt.close(fig)
+    # As matplotlib's PillowWriter saves them, at 4 frames per second, looping.
+    frames[0].save(os.path.join(out, name), save_all=True, append_images=frames[1:], duration=250, loop=0)
+    progress(f"{name} drawn")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dir")
     ap.add_argument("--title", default="")
     ap.add_argument("--mask", type=float, default=0.01)
+    ap.add_argument("--formats", default="png", help="comma-separated: png, pdf ([compare] figure_formats)")
+    ap.add_argument("--wait", action="store_true",
+                    help="draw the animation, then wait for 'draw' on stdin before reading the other files")
     args = ap.parse_args()
     out = os.path.join(args.dir, "figures")
     os.makedirs(out, exist_ok=True)
     title = args.title
+    formats = args.formats.split(",")
 
-    lines = read_csv(os.path.join(args.dir, "lines.csv"))
     with open(os.path.join(args.dir, "lines.json")) as f:
         meta = json.load(f)
-    cells = read_csv(os.path.join(args.dir, "cells.csv"))
-    nodes = read_csv(os.path.join(args.dir, "nodes.csv"))
-    steps = read_csv(os.path.join(args.dir, "steps.csv"))
     along, across = line_groups(meta)
     groups = ((along, "along the loads"), (across, "across the loads"))
-    slice_note = ""
+    # 3D: the slice through the first load's centre (its along line's z).
+    zc = along[0]["from"][2]
+    steps = in_slice(read_csv(os.path.join(args.dir, "steps.csv")), zc)
+    slice_note = f", slice z = {1e3 * zc:.4g} mm" if "z" in steps else ""
+    print(f"figures: read steps.csv in {time.process_time():.2f} s CPU (with the imports)", flush=True)
+    if args.wait:  # the animation needs only the agents: drawn while the workbench solves the FEM reference
+        run_all([lambda: animation_gif(steps, out)], ["animation_gif"])
+        start = time.time()
+        if sys.stdin.readline().strip() != "draw":
+            sys.exit("figures: the workbench stopped before the comparison's data was complete")
+        print(f"figures: waited {time.time() - start:.2f} s for the comparison's data", flush=True)
+    start = time.process_time()
 
-    # 3D: keep the slice through the first load's centre (its along line's z).
-    if "z" in cells:
-        zc = along[0]["from"][2]
-        slice_note = f", slice z = {1e3 * zc:.4g} mm"
-        cz = num(cells["z"])
-        keep = np.isclose(cz, cz[np.argmin(abs(cz - zc))])
-        cells = {k: v[keep] for k, v in cells.items()}
-        nz = num(nodes["z"])
-        keep = np.isclose(nz, nz[np.argmin(abs(nz - zc))])
-        nodes = {k: v[keep] for k, v in nodes.items()}
-        step_keep = np.isin(steps["cell"], cells["cell"])
-        steps = {k: v[step_keep] for k, v in steps.items()}
+    lines = read_csv(os.path.join(args.dir, "lines.csv"))
+    cells = in_slice(read_csv(os.path.join(args.dir, "cells.csv")), zc)
+    nodes = in_slice(read_csv(os.path.join(args.dir, "nodes.csv")), zc)
 
     def legend(ax):
         ax.legend(fontsize=6, loc="best")
@@ -163,7 +247,7 @@ def main():
                 legend(ax_e)
         fig.suptitle(f"Fig. 8 - agent against FEM stress ({title}{slice_note}); ratio masked where |FEM| < "
                      f"{args.mask:g} of the line's max|FEM|")
-        save(fig, out, "fig8_ratio")
+        save(fig, out, "fig8_ratio", formats)
 
     def fig9_lines():
         # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
@@ -181,25 +265,10 @@ def main():
                 ax.set_title(f"{what}: {comp}")
                 legend(ax)
         fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
-        save(fig, out, "fig9_stress_lines")
+        save(fig, out, "fig9_stress_lines", formats)
 
-    x, y = num(cells["x"]), num(cells["y"])
-    # The agents' lattice over their bounding box: a row or column that is all air keeps its place.
-    def lattice(c):
-        u = np.unique(c)
-        h = np.diff(u).min() if len(u) > 1 else 1.0
-        index = np.rint((c - u[0]) / h).astype(int)
-        return u[0] + h * np.arange(index.max() + 1), index
+    extent, grid_of, h_mm = lattice(num(cells["x"]), num(cells["y"]))
 
-    (xs, ix), (ys, iy) = lattice(x), lattice(y)
-
-    def grid_of(values):
-        g = np.full((len(ys), len(xs)), np.nan)
-        g[iy, ix] = values
-        return g
-
-    extent = [1e3 * (xs[0] - (xs[1] - xs[0]) / 2), 1e3 * (xs[-1] + (xs[1] - xs[0]) / 2),
-              1e3 * (ys[0] - (ys[1] - ys[0]) / 2), 1e3 * (ys[-1] + (ys[1] - ys[0]) / 2)]
     def fig9_maps():
         fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
         for row, comp in enumerate(("sigma_x", "sigma_y")):
@@ -214,7 +283,7 @@ def main():
                 ax.set_ylabel("y [mm]")
                 fig.colorbar(im, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
         fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
-        save(fig, out, "fig9_stress_maps")
+        save(fig, out, "fig9_stress_maps", formats)
 
     def fig10():
         # Fig. 10: deformed shape, (a) FEM and (b) agents, one magnification for both.
@@ -245,10 +314,9 @@ def main():
             ax.set_title(f"{label}, |u|max = {np.nanmax(np.hypot(U, V)):.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-        h_mm = 1e3 * (xs[1] - xs[0])
         fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
                      f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
-        save(fig, out, "fig10_deformed")
+        save(fig, out, "fig10_deformed", formats)
 
     def fig11():
         # Fig. 11: displacement of both models along the lines, both components.
@@ -266,44 +334,16 @@ def main():
                 ax.set_title(f"{what}: {comp}")
                 legend(ax)
         fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title}{slice_note})")
-        save(fig, out, "fig11_displacement")
+        save(fig, out, "fig11_displacement", formats)
 
-    def animation_gif():
-        # The seed's animation: the agents' sigma_y as the load rises step by step.
-        step_ids = np.unique(num(steps["step"]).astype(int))
-        sy = num(steps["sigma_y"])
-        lim = max(np.abs(sy).max(), 1e-300)
-        cell_index = {c: k for k, c in enumerate(cells["cell"])}
-        order = np.array([cell_index[c] for c in steps["cell"]])
-        fig, ax = plt.subplots(figsize=(6, 5.5))
-        # Compression -sigma_y from light (none) to dark (most); agents the load has not reached in grey,
-        # air blank (white, drawn over the grey).
-        cmap = plt.get_cmap("magma_r").copy()
-        cmap.set_bad("0.85")
-        image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
-        air = np.isnan(grid_of(np.zeros(len(x))))
-        if air.any():
-            ax.imshow(np.where(air, 1.0, np.nan), origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1)
-        fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached; white: air)")
-        ax.set_xlabel("x [mm]")
-        ax.set_ylabel("y [mm]")
-        label = ax.set_title("")
-
-        def frame(k):
-            sel = steps["step"].astype(int) == step_ids[k]
-            values = np.full(len(x), np.nan)
-            values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
-            image.set_data(grid_of(values))
-            label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
-            return image, label
-
-        anim = animation.FuncAnimation(fig, frame, frames=len(step_ids), blit=False)
-        anim.save(os.path.join(out, "agent_steps.gif"), writer=animation.PillowWriter(fps=4))
-        plt.close(fig)
-    print(f"figures: read the data in {time.process_time():.2f} s CPU (with the imports)", flush=True)
+    print(f"figures: read the comparison's data in {time.process_time() - start:.2f} s CPU", flush=True)
     # The figures are independent: drawn in two processes (forked, sharing the data read above),
-    # which halves the wall time on two cores (docs/performance.md).
-    jobs = ((fig8, fig9_lines, fig11), (fig9_maps, fig10, animation_gif))
+    # which halves the wall time on two cores (docs/performance.md); the jobs are balanced by their
+    # measured CPU time (figures.log).
+    if args.wait:
+        jobs = ([fig8, fig9_lines], [fig9_maps, fig11, fig10])
+    else:
+        jobs = ([fig8, fig9_lines, fig11], [fig9_maps, fig10, lambda: animation_gif(steps, out)])
     if os.cpu_count() and os.cpu_count() > 1:
         procs = [multiprocessing.get_context("fork").Process(target=run_all, args=(j,)) for j in jobs]
         for proc in procs:
@@ -318,11 +358,12 @@ def main():
     print(f"figures: wrote {out}")
 
 
-def run_all(figures):
-    for draw in figures:
+def run_all(figures, names=None):
+    for k, draw in enumerate(figures):
         start = time.process_time()
         draw()
-        print(f"figures: {draw.__name__} {time.process_time() - start:.2f} s CPU", flush=True)
+        name = names[k] if names else draw.__name__
+        print(f"figures: {name} {time.process_time() - start:.2f} s CPU", flush=True)
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("dir")
     parser.add_argument("--title", default="")
+    parser.add_argument("--formats", default="png", help="comma-separated: png, pdf")
     args = parser.parse_args()
     c = {k: v.astype(float) for k, v in read_csv(os.path.join(args.dir, "centreline.csv")).items()}
     out = os.path.join(args.dir, "figures")
@@ -45,7 +46,7 @@ def main():
     bx.grid(alpha=0.3)
     bx.legend()
     fig.tight_layout()
-    for ext in ("png", "pdf"):
+    for ext in args.formats.split(","):
         fig.savefig(os.path.join(out, f"centreline.{ext}"), dpi=150, bbox_inches="tight")
     plt.close(fig)
 

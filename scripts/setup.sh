@@ -9,7 +9,7 @@ packages=(
   libvtk9-dev libdeal.ii-dev openmpi-bin libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-pybind11 python3-dev python3-scipy python3-vtk9
-  python3-matplotlib python3-numpy jupyter-core jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
+  python3-matplotlib python3-numpy python3-pil jupyter-core jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
   ffmpeg
 )
 

@@ -1,16 +1,20 @@
-// Runs the Python scripts (and whatever they start) without a shell, killable as a group.
+// Runs the Python scripts (and whatever they start) without a shell, killable as a group, in the
+// foreground or beside the workbench's own work.
 #include <workbench/child_process.h>
 #include <workbench/error.h>
 #include <workbench/interruption.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <thread>
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -44,13 +48,20 @@ fs::path find_script(const std::string& relative) {
   throw Error(relative + ": script not found in share/workbench/ beside the program (set WORKBENCH_SCRIPT_DIR)");
 }
 
-int run_child(const std::vector<std::string>& argv, const fs::path& log) {
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path& log) {
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
 
+  // Its standard input: a socket, so that a write after the child ended fails (MSG_NOSIGNAL)
+  // instead of killing this process with SIGPIPE; this end is not inherited (SOCK_CLOEXEC), so
+  // the child sees end of input once this end is closed.
+  int ends[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
+    throw Error(argv[0] + ": cannot run (" + std::strerror(errno) + ")");
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_adddup2(&files, ends[1], 0);
   // On a terminal the child gets it as descriptor 3 for its progress lines (WORKBENCH_PROGRESS_FD);
   // everything else it prints goes to the log.
   const bool terminal = ::isatty(2);
@@ -66,6 +77,7 @@ int run_child(const std::vector<std::string>& argv, const fs::path& log) {
   sigemptyset(&defaults);
   sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
+  sigaddset(&defaults, SIGPIPE);
   posix_spawnattr_setpgroup(&attr, 0);
   posix_spawnattr_setsigmask(&attr, &none);
   posix_spawnattr_setsigdefault(&attr, &defaults);
@@ -88,11 +100,33 @@ int run_child(const std::vector<std::string>& argv, const fs::path& log) {
   }
   posix_spawn_file_actions_destroy(&files);
   posix_spawnattr_destroy(&attr);
-  if (err != 0) throw Error(argv[0] + ": cannot run (" + std::strerror(err) + ")");
-
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  ::close(ends[1]);
+  if (err != 0) {
+    ::close(ends[0]);
+    throw Error(argv[0] + ": cannot run (" + std::strerror(err) + ")");
   }
+  pid_ = pid;
+  input_ = ends[0];
+}
+
+bool ChildProcess::send(const std::string& line) {
+  const std::string text = line + "\n";
+  for (std::size_t done = 0; input_ >= 0 && done < text.size();) {
+    const ssize_t n = ::send(input_, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += std::size_t(n);
+  }
+  return input_ >= 0;
+}
+
+int ChildProcess::wait() {
+  if (input_ >= 0) ::close(input_);
+  input_ = -1;
+  int status = 0;
+  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = 0;
   set_child_group(0);
   while (interruption_under_way()) ::pause();  // the watcher ends the process (its signals are blocked here)
   if (WIFEXITED(status)) return WEXITSTATUS(status);
@@ -100,17 +134,44 @@ int run_child(const std::vector<std::string>& argv, const fs::path& log) {
   return 1;
 }
 
-void run_python_script(const std::string& script, const std::vector<std::string>& args, const fs::path& log,
-                       const std::string& what) {
+ChildProcess::~ChildProcess() {
+  if (pid_ <= 0) return;
+  // Not waited for: the caller stopped on an error. The child's group is ended (SIGKILL after a
+  // grace period for one that ignores SIGTERM) and the child reaped, so nothing outlives the run.
+  ::close(input_);
+  ::kill(-pid_, SIGTERM);
+  int status = 0;
+  bool reaped = false;
+  for (int i = 0; i < 100 && !reaped; ++i) {
+    reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
+    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(-pid_, SIGKILL);  // the group's other members, or a child that ignored SIGTERM
+  while (!reaped && ::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  }
+  set_child_group(0);
+}
+
+int run_child(const std::vector<std::string>& argv, const fs::path& log) { return ChildProcess(argv, log).wait(); }
+
+std::vector<std::string> python_script_command(const std::string& script, const std::vector<std::string>& args) {
   std::vector<std::string> argv{python_interpreter(), find_script(script).string()};
   argv.insert(argv.end(), args.begin(), args.end());
-  if (run_child(argv, log) != 0) {
-    std::ifstream in(log);
-    std::string line, last;
-    while (std::getline(in, line))
-      if (!line.empty()) last = line;
-    throw Error(what + " failed: " + (last.empty() ? "see " + log.string() : last));
-  }
+  return argv;
+}
+
+void check_script_status(int status, const fs::path& log, const std::string& what) {
+  if (status == 0) return;
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  throw Error(what + " failed: " + (last.empty() ? "see " + log.string() : last));
+}
+
+void run_python_script(const std::string& script, const std::vector<std::string>& args, const fs::path& log,
+                       const std::string& what) {
+  check_script_status(run_child(python_script_command(script, args), log), log, what);
 }
 
 }  // namespace workbench

@@ -58,6 +58,10 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
   for (const auto& [name, limit] : o.gate)
     if (!(limit >= 0) || !std::isfinite(limit)) t.fail("gate." + name, "a limit must be a finite number >= 0");
   o.figures = t.flag("figures", true);
+  o.figure_formats = t.texts("figure_formats", o.figure_formats);
+  if (o.figure_formats.empty()) t.fail("figure_formats", "name at least one format (\"png\", \"pdf\")");
+  for (const auto& f : o.figure_formats)
+    if (f != "png" && f != "pdf") t.fail("figure_formats", "unknown format \"" + f + "\" (\"png\" or \"pdf\")");
   return o;
 }
 
@@ -89,7 +93,7 @@ std::vector<std::string> agent_metric_names(const std::vector<std::string>& line
     }
   }
   for (const char* n : {"agent.equilibrium_dev", "agent.lost_share", "agent.reaction_share", "fem.equilibrium_dev",
-                        "agent.reach_fraction", "time.agent_s", "time.fem_s", "time.compare_s", "time.figures_s",
+                        "agent.reach_fraction", "time.agent_s", "time.fem_s", "time.compare_s", "time.figures_wait_s",
                         "time.total_s"})
     names.push_back(n);
   return names;
@@ -144,15 +148,16 @@ std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& st
   return agent_study::write_agent_outputs(study, dir / "agent", log);
 }
 
-// Step 4: both models and the reference's second level along each line.
+// Steps 5 and 7: both models, the reference and its second level along each line.
 struct LineSamples {
   /// agent, reference, estimate, staircase (FEM on the agents' mesh beside a true-geometry
   /// reference; else empty); u: (u_x, u_y) per sample
   std::vector<double> sx[4], sy[4], u[4];
 };
 
-LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFields* fields[4]) {
-  LineSamples s;
+/// Samples the fields that are given (not null) into `s`: first the agent and the reference, then,
+/// once solved, the estimate (and staircase).
+void sample_line(const agent::Grid& grid, const Line& line, const GridFields* const fields[4], LineSamples& s) {
   for (int i : line.body_samples) {
     const Eigen::Vector3d p = line.point(i);
     for (int m = 0; m < 4; ++m) {
@@ -162,10 +167,9 @@ LineSamples sample_line(const agent::Grid& grid, const Line& line, const GridFie
       for (int a = 0; a < 2; ++a) s.u[m].push_back(sample_nodes(grid, fields[m]->u, grid.dim, a, p));
     }
   }
-  return s;
 }
 
-// Step 5: the metrics of one scope; each error norm with the reference's own error beside it (and
+// Step 7: the metrics of one scope; each error norm with the reference's own error beside it (and
 // the staircase's own error beside a true-geometry reference).
 void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<double>* sx,
                const std::vector<double>* sy, const std::vector<double>* u, double mask) {
@@ -191,7 +195,7 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
 }
 
 /// The body's cells (grid order) and nodes, and the far field's: air counts in neither.
-void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* fields[4], double mask) {
+void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* const fields[4], double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
   std::vector<char> body_cells(grid.count(), 0);
@@ -237,7 +241,7 @@ void add_load_balance(CompareOutcome& out, const agent::Diagnostics& d, double m
   }
 }
 
-// Step 6: the files.
+// Step 5: the files (steps.csv in step 2).
 void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
                      const std::vector<LineSamples>& samples) {
   const int dim = grid.dim;
@@ -330,24 +334,37 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
   nodes_csv.close();
 }
 
-/// The agent's sigma per cell at every load step (the animation's data).
+/// The agent's sigma per cell at every load step, with the cell's centre (the animation's data,
+/// drawn before the other files exist).
 void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
                      const std::vector<agent_study::AgentState>& states) {
-  const int dim = study.mesh.grid.dim;
+  const auto& grid = study.mesh.grid;
+  const int dim = grid.dim;
   auto csv = open_csv(file);
-  csv << "step,load [N],cell,generation,sigma_x [Pa],sigma_y [Pa]\n";
+  csv << "step,load [N],cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",generation,sigma_x [Pa],sigma_y [Pa]\n";
   for (std::size_t k = 0; k < states.size(); ++k) {
     const auto& s = states[k];
     for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
       const std::size_t cell = study.mesh.cell_of_element[e];
-      csv << k + 1 << ',' << s.diagnostics.applied << ',' << e << ',' << s.generation[cell] << ','
-          << s.stress[cell * dim] << ',' << s.stress[cell * dim + 1] << '\n';
+      const Eigen::Vector3d c = grid.centre(cell);
+      csv << k + 1 << ',' << s.diagnostics.applied << ',' << e;
+      for (int a = 0; a < dim; ++a) csv << ',' << c[a];
+      csv << ',' << s.generation[cell] << ',' << s.stress[cell * dim] << ',' << s.stress[cell * dim + 1] << '\n';
     }
   }
   csv.close();
 }
 
-// Step 8: what the summary says beside the metrics.
+/// The sample lines as lines.json (for the figures) and summary.json list them.
+nlohmann::json lines_json(const std::vector<Line>& lines) {
+  auto json = nlohmann::json::array();
+  for (const auto& l : lines)
+    json.push_back({{"name", l.name}, {"description", l.description}, {"kind", l.kind},
+                    {"from", {l.from[0], l.from[1], l.from[2]}}, {"to", {l.to[0], l.to[1], l.to[2]}}});
+  return json;
+}
+
+// Step 9: what the summary says beside the metrics.
 nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompareInput& in,
                               const CompareOptions& options, const Reference& reference,
                               const agent::Diagnostics& d) {
@@ -386,9 +403,7 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
         {"agent_nodes_outside", reference.outside[1]}};
   json["far_distance"] = in.far_distance;
   json["mask"] = options.mask;
-  for (const auto& l : in.lines)
-    json["lines"].push_back({{"name", l.name}, {"description", l.description}, {"kind", l.kind},
-                             {"from", {l.from[0], l.from[1], l.from[2]}}, {"to", {l.to[0], l.to[1], l.to[2]}}});
+  json["lines"] = lines_json(in.lines);
   return json;
 }
 
@@ -399,26 +414,48 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   const auto in = read_input(file, options);
   const auto& grid = in.study.mesh.grid;
 
-  // 2. The agent model, every load step.
+  // 2. The agent model, every load step, and the animation's data.
   auto t = std::chrono::steady_clock::now();
   const auto states = run_agent(in.study, dir, log);
   const auto& agent_state = states.back();
+  write_steps_csv(dir / "steps.csv", in.study, states);
+  report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
   const double agent_seconds = seconds_since(t);
 
-  // 3. The FEM reference at two levels (its output in dir/fem).
-  t = std::chrono::steady_clock::now();
-  const auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
-  const double fem_seconds = seconds_since(t);
+  // 3. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
+  // the animation, which needs only the agents, while the FEM reference solves.
+  const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
+  std::optional<report::BackgroundFigures> figures;
+  if (options.figures) figures.emplace(dir, title, options.figure_formats, log);
 
-  // 4. Everything on the agent grid and along the lines.
+  // 4. The FEM reference (its output in dir/fem).
+  t = std::chrono::steady_clock::now();
+  auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
+  double fem_seconds = seconds_since(t);
+
+  // 5. Both models on the agent grid and along the lines, and the files the figures read: the
+  // figures go on while the reference's own error is estimated.
   t = std::chrono::steady_clock::now();
   const auto agent_fields = agent_on_grid(grid, agent_state);
-  const GridFields* fields[4] = {&agent_fields, &reference.fields, &reference.estimate_fields,
-                                 reference.staircase_fields ? &*reference.staircase_fields : nullptr};
-  std::vector<LineSamples> samples;
-  for (const auto& line : in.lines) samples.push_back(sample_line(grid, line, fields));
+  const GridFields* const models[4] = {&agent_fields, &reference.fields, nullptr, nullptr};
+  std::vector<LineSamples> samples(in.lines.size());
+  for (std::size_t li = 0; li < in.lines.size(); ++li) sample_line(grid, in.lines[li], models, samples[li]);
+  write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
+  write_field_files(dir, in, agent_fields, reference.fields, agent_state, options.mask);
+  if (figures) figures->data_ready();
+  double compare_seconds = seconds_since(t);
 
-  // 5. The metrics.
+  // 6. The reference's error estimate (and with the true geometry the staircase's own error).
+  t = std::chrono::steady_clock::now();
+  estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log);
+  fem_seconds += seconds_since(t);
+
+  // 7. The metrics.
+  t = std::chrono::steady_clock::now();
+  const GridFields* const fields[4] = {&agent_fields, &reference.fields, &reference.estimate_fields,
+                                       reference.staircase_fields ? &*reference.staircase_fields : nullptr};
+  const GridFields* const errors[4] = {nullptr, nullptr, fields[2], fields[3]};
+  for (std::size_t li = 0; li < in.lines.size(); ++li) sample_line(grid, in.lines[li], errors, samples[li]);
   CompareOutcome outcome;
   add_field_scopes(outcome, in, fields, options.mask);
   for (std::size_t li = 0; li < in.lines.size(); ++li)
@@ -426,29 +463,20 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
   outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
                              "|reactions + applied| / |applied| (FEM)"});
-
-  // 6. The files.
-  write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
-  write_field_files(dir, in, agent_fields, reference.fields, agent_state, options.mask);
-  write_steps_csv(dir / "steps.csv", in.study, states);
+  compare_seconds += seconds_since(t);
   outcome.metrics.push_back({"time.agent_s", agent_seconds, "agent model, all load steps with output [s]"});
   outcome.metrics.push_back({"time.fem_s", fem_seconds, "FEM reference, both levels, with output [s]"});
-  outcome.metrics.push_back({"time.compare_s", seconds_since(t), "comparison and its output [s]"});
+  outcome.metrics.push_back({"time.compare_s", compare_seconds, "comparison and its output [s]"});
 
-  // 7. Figures 8-11 and the animation, from the CSV files (compare/figures.py, matplotlib).
-  const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
-  auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
-  report::write_text(dir / "lines.json", json["lines"].dump(1) + "\n");
-  double figures_seconds = 0;
-  if (options.figures) {
-    t = std::chrono::steady_clock::now();
-    report::run_figure_script("compare/figures.py", dir, title, log);
-    figures_seconds = seconds_since(t);
-  }
-  outcome.metrics.push_back({"time.figures_s", figures_seconds, "figures and animation [s]"});
+  // 8. The figures: what is left of them once the rest is done.
+  t = std::chrono::steady_clock::now();
+  if (figures) figures->finish();
+  outcome.metrics.push_back({"time.figures_wait_s", seconds_since(t),
+                             "waiting for the figures after the rest (they are drawn beside the FEM reference) [s]"});
   outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
 
-  // 8. The gate, summary.json / summary.txt / junit.xml.
+  // 9. The gate, summary.json / summary.txt / junit.xml.
+  auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
   std::vector<std::string> notes{
       "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
           " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +

@@ -269,7 +269,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   double figures_seconds = 0;
   if (options.figures) {
     t = std::chrono::steady_clock::now();
-    report::run_figure_script("compare/pbd_figures.py", dir, title, log);
+    report::run_figure_script("compare/pbd_figures.py", dir, title, options.figure_formats, log);
     figures_seconds = seconds_since(t);
   }
   add("time.figures_s", figures_seconds);

@@ -201,38 +201,36 @@ GridFields reference_on_grid(const ReferenceOptions& options, const agent::Impor
   return options.mesh.empty() ? fem_on_grid(mesh, fem, case_name) : fem_at_agents(mesh.grid, fem, outside);
 }
 
-Reference solve_reference(fem_reference::FemProblem problem, const ReferenceOptions& options,
+Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
                           const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
   Reference r;
-  const std::string name = problem.name;
-  const bool true_geometry = !options.mesh.empty();
-  fem_reference::FemProblem reference = reference_problem(problem, options, mesh.grid);
-  auto on_grid = [&](const fem_reference::FemResult& fem) { return reference_on_grid(options, mesh, fem, name, r.outside); };
-  log << "compare: reference " << options.describe() << "\n";
-  r.fem = report::run_fem(reference, dir, log, r.seconds);
-  r.fields = on_grid(r.fem);
-
-  const auto start = std::chrono::steady_clock::now();
   r.estimate = options.estimate();
-  reference.options.degree = r.estimate.degree;
-  reference.options.refine = r.estimate.refine;
-  reference.options.write_vtu = false;
+  log << "compare: reference " << options.describe() << "\n";
+  r.fem = report::run_fem(reference_problem(problem, options, mesh.grid), dir, log, r.seconds);
+  r.fields = reference_on_grid(options, mesh, r.fem, problem.name, r.outside);
+  return r;
+}
+
+void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
+                              const agent::ImportedMesh& mesh, std::ostream& log) {
+  const auto start = std::chrono::steady_clock::now();
+  fem_reference::FemProblem estimate_problem = reference_problem(problem, r.estimate, mesh.grid);
+  estimate_problem.options.write_vtu = false;
   log << "compare: the reference's error estimate: against " << r.estimate.describe() << "\n";
-  const auto estimate = fem_reference::solve_fem(reference, {}, &log);
-  r.estimate_fields = on_grid(estimate);
+  const auto estimate = fem_reference::solve_fem(estimate_problem, {}, &log);
+  r.estimate_fields = reference_on_grid(r.estimate, mesh, estimate, problem.name, r.outside);
   r.estimate_dofs = estimate.n_dofs;
   r.estimate_seconds = report::seconds_since(start);
 
-  if (true_geometry) {
+  if (!options.mesh.empty()) {  // the true geometry: FEM on the staircase at the reference's level
     problem.options.degree = options.degree;
     problem.options.refine = options.refine;
     problem.options.write_vtu = false;
     log << "compare: the staircase's own error: FEM on the agents' mesh at the reference's level\n";
     const auto staircase = fem_reference::solve_fem(problem, {}, &log);
-    r.staircase_fields = fem_on_grid(mesh, staircase, name);
+    r.staircase_fields = fem_on_grid(mesh, staircase, problem.name);
     r.staircase_dofs = staircase.n_dofs;
   }
-  return r;
 }
 
 }  // namespace compare

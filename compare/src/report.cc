@@ -149,10 +149,36 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   write_text(dir / "junit.xml", junit.str());
 }
 
-void run_figure_script(const std::string& script, const fs::path& dir, const std::string& title, std::ostream& log) {
+namespace {
+/// The scripts' --formats argument: "png,pdf".
+std::string format_list(const std::vector<std::string>& formats) {
+  std::string list;
+  for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
+  return list;
+}
+}  // namespace
+
+void run_figure_script(const std::string& script, const fs::path& dir, const std::string& title,
+                       const std::vector<std::string>& formats, std::ostream& log) {
   const std::string name = fs::path(script).filename().string();
   log << "compare: drawing figures (" << name << ")\n" << std::flush;
-  workbench::run_python_script(script, {dir.string(), "--title", title}, dir / "figures.log", name);
+  workbench::run_python_script(script, {dir.string(), "--title", title, "--formats", format_list(formats)},
+                               dir / "figures.log", name);
 }
+
+BackgroundFigures::BackgroundFigures(const fs::path& dir, const std::string& title,
+                                     const std::vector<std::string>& formats, std::ostream& log)
+    : log_file_(dir / "figures.log"),
+      child_(workbench::python_script_command(
+                 "compare/figures.py", {dir.string(), "--title", title, "--formats", format_list(formats), "--wait"}),
+             log_file_) {
+  log << "compare: drawing figures (figures.py) beside the FEM reference\n" << std::flush;
+}
+
+void BackgroundFigures::data_ready() {
+  child_.send("draw");  // a script that already ended says why in finish()
+}
+
+void BackgroundFigures::finish() { workbench::check_script_status(child_.wait(), log_file_, "figures.py"); }
 
 }  // namespace compare::report

@@ -5,6 +5,7 @@
 #include <compare/compare_study.h>
 #include <fem_reference/fem.h>
 #include <workbench/case_file.h>
+#include <workbench/child_process.h>
 
 #include <nlohmann/json.hpp>
 
@@ -49,10 +50,29 @@ void finish(const std::filesystem::path& dir, const std::filesystem::path& case_
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
             std::ostream& log);
 
-/// Runs `python <script> <dir> --title <title>` (`script` relative to share/workbench/, e.g.
+/// Runs `python <script> <dir> --title <title> --formats <png,pdf>` (`script` relative to share/workbench/, e.g.
 /// "compare/figures.py"; workbench/child_process.h), output into dir/figures.log; throws
 /// workbench::Error with its last line when it fails.
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
-                       std::ostream& log);
+                       const std::vector<std::string>& formats, std::ostream& log);
+
+/// compare/figures.py drawing beside the comparison (`--wait`): started once the agent's files
+/// (steps.csv, lines.json) are in `dir`, it draws the load-step animation while the FEM reference
+/// solves, then waits for data_ready() (lines.csv, cells.csv, nodes.csv complete) and draws
+/// Figures 8-11 while the reference's error estimate solves. Destroyed without finish() (an error
+/// in between), it ends the script.
+class BackgroundFigures {
+ public:
+  BackgroundFigures(const std::filesystem::path& dir, const std::string& title, const std::vector<std::string>& formats,
+                    std::ostream& log);
+  /// The files the figures need besides the agent's are complete.
+  void data_ready();
+  /// Waits for the script; throws workbench::Error with its last line when it failed.
+  void finish();
+
+ private:
+  std::filesystem::path log_file_;
+  workbench::ChildProcess child_;
+};
 
 }  // namespace compare::report

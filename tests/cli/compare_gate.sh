@@ -57,6 +57,30 @@ lines=$(($(wc -l <"$work/block/lines.csv" 2>/dev/null || echo 1) - 1))
 check block_samples $((lines != 2 * 4 * 10)) "lines.csv has $lines samples"
 [ -s "$work/block/figures/fig10_deformed.png" ]
 check block_figures $? "no Fig. 10"
+# The animation was drawn first, while the FEM reference solved, from steps.csv (with the cells' centres).
+head -1 "$work/block/steps.csv" | grep -q '^step,load \[N\],cell,x \[m\],y \[m\],z \[m\],generation,'
+check block_steps_header $? "$(head -1 "$work/block/steps.csv")"
+[ -s "$work/block/figures/agent_steps.gif" ] && [ ! -e "$work/block/figures/fig8_ratio.pdf" ]
+check block_png_only $? "$(ls "$work/block/figures")"
+
+# figure_formats: PDF too when asked; an unknown format is bad input (exit 2, nothing written).
+cp "$work/block.toml" "$work/formats.toml"  # (block3d.toml has no [compare] table)
+printf '\n[compare]\nfigure_formats = ["png", "pdf"]\n' >>"$work/formats.toml"
+"$bin" compare "$work/formats.toml" -o "$work/formats" 2>"$work/log"
+rc=$?
+check formats_exit $((rc != 0)) "exit $rc: $(tail -2 "$work/log")"
+for f in fig8_ratio fig9_stress_lines fig9_stress_maps fig10_deformed fig11_displacement; do
+  [ -s "$work/formats/figures/$f.png" ] && head -c 5 "$work/formats/figures/$f.pdf" | grep -q '%PDF-'
+  check "formats_$f" $? "$(ls "$work/formats/figures")"
+done
+sed -i 's/^figure_formats = .*/figure_formats = ["png", "svg"]/' "$work/formats.toml"
+"$bin" compare "$work/formats.toml" -o "$work/svg" 2>"$work/log"
+rc=$?
+check svg_exit $((rc != 2)) "exit $rc"
+grep -q 'formats.toml: compare.figure_formats: unknown format "svg"' "$work/log" && [ "$(wc -l <"$work/log")" -eq 1 ]
+check svg_message $? "$(cat "$work/log")"
+[ ! -e "$work/svg" ]
+check svg_no_output $? "output written"
 
 echo "compare gate: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

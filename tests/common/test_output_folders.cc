@@ -15,6 +15,7 @@
 #include <optional>
 #include <sstream>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -172,6 +173,44 @@ TEST(ChildProcess, PassesArgumentsVerbatimAndReportsTheExitStatus) {
   EXPECT_EQ(run_child({"/bin/sh", "-c", "kill -TERM $$"}, log), 128 + 15);
   EXPECT_EQ(error_of([&] { run_child({"/nonexistent/program"}, log); }),
             "/nonexistent/program: cannot run (No such file or directory)");
+}
+
+TEST(ChildProcess, ReadsWhatIsSentAndSeesTheEndOfItsInput) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  ChildProcess child({"/bin/sh", "-c", "read a; read b; echo \"$a|$b\"; if read c; then exit 1; fi; exit 4"}, log);
+  EXPECT_TRUE(child.send("first line"));
+  EXPECT_TRUE(child.send("second"));
+  EXPECT_EQ(child.wait(), 4);  // wait() closed its input: the third read met the end
+  EXPECT_EQ(read(log), "first line|second\n");
+  EXPECT_EQ(child.pid(), 0);
+}
+
+TEST(ChildProcess, SendingToAnEndedChildFailsWithoutASignal) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  ChildProcess child({"/bin/sh", "-c", "exit 5"}, log);
+  siginfo_t info{};
+  ASSERT_EQ(::waitid(P_PID, id_t(child.pid()), &info, WEXITED | WNOWAIT), 0);  // ended, not yet reaped
+  EXPECT_FALSE(child.send("draw"));  // EPIPE, and no SIGPIPE ends this test
+  EXPECT_EQ(child.wait(), 5);
+}
+
+TEST(ChildProcess, OneNotWaitedForIsEndedWithItsGroup) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  const fs::path fifo = log.parent_path() / "ready";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  int pid = 0;
+  {
+    // A child that ignores SIGTERM (kept across exec): the destructor must end it with SIGKILL.
+    // It says "ready" through the FIFO once the trap is set (opening the FIFO waits for it).
+    ChildProcess child({"/bin/sh", "-c", "trap '' TERM; echo ready > \"$0\"; exec sleep 1000", fifo.string()}, log);
+    pid = child.pid();
+    ASSERT_GT(pid, 0);
+    EXPECT_EQ(read(fifo), "ready\n");
+  }
+  EXPECT_EQ(::kill(-pid, 0), -1);  // no process of its group is left
+  EXPECT_EQ(errno, ESRCH);
+  EXPECT_EQ(::waitpid(pid, nullptr, WNOHANG), -1);  // and the child was reaped
+  EXPECT_EQ(errno, ECHILD);
 }
 
 TEST(ChildProcess, PythonIsWorkbenchPythonElseTheSystemOne) {

@@ -18,11 +18,50 @@ std::string python_interpreter();
 /// copies the scripts into <build>/share/workbench). Throws Error when it is not there.
 std::filesystem::path find_script(const std::string& relative);
 
+/// A program running beside the workbench (figures.py drawing while the FEM reference solves):
+/// started as run_child starts one, with its standard input a channel from this object.
+///
+///   workbench::ChildProcess figures({python, script, dir, "--wait"}, dir / "figures.log");
+///   ...                        // the child works on what is ready; this process goes on
+///   figures.send("draw");      // the rest of its input is ready
+///   int status = figures.wait();
+///
+/// One at a time (an interruption ends the one registered child group). A ChildProcess that is
+/// destroyed without wait() (an error in between) ends the child and its group and reaps it.
+class ChildProcess {
+ public:
+  /// Starts `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log`;
+  /// throws Error when it cannot be started.
+  ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& log);
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  ~ChildProcess();
+  /// Writes `line` and a newline to the child's standard input; false when the child no longer
+  /// reads it (it ended), never a SIGPIPE.
+  bool send(const std::string& line);
+  /// Closes the child's standard input (it sees end of input) and waits for it to end; its exit
+  /// status, 128 + signal when a signal ended it.
+  int wait();
+  /// The child's process id, also its process group's (0 once waited for).
+  int pid() const { return pid_; }
+
+ private:
+  int pid_ = 0;
+  int input_ = -1;  // this end of the child's standard input
+};
+
 /// Runs `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log` and
 /// waits; when this program's stderr is a terminal, the child also gets it as descriptor
-/// $WORKBENCH_PROGRESS_FD for its progress lines (quiet otherwise); returns its exit status (128 + signal when a signal ended it). Throws Error when it
-/// cannot be started.
+/// $WORKBENCH_PROGRESS_FD for its progress lines (quiet otherwise); its standard input is empty.
+/// Returns its exit status (128 + signal when a signal ended it). Throws Error when it cannot be
+/// started.
 int run_child(const std::vector<std::string>& argv, const std::filesystem::path& log);
+
+/// The argument vector that runs a shipped script: python_interpreter(), find_script(script), `args`.
+std::vector<std::string> python_script_command(const std::string& script, const std::vector<std::string>& args);
+
+/// Throws Error "<what> failed: <last line of log>" when a script's exit `status` is not 0.
+void check_script_status(int status, const std::filesystem::path& log, const std::string& what);
 
 /// Runs python_interpreter() on find_script(script) with `args`; throws Error "<what> failed: <last
 /// line of the log>" when it exits non-zero.

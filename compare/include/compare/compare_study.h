@@ -31,6 +31,9 @@ struct CompareOptions {
   std::vector<std::array<Eigen::Vector3d, 2>> lines;  ///< agent: [[compare.line]] from, to [m]
   std::map<std::string, double> gate;           ///< metric name -> largest value allowed
   bool figures = true;                          ///< Figures 8-11 and the animation (Python)
+  /// The figures' files: "png" (quick to draw and view), "pdf" (vector, for print; about 1 s more
+  /// CPU on the seed plate, docs/performance.md).
+  std::vector<std::string> figure_formats{"png"};
 };
 
 /// Reads [compare]: model, then the keys that model uses (depths, mask, reference, far field and

@@ -81,7 +81,8 @@ GridFields reference_on_grid(const ReferenceOptions& options, const agent::Impor
                              const fem_reference::FemResult& fem, const std::string& case_name,
                              std::array<std::size_t, 2>& outside);
 
-/// The reference at two refinement levels, on the agent grid.
+/// The reference at two refinement levels, on the agent grid (solve_reference, then
+/// estimate_reference_error).
 struct Reference {
   fem_reference::FemResult fem;        ///< the reference solve (its output is in dir/fem)
   GridFields fields;                   ///< the reference on the agent grid
@@ -97,11 +98,17 @@ struct Reference {
   std::array<std::size_t, 2> outside{0, 0};
 };
 
-/// Solves `problem` (the case's FEM problem; its degree and refine are replaced by `options`, its
-/// mesh by options.mesh when given) at the reference level, with VTU/CSV output into dir/fem, and
-/// at the estimate level without output; samples both onto the agent grid. With the true geometry
-/// also solves the case's own (staircase) mesh at the reference level, without output.
-Reference solve_reference(fem_reference::FemProblem problem, const ReferenceOptions& options,
+/// The reference level: solves `problem` (the case's FEM problem; its degree and refine replaced by
+/// `options`, its mesh by options.mesh when given) with VTU/CSV output into dir/fem and samples it
+/// onto the agent grid. The result's estimate level is set (options.estimate()), not yet solved.
+Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
                           const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log);
+
+/// The reference's own error: solves the estimate level of `r` without output and samples it onto
+/// the agent grid; with the true geometry also solves the case's own (staircase) mesh at the
+/// reference's level. Apart from solve_reference so that the reference's files can be used (the
+/// figures drawn) while it runs.
+void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
+                              const agent::ImportedMesh& mesh, std::ostream& log);
 
 }  // namespace compare

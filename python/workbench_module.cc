@@ -19,9 +19,11 @@
 #include <pybind11/stl/filesystem.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -399,9 +401,11 @@ class Objective {
  public:
   Objective(const std::vector<Case>& cases, const std::string& rule_set, double w_sigma_x, double w_sigma_y,
             double w_displacement, const py::object& progress) {
-    if (rule_set != "patent" && rule_set != "conserving")
-      throw workbench::Error("rule_set: must be \"patent\" or \"conserving\", not \"" + rule_set + "\"");
-    rules_ = rule_set == "patent" ? agent::RuleSet::Patent : agent::RuleSet::Conserving;
+    const auto all = {agent::RuleSet::Patent, agent::RuleSet::Conserving, agent::RuleSet::Directional};
+    const auto named = std::find_if(all.begin(), all.end(), [&](agent::RuleSet r) { return rule_set == agent::rule_set_name(r); });
+    if (named == all.end())
+      throw workbench::Error("rule_set: must be \"patent\", \"conserving\" or \"directional\", not \"" + rule_set + "\"");
+    rules_ = *named;
     weights_.sigma_x = w_sigma_x;
     weights_.sigma_y = w_sigma_y;
     weights_.displacement = w_displacement;
@@ -424,16 +428,18 @@ class Objective {
       return out;
     });
   }
-  /// J(alpha1, alpha2, alpha3, beta, gamma); poisson_decay follows alpha2 as in `workbench calibrate`.
-  double operator()(const std::array<double, 5>& values) const {
+  /// J at the coefficients: [alpha1, alpha2, alpha3, beta, gamma], or a dict of any of
+  /// compare::kCoefficientNames (the rest at the library's defaults; poisson_decay follows alpha2 as
+  /// in `workbench calibrate`). Each case keeps its own [agent] readings.
+  double operator()(const agent::Coefficients& k) const {
     py::gil_scoped_release release;
-    return compare::objective(cases_, seed_coefficients(values), rules_, weights_);
+    return compare::objective(cases_, k, rules_, weights_);
   }
-  py::list scores(const std::array<double, 5>& values) const {
+  py::list scores(const agent::Coefficients& k) const {
     std::vector<compare::Score> per_case;
     {
       py::gil_scoped_release release;
-      compare::objective(cases_, seed_coefficients(values), rules_, weights_, &per_case);
+      compare::objective(cases_, k, rules_, weights_, &per_case);
     }
     py::list out;
     for (std::size_t i = 0; i < per_case.size(); ++i) {
@@ -448,16 +454,50 @@ class Objective {
   }
 
  private:
-  std::vector<compare::CalibrationCase> cases_;
   /// The seed's rule sets' coefficients (alpha1..gamma, the first of compare::kCoefficientNames).
   static agent::Coefficients seed_coefficients(const std::array<double, 5>& values) {
     agent::Coefficients k;
     for (std::size_t i = 0; i < values.size(); ++i) compare::coefficient(k, i) = values[i];
     return k;
   }
+  /// Named coefficients (compare::kCoefficientNames), the rest at the library's defaults.
+  static agent::Coefficients named_coefficients(const std::map<std::string, double>& values) {
+    agent::Coefficients k;
+    for (const auto& [name, value] : values) {
+      const auto* names = compare::kCoefficientNames.data();
+      const auto i = std::size_t(std::find(names, names + compare::kCoefficientCount, name) - names);
+      if (i == compare::kCoefficientCount) throw workbench::Error("coefficients: unknown coefficient \"" + name + "\"");
+      compare::coefficient(k, i) = value;
+    }
+    return k;
+  }
+  friend void bind_objective(py::module_& m);
+
+  std::vector<compare::CalibrationCase> cases_;
   agent::RuleSet rules_ = agent::RuleSet::Conserving;
   compare::ObjectiveWeights weights_;
 };
+
+void bind_objective(py::module_& m) {
+  py::class_<Objective>(m, "Objective", "The calibration objective over study cases (FEM solved once per case)")
+      .def(py::init<const std::vector<Case>&, const std::string&, double, double, double, const py::object&>(),
+           py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("sigma_x") = 0.0, py::arg("sigma_y") = 1.0,
+           py::arg("displacement") = 1.0, py::arg("progress") = py::none())
+      .def(
+          "__call__", [](const Objective& o, const std::array<double, 5>& v) { return o(Objective::seed_coefficients(v)); },
+          py::arg("coefficients"), "J at [alpha1, alpha2, alpha3, beta, gamma]")
+      .def(
+          "__call__",
+          [](const Objective& o, const std::map<std::string, double>& v) { return o(Objective::named_coefficients(v)); },
+          py::arg("coefficients"), "J at named coefficients, e.g. {\"fan_angle\": 60, \"diffusion\": 0.002}")
+      .def(
+          "scores", [](const Objective& o, const std::array<double, 5>& v) { return o.scores(Objective::seed_coefficients(v)); },
+          py::arg("coefficients"), "Each case's relative errors")
+      .def(
+          "scores",
+          [](const Objective& o, const std::map<std::string, double>& v) { return o.scores(Objective::named_coefficients(v)); },
+          py::arg("coefficients"), "Each case's relative errors at named coefficients");
+}
 
 }  // namespace
 
@@ -506,11 +546,5 @@ PYBIND11_MODULE(workbench, m) {
   m.def("run_pbd", &run_pbd, py::arg("case"), py::arg("progress") = py::none(),
         "The PBD model's frames: positions [m] per written frame (frames x nodes x 3), times [s], rest positions.");
 
-  py::class_<Objective>(m, "Objective", "The calibration objective over study cases (FEM solved once per case)")
-      .def(py::init<const std::vector<Case>&, const std::string&, double, double, double, const py::object&>(),
-           py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("sigma_x") = 0.0, py::arg("sigma_y") = 1.0,
-           py::arg("displacement") = 1.0, py::arg("progress") = py::none())
-      .def("__call__", &Objective::operator(), py::arg("coefficients"),
-           "J at [alpha1, alpha2, alpha3, beta, gamma]")
-      .def("scores", &Objective::scores, py::arg("coefficients"), "Each case's relative errors");
+  bind_objective(m);
 }

@@ -148,6 +148,21 @@ class Calibration(unittest.TestCase):
         s = objective.scores(seed)[0]
         self.assertAlmostEqual(j, s["sigma_x"] ** 2 + s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12 * j)
         self.assertGreater(j, 0.0)
+        # The same coefficients by name; the rest (poisson_decay, the directional ones) at their defaults.
+        named = dict(zip(["alpha1", "alpha2", "alpha3", "beta", "gamma"], seed))
+        self.assertEqual(objective(named), j)
+        with self.assertRaisesRegex(workbench.Error, 'unknown coefficient "alpha4"'):
+            objective({"alpha4": 0.5})
+
+    def test_directional_objective_moves_with_its_own_coefficients_only(self):
+        objective = workbench.Objective([workbench.Case.from_dict(plate())], rule_set="directional")
+        base = objective({})
+        self.assertEqual(objective({"alpha2": 0.9}), base)  # not a coefficient of this rule set
+        self.assertNotEqual(objective({"fan_angle": 40.0}), base)
+        s = objective.scores({"diffusion": 0.004})[0]
+        self.assertAlmostEqual(objective({"diffusion": 0.004}), s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12)
+        with self.assertRaisesRegex(workbench.Error, 'rule_set: must be "patent", "conserving" or "directional"'):
+            workbench.Objective([workbench.Case.from_dict(plate())], rule_set="flamant")
 
 
 if __name__ == "__main__":

@@ -22,7 +22,8 @@ FemSection read_fem_section(const workbench::CaseTable& root) {
   const auto t = root.table("fem");
   FemSection section;
   FemOptions& o = section.options;
-  o.degree = t.integer("degree", 1, 1, 2);
+  const FemOptions defaults;  // each default in one place: fem.h
+  o.degree = t.integer("degree", defaults.degree, 1, 2);
   const std::string model = t.text("model", "plane_stress", {"plane_stress", "plane_strain"});
   o.model = model == "plane_stress" ? Model::PlaneStress : Model::PlaneStrain;
   const std::string solver = t.text("solver", "auto", {"auto", "direct", "amg", "mg"});
@@ -30,13 +31,13 @@ FemSection read_fem_section(const workbench::CaseTable& root) {
              : solver == "direct" ? SolverKind::Direct
              : solver == "mg"     ? SolverKind::Mg
                                   : SolverKind::Amg;
-  o.direct_limit = t.integer("direct_limit", FemOptions{}.direct_limit, 0, 2000000000);
-  o.tolerance = t.number("tolerance", 1e-10, Range{0.0, 1e-2, true, false});
-  o.max_iterations = t.integer("max_iterations", 2000, 1, 1000000);
-  o.refine = t.integer("refine", 0, 0, 10);
+  o.direct_limit = t.integer("direct_limit", defaults.direct_limit, 0, 2000000000);
+  o.tolerance = t.number("tolerance", defaults.tolerance, Range{0.0, 1e-2, true, false});
+  o.max_iterations = t.integer("max_iterations", defaults.max_iterations, 1, 1000000);
+  o.refine = t.integer("refine", defaults.refine, 0, 10);
   const std::string load = t.text("load", "traction", {"traction", "point"});
   o.load = load == "traction" ? LoadKind::Traction : LoadKind::Point;
-  o.write_vtu = t.flag("vtu", true);
+  o.write_vtu = t.flag("vtu", defaults.write_vtu);
   const auto body = t.numbers("body_force", std::vector<double>{});
   if (!body.empty() && body.size() != 2 && body.size() != 3)
     t.fail("body_force", "must have 2 (2D) or 3 (3D) components [N/m^3]");

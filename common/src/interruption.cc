@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <sys/types.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace workbench {
@@ -25,8 +26,13 @@ void end_child_group(int pgid) {
   if (pgid <= 0) return;
   ::kill(-pgid, SIGTERM);
   // A child that ignores SIGTERM gets SIGKILL after a grace period; the group is gone once every
-  // member has exited (the direct child may linger as a zombie until its waiter reaps it).
-  for (int i = 0; i < 40 && ::kill(-pgid, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  // member has exited. The direct child (the group's leader) is reaped here: a zombie still counts
+  // as a member, and a child running beside the work (workbench::ChildProcess) has no waiter now.
+  for (int i = 0; i < 40; ++i) {
+    ::waitpid(pgid, nullptr, WNOHANG);
+    if (::kill(-pgid, 0) != 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   ::kill(-pgid, SIGKILL);
 }
 

@@ -50,7 +50,9 @@ const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_name
   static const std::vector<std::pair<std::string, bool agent::Readings::*>> names = {
       {"non_compounding_entry", &agent::Readings::non_compounding_entry},
       {"entering_face_stress", &agent::Readings::entering_face_stress},
-      {"lateral_strain_stress", &agent::Readings::lateral_strain_stress}};
+      {"lateral_strain_stress", &agent::Readings::lateral_strain_stress},
+      {"every_agent_all_operations", &agent::Readings::every_agent_all_operations},
+      {"boundaries_return", &agent::Readings::boundaries_return}};
   return names;
 }
 
@@ -68,11 +70,14 @@ agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rule
     const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return name == n.first; });
     if (it == names.end())
       t.fail("readings", "unknown reading \"" + name +
-                             "\" (known: non_compounding_entry, entering_face_stress, lateral_strain_stress)");
+                             "\" (known: non_compounding_entry, entering_face_stress, lateral_strain_stress, "
+                             "every_agent_all_operations, boundaries_return)");
     r.*(it->second) = true;
   }
   if (r.non_compounding_entry && rules != agent::RuleSet::Patent)
     t.fail("readings", "non_compounding_entry is a reading of the patent rule set");
+  if (r.cyclic() && rules != agent::RuleSet::Patent)
+    t.fail("readings", "every_agent_all_operations and boundaries_return are readings of the patent rule set");
   return r;
 }
 
@@ -126,6 +131,13 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
                              spec.force * grid.face_area(agent::axis_of(f.side)) / area});
   }
   check_readings_fit_loads(study, root.table("agent"));
+  if (study.readings.cyclic()) {  // the cyclic transfer must end: gamma > 0, every factor below 1
+    try {
+      agent::check_cyclic(grid, {study.setup.young, study.setup.poisson}, study.coefficients);
+    } catch (const std::invalid_argument& e) {
+      root.table("agent").fail(study.coefficients.gamma > 0 ? "readings" : "gamma", e.what());
+    }
+  }
   return study;
 }
 

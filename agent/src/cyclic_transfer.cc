@@ -95,7 +95,7 @@ void check_cyclic(const Grid& grid, const Material& material, const Coefficients
       fail("readings every_agent_all_operations / boundaries_return need every transfer factor below 1 (the cyclic "
            "transfer would not end): " + name + " = " + std::to_string(v));
   };
-  below_one(k.alpha1, "alpha1");
+  // alpha1 <= 1 needs no check: it only ever multiplies another factor (alpha2 or a push factor).
   below_one(k.alpha2, "alpha2");
   below_one(k.alpha3, "alpha3");
   below_one(k.decay(), "poisson_decay");

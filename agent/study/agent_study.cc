@@ -270,6 +270,9 @@ std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d) {
   s << "only " << 100 * d.rigid_reaction / d.applied << " % of the applied load " << d.applied
     << " N reaches a rigid face (warning below " << 100 * kWarnBelowReactionShare << " %): passed out " << d.passed_out
     << " N, dropped under gamma " << d.dropped << " N, lost through the transfer coefficients " << d.lost << " N";
+  if (d.returned_rigid + d.returned_free > 0)  // reading 6: nothing leaves the body
+    s << " (boundaries_return: rigid faces returned " << d.returned_rigid << " N into the body, free faces "
+      << d.returned_free << " N)";
   return {s.str()};
 }
 
@@ -293,6 +296,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},
                        {"warn_below_reaction_share", kWarnBelowReactionShare}};
   j["lateral"] = {{"reaction", d.lateral_reaction}, {"passed_out", d.lateral_passed_out}, {"dropped", d.lateral_dropped}};
+  j["returned"] = {{"rigid", d.returned_rigid}, {"free", d.returned_free}};  // reading 6, in the body
   j["agents"] = study.mesh.cell_of_element.size();
   j["agents_generated"] = d.agents_generated;
   j["warnings"] = warnings;

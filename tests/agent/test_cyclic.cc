@@ -181,8 +181,8 @@ TEST(AgentCyclic, RefusesWhatWouldNotEnd) {
                  std::invalid_argument);  // gamma = 0
     EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 1.0, 0.25, 0.5, 1e-3), RuleSet::Patent, r),
                  std::invalid_argument);  // alpha2 = 1
-    EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(1.0, 0.5, 0.25, 0.5, 1e-3), RuleSet::Patent, r),
-                 std::invalid_argument);  // alpha1 = 1
+    // alpha1 = 1 is allowed: it only ever multiplies alpha2 or a push factor.
+    EXPECT_NO_THROW(LoadTransfer(g, kMaterial, coefficients(1.0, 0.5, 0.25, 0.5, 1e-3), RuleSet::Patent, r));
     EXPECT_THROW(LoadTransfer(g, kMaterial, coefficients(0.5, 0.5, 1.0, 0.5, 1e-3), RuleSet::Patent, r),
                  std::invalid_argument);  // alpha3 = 1
     Coefficients decay_one = coefficients(0.5, 0.5, 0.25, 0.5, 1e-3);

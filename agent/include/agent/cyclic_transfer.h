@@ -30,14 +30,15 @@ struct CyclicCapReached : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The factors by which one transfer multiplies a load under readings 2 and 6 (entry and friction
-/// take alpha1 on the TOP, alpha2 along the load, alpha3 friction, poisson_decay along a push, and
-/// the push factor (1 - beta) nu A_side / A_top for every pair of axes; a factor of 0 is left
-/// out). The iteration ends when each is below 1 and gamma > 0 (docs/agent-model.md).
+/// The distinct factors whose products multiply a load under readings 2 and 6: alpha1 (entry and
+/// friction loads on the TOP), alpha2 (along the load), alpha3 (friction), poisson_decay (along a
+/// push) and the push factor (1 - beta) nu A_b / A_a for every pair of axes; a factor of 0 is left
+/// out. The iteration ends when every factor but alpha1 is below 1 and gamma > 0 (alpha1 only
+/// ever multiplies another factor; docs/agent-model.md gives the proof).
 std::vector<double> cyclic_factors(const Grid& grid, const Material& material, const Coefficients& k);
 
-/// Throws std::invalid_argument when the cyclic transfer would not end: gamma <= 0, or a factor of
-/// cyclic_factors() >= 1 (naming it).
+/// Throws std::invalid_argument when the cyclic transfer would not end: gamma <= 0, or alpha2,
+/// alpha3, poisson_decay or a push factor >= 1 (naming it).
 void check_cyclic(const Grid& grid, const Material& material, const Coefficients& k);
 
 /// Solves `loads` under readings 2 and/or 6 (`readings.every_agent_all_operations`,

@@ -142,6 +142,16 @@ std::string seed_plate_with(const std::string& readings) {
   body.insert(body.find("[agent]\n") + 8, "readings = [" + readings + "]\n");
   return body;
 }
+// The reader's one-line error for a case file's text ("no error" when it loads).
+std::string error(const std::string& body) {
+  try {
+    workbench::CaseFile file(test_support::write_file("case.toml", body));
+    agent_study::load_agent_study(file);
+  } catch (const workbench::Error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
 }  // namespace
 
 TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
@@ -165,15 +175,6 @@ TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
 }
 
 TEST(AgentReadings, CaseFileRejectsUnknownReadingsAndEntryReadingOfConserving) {
-  auto error = [](const std::string& body) {
-    try {
-      workbench::CaseFile file(test_support::write_file("bad.toml", body));
-      agent_study::load_agent_study(file);
-    } catch (const workbench::Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_NE(error(seed_plate_with("\"curvy\"")).find("agent.readings: unknown reading \"curvy\""), std::string::npos);
   std::string conserving = seed_plate_with("\"non_compounding_entry\"");
   conserving.replace(conserving.find("rule_set = \"patent\""), 19, "rule_set = \"conserving\"");
@@ -182,18 +183,9 @@ TEST(AgentReadings, CaseFileRejectsUnknownReadingsAndEntryReadingOfConserving) {
 }
 
 TEST(AgentReadings, CaseFileTakesTheCyclicReadingsAndRefusesWhatWouldNotEnd) {
-  auto error = [](const std::string& body) {
-    try {
-      workbench::CaseFile file(test_support::write_file("cyclic.toml", body));
-      agent_study::load_agent_study(file);
-    } catch (const workbench::Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const std::string both = "\"every_agent_all_operations\", \"boundaries_return\"";
   {
-    workbench::CaseFile file(test_support::write_file("cyclic.toml", seed_plate_with(both)));
+    workbench::CaseFile file(test_support::write_file("seed.toml", seed_plate_with(both)));
     const auto study = agent_study::load_agent_study(file);
     EXPECT_TRUE(study.readings.every_agent_all_operations);
     EXPECT_TRUE(study.readings.boundaries_return);

@@ -136,13 +136,19 @@ void cyclic_transfer(const Grid& g, const Material& material, const Coefficients
     for (int depth = 0; !wave.empty(); ++depth) {
       next.clear();
       at.clear();
-      if (depth > kMaxWaves || d.agent_updates + wave.size() > update_cap) {
-        for (const auto& i : wave) d.unfinished += i.weight;
+      // The second guard: what is still in transit (the wave from item `from` on, and the next
+      // wave) is reported, and nothing computed so far may be used.
+      auto stop = [&](std::size_t from) {
+        for (std::size_t i = from; i < wave.size(); ++i) d.unfinished += wave[i].weight;
+        for (const auto& i : next) d.unfinished += i.weight;
         throw CyclicCapReached("cyclic transfer: stopped after " + std::to_string(d.agent_updates) +
                                " agent updates and " + std::to_string(depth) + " waves with " +
                                std::to_string(d.unfinished) + " N still in transit (the results are incomplete)");
-      }
-      for (const Item& it : wave) {
+      };
+      if (depth > kMaxWaves || d.agent_updates + wave.size() > update_cap) stop(0);
+      for (std::size_t n = 0; n < wave.size(); ++n) {
+        if (next.size() > update_cap) stop(n);  // the next wave alone would exceed the cap: memory
+        const Item& it = wave[n];
         ++d.agent_updates;
         const std::size_t c = it.cell;
         const auto current = std::uint32_t(generation[c]);

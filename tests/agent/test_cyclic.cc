@@ -261,9 +261,13 @@ TEST(AgentCyclic, TheSweepsRulesInWorkListFormReproduceTheSweep) {
       for (std::size_t i = 0; i < faces.size(); ++i) EXPECT_NEAR(faces[i], sweep.face_forces()[i], 1e-13) << i;
       // The sweep leaves generation -1 on an agent inside a layer's loaded box that only a push
       // reaches (3D; its faces carry the push): the work-list marks every agent it updates.
-      for (std::size_t c = 0; c < generation.size(); ++c)
-        if (sweep.generation()[c] >= 0) EXPECT_EQ(generation[c], sweep.generation()[c]) << c;
-        else if (generation[c] >= 0) EXPECT_EQ(dim, 3) << c;
+      for (std::size_t c = 0; c < generation.size(); ++c) {
+        if (sweep.generation()[c] >= 0) {
+          EXPECT_EQ(generation[c], sweep.generation()[c]) << c;
+        } else if (generation[c] >= 0) {
+          EXPECT_EQ(dim, 3) << c;
+        }
+      }
       const auto& s = sweep.diagnostics();
       EXPECT_NEAR(d.rigid_reaction, s.rigid_reaction, 1e-13);
       EXPECT_NEAR(d.passed_out, s.passed_out, 1e-13);

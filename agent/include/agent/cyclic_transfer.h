@@ -19,10 +19,11 @@ struct Readings;
 struct EntryLoad;
 struct Diagnostics;
 
-/// The work-list stops with CyclicCapReached after this many agent updates (a second guard: the
-/// LoadTransfer constructor already refuses gamma = 0 and any transfer factor >= 1, so the
-/// iteration ends by itself; docs/agent-model.md gives the proof and the bound).
-constexpr std::size_t kCyclicUpdateCap = 100'000'000;
+/// The work-list stops with CyclicCapReached after this many agent updates, or when one wave would
+/// hold more items (about 150 B each: 1.5 GB) (a second guard: the LoadTransfer constructor already
+/// refuses gamma = 0 and any transfer factor >= 1, so the iteration ends by itself;
+/// docs/agent-model.md gives the proof and the bound). The seed plate needs 4 k (gamma 1e-3 N).
+constexpr std::size_t kCyclicUpdateCap = 10'000'000;
 
 /// The cap was reached: the results are incomplete. diagnostics().unfinished holds the load still
 /// in transit; the face forces must not be used.

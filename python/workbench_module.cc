@@ -195,6 +195,8 @@ py::dict diagnostics_dict(const agent::Diagnostics& d) {
   out["lateral_reaction_N"] = d.lateral_reaction;
   out["lateral_passed_out_N"] = d.lateral_passed_out;
   out["lateral_dropped_N"] = d.lateral_dropped;
+  out["returned_rigid_N"] = d.returned_rigid;  // reading 6: returned into the body, not in the balance
+  out["returned_free_N"] = d.returned_free;
   return out;
 }
 

@@ -33,6 +33,11 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
   check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
   if (rules == RuleSet::Directional) check_directional(k.directional);
+  if (readings.cyclic()) {
+    check(rules == RuleSet::Patent, "readings every_agent_all_operations and boundaries_return are readings of the "
+                                    "patent rule set");
+    check_cyclic(grid, material, k);
+  }
   faces_.assign(grid.count() * 2 * grid.dim, 0.0);
   generation_.assign(grid.count(), -1);
   std::size_t layer = 0;
@@ -96,6 +101,12 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
     std::fill(faces_.begin(), faces_.end(), 0.0);
     std::fill(generation_.begin(), generation_.end(), -1);
     return directional_transfer(grid_, k_.directional, k_.gamma, loads, faces_, generation_, diagnostics_);
+  }
+  if (readings_.cyclic()) {  // readings 2 and 6: a cyclic graph (agent/cyclic_transfer.h); clears the whole grid
+    diagnostics_ = Diagnostics{};
+    std::fill(faces_.begin(), faces_.end(), 0.0);
+    std::fill(generation_.begin(), generation_.end(), -1);
+    return cyclic_transfer(grid_, material_, k_, readings_, loads, faces_, generation_, diagnostics_);
   }
   // What the previous solve wrote is cleared. When it was all swept along the first load's axis,
   // the first sweep clears each layer just before it writes there (the layer is then in cache

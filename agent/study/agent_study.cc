@@ -50,7 +50,9 @@ const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_name
   static const std::vector<std::pair<std::string, bool agent::Readings::*>> names = {
       {"non_compounding_entry", &agent::Readings::non_compounding_entry},
       {"entering_face_stress", &agent::Readings::entering_face_stress},
-      {"lateral_strain_stress", &agent::Readings::lateral_strain_stress}};
+      {"lateral_strain_stress", &agent::Readings::lateral_strain_stress},
+      {"every_agent_all_operations", &agent::Readings::every_agent_all_operations},
+      {"boundaries_return", &agent::Readings::boundaries_return}};
   return names;
 }
 
@@ -68,11 +70,14 @@ agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rule
     const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return name == n.first; });
     if (it == names.end())
       t.fail("readings", "unknown reading \"" + name +
-                             "\" (known: non_compounding_entry, entering_face_stress, lateral_strain_stress)");
+                             "\" (known: non_compounding_entry, entering_face_stress, lateral_strain_stress, "
+                             "every_agent_all_operations, boundaries_return)");
     r.*(it->second) = true;
   }
   if (r.non_compounding_entry && rules != agent::RuleSet::Patent)
     t.fail("readings", "non_compounding_entry is a reading of the patent rule set");
+  if (r.cyclic() && rules != agent::RuleSet::Patent)
+    t.fail("readings", "every_agent_all_operations and boundaries_return are readings of the patent rule set");
   return r;
 }
 
@@ -126,6 +131,13 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
                              spec.force * grid.face_area(agent::axis_of(f.side)) / area});
   }
   check_readings_fit_loads(study, root.table("agent"));
+  if (study.readings.cyclic()) {  // the cyclic transfer must end: gamma > 0, every factor below 1
+    try {
+      agent::check_cyclic(grid, {study.setup.young, study.setup.poisson}, study.coefficients);
+    } catch (const std::invalid_argument& e) {
+      root.table("agent").fail(study.coefficients.gamma > 0 ? "readings" : "gamma", e.what());
+    }
+  }
   return study;
 }
 
@@ -258,6 +270,9 @@ std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d) {
   s << "only " << 100 * d.rigid_reaction / d.applied << " % of the applied load " << d.applied
     << " N reaches a rigid face (warning below " << 100 * kWarnBelowReactionShare << " %): passed out " << d.passed_out
     << " N, dropped under gamma " << d.dropped << " N, lost through the transfer coefficients " << d.lost << " N";
+  if (d.returned_rigid + d.returned_free > 0)  // reading 6: nothing leaves the body
+    s << " (boundaries_return: rigid faces returned " << d.returned_rigid << " N into the body, free faces "
+      << d.returned_free << " N)";
   return {s.str()};
 }
 
@@ -281,6 +296,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},
                        {"warn_below_reaction_share", kWarnBelowReactionShare}};
   j["lateral"] = {{"reaction", d.lateral_reaction}, {"passed_out", d.lateral_passed_out}, {"dropped", d.lateral_dropped}};
+  j["returned"] = {{"rigid", d.returned_rigid}, {"free", d.returned_free}};  // reading 6, in the body
   j["agents"] = study.mesh.cell_of_element.size();
   j["agents_generated"] = d.agents_generated;
   j["warnings"] = warnings;

@@ -9,6 +9,7 @@
 #include <functional>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <ostream>
 #include <random>
 #include <string>
@@ -115,9 +116,26 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
     const auto& c = cases[ci];
     const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
-    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, kc, rules,
-                              c.study.readings);
-    const auto state = agent_study::evaluate(c.study, model, 1.0);
+    // Readings 2 and 6 refuse a factor of 1 (their transfer would not end) and stop at a cap: such
+    // a point is refused like one that loses load (objective 1e30), never scored on partial results.
+    std::optional<agent::LoadTransfer> model;
+    std::optional<agent_study::AgentState> solved;
+    try {
+      model.emplace(c.study.mesh.grid, agent::Material{c.study.setup.young, c.study.setup.poisson}, kc, rules,
+                    c.study.readings);
+      solved = agent_study::evaluate(c.study, *model, 1.0);
+    } catch (const std::invalid_argument&) {
+    } catch (const agent::CyclicCapReached&) {
+    }
+    if (!solved) {
+      Score s;
+      s.load_refused = true;
+      s.objective = 1e30;
+      total += c.weight * s.objective;
+      if (per_case) per_case->push_back(s);
+      continue;
+    }
+    const auto& state = *solved;
     Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
     const auto& d = state.diagnostics;
     s.reaction_share = d.applied > 0 ? d.rigid_reaction / d.applied : 0.0;

@@ -30,6 +30,7 @@ const Section kSections[] = {
        agent::Coefficients k;
        agent::RuleSet rules;
        agent_study::read_agent_section(f.root(), k, rules);
+       agent_study::read_readings(f.root().table("agent"), rules);
      }},
     {"fem", [](const workbench::CaseFile& f) { fem_reference::read_fem_section(f.root()); }},
     {"compare", [](const workbench::CaseFile& f) { compare::read_compare_options(f.root()); }},

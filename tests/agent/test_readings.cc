@@ -142,6 +142,16 @@ std::string seed_plate_with(const std::string& readings) {
   body.insert(body.find("[agent]\n") + 8, "readings = [" + readings + "]\n");
   return body;
 }
+// The reader's one-line error for a case file's text ("no error" when it loads).
+std::string error(const std::string& body) {
+  try {
+    workbench::CaseFile file(test_support::write_file("case.toml", body));
+    agent_study::load_agent_study(file);
+  } catch (const workbench::Error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
 }  // namespace
 
 TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
@@ -165,18 +175,49 @@ TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
 }
 
 TEST(AgentReadings, CaseFileRejectsUnknownReadingsAndEntryReadingOfConserving) {
-  auto error = [](const std::string& body) {
-    try {
-      workbench::CaseFile file(test_support::write_file("bad.toml", body));
-      agent_study::load_agent_study(file);
-    } catch (const workbench::Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_NE(error(seed_plate_with("\"curvy\"")).find("agent.readings: unknown reading \"curvy\""), std::string::npos);
   std::string conserving = seed_plate_with("\"non_compounding_entry\"");
   conserving.replace(conserving.find("rule_set = \"patent\""), 19, "rule_set = \"conserving\"");
   EXPECT_NE(error(conserving).find("agent.readings: non_compounding_entry is a reading of the patent rule set"),
             std::string::npos);
+}
+
+TEST(AgentReadings, CaseFileTakesTheCyclicReadingsAndRefusesWhatWouldNotEnd) {
+  const std::string both = "\"every_agent_all_operations\", \"boundaries_return\"";
+  {
+    workbench::CaseFile file(test_support::write_file("seed.toml", seed_plate_with(both)));
+    const auto study = agent_study::load_agent_study(file);
+    EXPECT_TRUE(study.readings.every_agent_all_operations);
+    EXPECT_TRUE(study.readings.boundaries_return);
+    EXPECT_EQ(agent_study::names_of(study.readings),
+              (std::vector<std::string>{"every_agent_all_operations", "boundaries_return"}));
+    agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients,
+                              study.rules, study.readings);
+    const auto s = agent_study::evaluate(study, model, 1.0);
+    EXPECT_NEAR(s.diagnostics.applied,
+                s.diagnostics.rigid_reaction + s.diagnostics.passed_out + s.diagnostics.dropped + s.diagnostics.lost,
+                1e-12 * (s.diagnostics.dropped + std::abs(s.diagnostics.lost)));
+    EXPECT_EQ(s.diagnostics.rigid_reaction, 0.0);  // reading 6: nothing leaves the body
+    EXPECT_EQ(s.diagnostics.passed_out, 0.0);
+    EXPECT_GT(s.diagnostics.returned_free, 0.0);  // the top and the sides reflect (the base is out of reach)
+  }
+  for (const char* other : {"conserving", "directional"}) {
+    std::string body = seed_plate_with(both);
+    body.replace(body.find("rule_set = \"patent\""), 19, std::string("rule_set = \"") + other + "\"");
+    EXPECT_NE(error(body).find("agent.readings: every_agent_all_operations and boundaries_return are readings of the "
+                               "patent rule set"),
+              std::string::npos)
+        << other;
+  }
+  std::string no_gamma = seed_plate_with("\"boundaries_return\"");
+  no_gamma.replace(no_gamma.find("gamma = 1.0e-3"), 14, "gamma = 0.0");
+  EXPECT_NE(error(no_gamma).find("agent.gamma: readings every_agent_all_operations / boundaries_return need gamma > 0"),
+            std::string::npos)
+      << error(no_gamma);
+  std::string alpha2_one = seed_plate_with("\"every_agent_all_operations\"");
+  alpha2_one.replace(alpha2_one.find("alpha2 = 0.5"), 12, "alpha2 = 1.0");
+  EXPECT_NE(error(alpha2_one).find("agent.readings: readings every_agent_all_operations / boundaries_return need every "
+                                   "transfer factor below 1 (the cyclic transfer would not end): alpha2 = 1"),
+            std::string::npos)
+      << error(alpha2_one);
 }

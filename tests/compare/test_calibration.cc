@@ -296,3 +296,41 @@ TEST(Calibration, CalibratedCaseCarriesTheCalibrationsReadings) {
   const auto own = with_coefficients(base + "readings = [\"lateral_strain_stress\"]\n", "/cases", k, agent::RuleSet::Patent);
   EXPECT_NE(own.find("readings = [\"lateral_strain_stress\"]\n"), std::string::npos);
 }
+
+TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
+  // Readings 2 and 6 (the cyclic transfer): a target made by the agent model itself is found
+  // again, and a point the cyclic transfer refuses (a factor of 1: it would not end) is scored
+  // 1e30 instead of stopping the fit.
+  agent::Readings cyclic;
+  cyclic.every_agent_all_operations = cyclic.boundaries_return = true;
+  const agent::Coefficients truth = coefficients_from({0.5, 0.42, 0.3, 0.5, 1e-3});
+  std::vector<CalibrationCase> cases;
+  for (const std::string xc : {"0.1", "0.05"}) {
+    workbench::CaseFile file(write_file("plate_cyclic_" + xc + ".toml", plate_case(xc)));
+    CalibrationCase c;
+    c.name = "plate_cyclic_" + xc;
+    c.study = agent_study::load_agent_study(file);
+    c.study.readings = cyclic;
+    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
+                              agent::RuleSet::Patent, cyclic);
+    c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
+    cases.push_back(std::move(c));
+  }
+  auto o = options();
+  o.rules = agent::RuleSet::Patent;
+  o.parameters[4].lo = o.parameters[4].hi = o.parameters[4].start = 1e-3;  // gamma held
+  o.parameters[3].free = false;                                            // beta held at 0.5
+  o.parameters[2].hi = o.parameters[1].hi = 0.95;
+  o.weights.sigma_x = 0.0;
+  o.max_evaluations = 300;
+  std::vector<Score> scores;
+  EXPECT_LT(objective(cases, truth, o.rules, o.weights, &scores), 1e-20);
+  const agent::Coefficients stuck = coefficients_from({0.5, 1.0, 0.3, 0.5, 1e-3});
+  EXPECT_EQ(objective(cases, stuck, o.rules, o.weights, &scores), 2e30);
+  EXPECT_TRUE(scores[0].load_refused);
+  const auto r = calibrate(cases, o);
+  EXPECT_GT(r.objective_start, 0.01);
+  EXPECT_LT(r.objective_best, 1e-3 * r.objective_start);
+  EXPECT_NEAR(r.best.alpha2, 0.42, 0.02);
+  EXPECT_NEAR(r.best.alpha3, 0.3, 0.02);
+}

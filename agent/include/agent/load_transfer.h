@@ -10,6 +10,7 @@
 //
 // Cost grows with the agents a load reaches, not with the body: solve() clears only what the
 // previous solve touched.
+#include <agent/cyclic_transfer.h>
 #include <agent/directional.h>
 #include <agent/grid.h>
 
@@ -57,9 +58,20 @@ struct Readings {
   /// 5: an agent's stress across the load from its own lateral strain, eps_x = -beta nu eps_y
   /// (tension), not from the Poisson pushes on its faces (agent_stresses).
   bool lateral_strain_stress = false;
+  /// 2: every agent performs every transfer operation: friction to every side (back included),
+  /// and agents reached by friction or a push pass friction, the step along and pushes on. The
+  /// transfer graph has cycles: solved by agent::cyclic_transfer (agent/cyclic_transfer.h).
+  bool every_agent_all_operations = false;
+  /// 6: a load reaching a boundary face is returned into the body (a free face reflects it, a
+  /// rigid one returns its reaction), and the agent performs its operations on it
+  /// (agent::cyclic_transfer). Supported with or without reading 2.
+  bool boundaries_return = false;
+  /// Readings 2 or 6: the transfer graph has cycles.
+  bool cyclic() const { return every_agent_all_operations || boundaries_return; }
   bool operator==(const Readings& o) const {
     return non_compounding_entry == o.non_compounding_entry && entering_face_stress == o.entering_face_stress &&
-           lateral_strain_stress == o.lateral_strain_stress;
+           lateral_strain_stress == o.lateral_strain_stress &&
+           every_agent_all_operations == o.every_agent_all_operations && boundaries_return == o.boundaries_return;
   }
 };
 
@@ -79,6 +91,9 @@ struct EntryLoad {
 /// Where the load went. Forces in the load direction are kept apart from the sideways
 /// (Poisson) pushes, which are self-equilibrated. In the load direction every newton is tallied
 /// where it goes: applied = rigid_reaction + passed_out + dropped + lost (to round-off).
+/// Under readings 2 and 6 (agent::cyclic_transfer) loads move in every direction: every transfer
+/// but a push is tallied by its magnitude, and under reading 6 nothing leaves the body
+/// (rigid_reaction = passed_out = 0): what the boundary faces returned is in returned_*.
 struct Diagnostics {
   std::size_t agents_generated = 0;  ///< agents reached (generation >= 0)
   std::size_t agent_updates = 0;     ///< agent visits by the sweeps (the cost measure)
@@ -94,15 +109,25 @@ struct Diagnostics {
   double lateral_reaction = 0;       ///< Poisson pushes returned by rigid faces [N]
   double lateral_passed_out = 0;     ///< Poisson pushes passed out through free faces [N]
   double lateral_dropped = 0;        ///< Poisson pushes at or below gamma [N]
+  /// Reading 6: transfers (loads and pushes) that rigid faces returned into the body [N]: the
+  /// load the rigid faces carried, not a term of the balance (it stays in the body).
+  double returned_rigid = 0;
+  double returned_free = 0;          ///< reading 6: transfers that free faces reflected [N]
+  /// Load still in transit when the cyclic transfer's cap stopped it [N] (then solve() throws
+  /// agent::CyclicCapReached): 0 in every complete result.
+  double unfinished = 0;
 };
 
 class LoadTransfer {
  public:
   /// Throws std::invalid_argument for coefficients outside their ranges (docs/agent-model.md).
-  /// `readings` apply to the patent rule set only (the conserving one has its own normalised splits).
+  /// `readings` apply to the patent rule set only (the conserving one has its own normalised splits);
+  /// readings 2 and 6 are refused with another rule set, and with gamma = 0 or a transfer factor
+  /// >= 1 (agent::check_cyclic: the cyclic transfer would not end).
   LoadTransfer(const Grid& grid, Material material, Coefficients coefficients, RuleSet rules, Readings readings = {});
 
   /// Propagates the loads from a clean state. Loads superpose: each entry load is swept on its own.
+  /// Under readings 2 or 6 throws agent::CyclicCapReached if the work-list's cap is reached.
   void solve(const std::vector<EntryLoad>& loads);
 
   const Grid& grid() const { return grid_; }

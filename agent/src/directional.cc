@@ -76,6 +76,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
 
   Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
   std::vector<double> row_force;
+  // Each slot's lower side in agents along each axis (its index, unless runs of air were collapsed):
+  // the row's moment arms are true distances.
+  std::array<std::vector<double>, 3> at;
+  for (int a = 0; a < dim; ++a)
+    for (int i = 0; i < g.cells[a]; ++i) at[a].push_back(g.planes[a].empty() ? double(i) : (g.plane(a, i) - g.origin[a]) / g.size[a]);
+  if (dim == 2) at[2].assign(1, 0.0);
   for (const auto& load : loads) {
     d.applied += load.force;
     if (!(load.force > gamma)) {
@@ -117,6 +123,8 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     // row must have its centroid under the load, as in a beam. Packets reflected by a side shift
     // it; a linear, self-equilibrated correction across the row's agents (zero net force, so the
     // load balance is untouched) restores it. It puts the far side in tension, as FEM does.
+    const double* at_u = at[l0].data();
+    const double* at_v = at[l1].data();
     auto balance_row_moment = [&](std::size_t layer_base, bool last_layer, std::vector<double>& through) {
       double count = 0, cu = 0, cv = 0, total = 0, mu = 0, mv = 0;
       bool exits_rigid = true, exits_free = false;  // how the row's agents meet what is past the row
@@ -125,12 +133,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           const std::size_t cell = layer_base + u * s0 + v * s1;
           if (air(cell)) continue;
           count += 1;
-          cu += u;
-          cv += v;
+          cu += at_u[u];
+          cv += at_v[v];
           const double t = through[u + std::size_t(n0) * v];
           total += t;
-          mu += t * (u - eu);
-          mv += t * (v - ev);
+          mu += t * (at_u[u] - at_u[eu]);
+          mv += t * (at_v[v] - at_v[ev]);
           const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
           exits_rigid = exits_rigid && (!exits || rigid(cell, exit_face));
           exits_free = exits_free || (exits && !rigid(cell, exit_face));
@@ -143,9 +151,9 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u)
           if (!air(layer_base + u * s0 + v * s1)) {
-            suu += (u - cu) * (u - cu);
-            suv += (u - cu) * (v - cv);
-            svv += (v - cv) * (v - cv);
+            suu += (at_u[u] - cu) * (at_u[u] - cu);
+            suv += (at_u[u] - cu) * (at_v[v] - cv);
+            svv += (at_v[v] - cv) * (at_v[v] - cv);
           }
       // delta(u, v) = cu_coef (u - cu) + cv_coef (v - cv) with sum delta (u - eu) = -mu, likewise v.
       double ku = 0, kv = 0;
@@ -162,7 +170,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
         for (int u = 0; u < n0; ++u) {
           const std::size_t cell = layer_base + u * s0 + v * s1;
           if (air(cell)) continue;
-          const double delta = ku * (u - cu) + kv * (v - cv);
+          const double delta = ku * (at_u[u] - cu) + kv * (at_v[v] - cv);
           double* f = faces.data() + cell * nd;
           f[enter_face] += delta;
           const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));

@@ -76,12 +76,25 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
 
   Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
   std::vector<double> row_force;
-  // Each slot's lower side in agents along each axis (its index, unless runs of air were collapsed):
-  // the row's moment arms are true distances.
+  // Lateral positions are true distances in agents from the box's lower side: slot i starts at
+  // at[a][i] (i itself unless a run of empty planes was collapsed into a wider air slot), the box
+  // is width[a] agents wide. Packets move, fold and balance the row's moment in these units.
   std::array<std::vector<double>, 3> at;
-  for (int a = 0; a < dim; ++a)
-    for (int i = 0; i < g.cells[a]; ++i) at[a].push_back(g.planes[a].empty() ? double(i) : (g.plane(a, i) - g.origin[a]) / g.size[a]);
+  std::array<double, 3> width{1, 1, 1};
+  for (int a = 0; a < dim; ++a) {
+    // Planes lie on the lattice: rounding gives the whole number of agents exactly.
+    auto agents_to = [&](int i) { return g.planes[a].empty() ? double(i) : std::round((g.plane(a, i) - g.origin[a]) / g.size[a]); };
+    for (int i = 0; i < g.cells[a]; ++i) at[a].push_back(agents_to(i));
+    width[a] = agents_to(g.cells[a]);
+  }
   if (dim == 2) at[2].assign(1, 0.0);
+  // The slot holding lateral position `pos` along axis `a` (clamped to the box).
+  auto slot_at = [&](int a, double pos) {
+    const int n_a = g.cells[a];
+    if (g.planes[a].empty()) return std::min(std::max(int(pos), 0), n_a - 1);
+    const int i = int(std::upper_bound(at[a].begin(), at[a].end(), pos) - at[a].begin()) - 1;
+    return std::min(std::max(i, 0), n_a - 1);
+  };
   for (const auto& load : loads) {
     d.applied += load.force;
     if (!(load.force > gamma)) {
@@ -188,27 +201,28 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       // direction indices (du, dv): folded back into the box by the free sides (a mirror: the
       // slope changes sign), absorbed by a rigid side, passed out where the next row is air.
       auto deposit = [&](double x, double y, int du, int dv, double force) {
-        auto fold = [&](double& pos, int cells, int& index, int lateral, std::size_t across) {
-          while (pos < 0 || pos > cells) {
+        auto fold = [&](double& pos, int lateral, int& index, std::size_t across) {
+          const double w = width[lateral];
+          while (pos < 0 || pos > w) {
             const bool low = pos < 0;
-            const std::size_t edge = next_base + (low ? 0 : std::size_t(cells - 1)) * g.stride(lateral) + across;
+            const std::size_t edge = next_base + (low ? 0 : std::size_t(g.cells[lateral] - 1)) * g.stride(lateral) + across;
             if (rigid(edge, direction(lateral, !low))) return false;
-            pos = low ? -pos : 2.0 * cells - pos;
+            pos = low ? -pos : 2.0 * w - pos;
             index = n - 1 - index;
           }
           return true;
         };
-        const int iv_guess = std::min(std::max(int(y), 0), n1 - 1);
-        if (!fold(x, n0, du, l0, iv_guess * s1)) {
+        const int iv_guess = slot_at(l1, y);
+        if (!fold(x, l0, du, iv_guess * s1)) {
           d.rigid_reaction += force;
           return;
         }
-        const int iu = std::min(int(x), n0 - 1);
-        if (dim == 3 && !fold(y, n1, dv, l1, iu * s0)) {
+        const int iu = slot_at(l0, x);
+        if (dim == 3 && !fold(y, l1, dv, iu * s0)) {
           d.rigid_reaction += force;
           return;
         }
-        const int iv = dim == 3 ? std::min(int(y), n1 - 1) : 0;
+        const int iv = dim == 3 ? slot_at(l1, y) : 0;
         if (air(next_base + iu * s0 + iv * s1)) {
           d.passed_out += force;
           return;
@@ -216,8 +230,8 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
         const int dir = du + n * dv;
         const std::size_t slot = dir * layer_size + iu + std::size_t(n0) * iv;
         next.force[slot] += force;
-        next.moment_u[slot] += force * (x - iu - 0.5);
-        if (dim == 3) next.moment_v[slot] += force * (y - iv - 0.5);
+        next.moment_u[slot] += force * (x - at_u[iu] - 0.5);
+        if (dim == 3) next.moment_v[slot] += force * (y - at_v[iv] - 0.5);
         next.box[dir].add(iu, iv);
       };
 
@@ -263,7 +277,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
             any = true;
             // Move one row on, drift by the slope, and diffuse: two (3D: four) equal pieces
             // at +-r, which adds r^2 of variance per lateral axis exactly.
-            const double x = u + 0.5 + off_u + su * drift_u, y = v + 0.5 + off_v + sv * drift_v;
+            const double x = at_u[u] + 0.5 + off_u + su * drift_u, y = at_v[v] + 0.5 + off_v + sv * drift_v;
             if (dim == 2) {
               if (r_u == 0) {
                 deposit(x, y, du0, dv0, force);

@@ -184,22 +184,41 @@ def main():
         save(fig, out, "fig9_stress_lines")
 
     x, y = num(cells["x"]), num(cells["y"])
-    # The agents' lattice over their bounding box: a row or column that is all air keeps its place.
-    def lattice(c):
+    # The agents' lattice as the agent grid holds it (docs/agent-model.md, "Memory"): a column or
+    # row that is all air keeps its place, a run of them is one air column as wide as the gap.
+    # Returns the columns' edges at their true coordinates [m], each cell's column, whether a run
+    # was collapsed, and the agent size: the nearest two node planes (every agent has two).
+    def lattice(c, node_c):
         u = np.unique(c)
-        h = np.diff(u).min() if len(u) > 1 else 1.0
-        index = np.rint((c - u[0]) / h).astype(int)
-        return u[0] + h * np.arange(index.max() + 1), index
+        h = np.diff(np.unique(node_c)).min()
+        steps = np.rint(np.diff(u) / h).astype(np.int64)  # lattice steps between occupied columns
+        column = np.concatenate(([0], np.cumsum(np.minimum(steps, 2))))  # a gap is one column
+        edges = np.empty(column[-1] + 2)
+        edges[column] = u - h / 2
+        edges[column + 1] = u + h / 2
+        return edges, column[np.searchsorted(u, c)], bool((steps > 2).any()), h
 
-    (xs, ix), (ys, iy) = lattice(x), lattice(y)
+    (xe, ix, x_collapsed, h), (ye, iy, y_collapsed, _) = lattice(x, num(nodes["x"])), lattice(y, num(nodes["y"]))
 
     def grid_of(values):
-        g = np.full((len(ys), len(xs)), np.nan)
+        g = np.full((len(ye) - 1, len(xe) - 1), np.nan)
         g[iy, ix] = values
         return g
 
-    extent = [1e3 * (xs[0] - (xs[1] - xs[0]) / 2), 1e3 * (xs[-1] + (xs[1] - xs[0]) / 2),
-              1e3 * (ys[0] - (ys[1] - ys[0]) / 2), 1e3 * (ys[-1] + (ys[1] - ys[0]) / 2)]
+    # A regular lattice is drawn as an image; a collapsed one as a mesh with its columns at their
+    # true places and widths (an image would draw a gap of 1 m as wide as one agent).
+    def draw_map(ax, values, **style):
+        if x_collapsed or y_collapsed:
+            ax.set_aspect("equal")  # as an image is drawn
+            return ax.pcolormesh(1e3 * xe, 1e3 * ye, values, shading="flat", **style)
+        extent = [1e3 * xe[0], 1e3 * xe[-1], 1e3 * ye[0], 1e3 * ye[-1]]
+        return ax.imshow(values, origin="lower", extent=extent, **style)
+
+    def update_map(artist, values):
+        if x_collapsed or y_collapsed:
+            artist.set_array(values.ravel())
+        else:
+            artist.set_data(values)
     def fig9_maps():
         fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
         for row, comp in enumerate(("sigma_x", "sigma_y")):
@@ -207,8 +226,7 @@ def main():
             lim = np.percentile(np.abs(f), 99) or 1.0
             for col, model in enumerate(("fem", "agent")):
                 ax = axes[row, col]
-                im = ax.imshow(grid_of(num(cells[f"{model}_{comp}"])) / 1e3, origin="lower", extent=extent, cmap="RdBu_r",
-                               vmin=-lim / 1e3, vmax=lim / 1e3)
+                im = draw_map(ax, grid_of(num(cells[f"{model}_{comp}"])) / 1e3, cmap="RdBu_r", vmin=-lim / 1e3, vmax=lim / 1e3)
                 ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}")
                 ax.set_xlabel("x [mm]")
                 ax.set_ylabel("y [mm]")
@@ -233,19 +251,27 @@ def main():
                     np.abs(num(nodes["agent_u_x"])).max(), np.abs(num(nodes["agent_u_y"])).max(), 1e-300)
         magnification = 0.1 * span / u_max
         every = max(1, (nx_ - 1) // 25)
+        # A collapsed air column (row) lies between two node columns (rows) farther apart than an
+        # agent: no grid line crosses it.
+        wide_x = np.nonzero(np.diff(np.fmax.reduce(X, axis=0)) > 1.5 * h)[0] + 1
+        wide_y = np.nonzero(np.diff(np.fmax.reduce(Y, axis=1)) > 1.5 * h)[0] + 1
+        def columns(A):  # the drawn node columns, broken at wide rows
+            return np.insert(A[:, ::every], wide_y, np.nan, axis=0)
+        def rows(A):  # the drawn node rows, broken at wide columns
+            return np.insert(A[::every, :], wide_x, np.nan, axis=1).T
         fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True)
         for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
             U, V = node_grid(num(nodes[f"{model}_u_x"])), node_grid(num(nodes[f"{model}_u_y"]))
             Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
-            ax.plot(1e3 * X[:, ::every], 1e3 * Y[:, ::every], color="0.85", lw=0.5)
-            ax.plot(1e3 * X[::every, :].T, 1e3 * Y[::every, :].T, color="0.85", lw=0.5)
-            ax.plot(Xd[:, ::every], Yd[:, ::every], color="C0", lw=0.6)
-            ax.plot(Xd[::every, :].T, Yd[::every, :].T, color="C0", lw=0.6)
+            ax.plot(1e3 * columns(X), 1e3 * columns(Y), color="0.85", lw=0.5)
+            ax.plot(1e3 * rows(X), 1e3 * rows(Y), color="0.85", lw=0.5)
+            ax.plot(columns(Xd), columns(Yd), color="C0", lw=0.6)
+            ax.plot(rows(Xd), rows(Yd), color="C0", lw=0.6)
             ax.set_aspect("equal")
             ax.set_title(f"{label}, |u|max = {np.nanmax(np.hypot(U, V)):.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-        h_mm = 1e3 * (xs[1] - xs[0])
+        h_mm = 1e3 * h
         fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
                      f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
         save(fig, out, "fig10_deformed")
@@ -280,10 +306,10 @@ def main():
         # air blank (white, drawn over the grey).
         cmap = plt.get_cmap("magma_r").copy()
         cmap.set_bad("0.85")
-        image = ax.imshow(grid_of(np.zeros(len(x))), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+        image = draw_map(ax, grid_of(np.zeros(len(x))), cmap=cmap, vmin=0, vmax=lim / 1e3)
         air = np.isnan(grid_of(np.zeros(len(x))))
         if air.any():
-            ax.imshow(np.where(air, 1.0, np.nan), origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1)
+            draw_map(ax, np.where(air, 1.0, np.nan), cmap="gray", vmin=0, vmax=1)
         fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached; white: air)")
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
@@ -293,7 +319,7 @@ def main():
             sel = steps["step"].astype(int) == step_ids[k]
             values = np.full(len(x), np.nan)
             values[order[sel]] = np.where(num(steps["generation"][sel]) >= 0, -sy[sel] / 1e3, np.nan)
-            image.set_data(grid_of(values))
+            update_map(image, grid_of(values))
             label.set_text(f"agents, load {num(steps['load'][sel])[0]:.3g} N (step {step_ids[k]}/{step_ids[-1]})")
             return image, label
 

@@ -58,12 +58,12 @@ struct Grid {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< lower corner of the box [m]
   Eigen::Vector3d size = Eigen::Vector3d::Ones();    ///< agent edge length per axis [m]
   double thickness = 1.0;                      ///< out-of-plane thickness in 2D [m]
-  /// Per axis, the position of each slot boundary (cells[a] + 1 values) where the axis is
-  /// compressed; empty where it is uniform (plane i at origin + i * size).
-  std::array<std::vector<double>, 3> planes;
   /// Per slot of the box: bit `side` (0-5) marks that boundary face rigid, kAirBit marks air.
   std::vector<std::uint8_t> flags;
   static constexpr std::uint8_t kAirBit = 1 << 6;
+  /// Per axis, the position of each slot boundary (cells[a] + 1 values) where the axis is
+  /// compressed; empty where it is uniform (plane i at origin + i * size).
+  std::array<std::vector<double>, 3> planes;
 
   /// A box of n[0] x n[1] (x n[2]) agents of the given size, every outer face free.
   static Grid box(int dim, std::array<int, 3> n, Eigen::Vector3d size, double thickness = 1.0);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -226,4 +227,36 @@ TEST(CompressedLattice, AConnectedSparseStaircaseStillSpansItsBoxAndIsRefusedWhe
   ::unsetenv("WORKBENCH_MEMORY_LIMIT");
   EXPECT_NE(error.find("compressed box (2001 x 2000 slots of 1 m"), std::string::npos) << error;
   EXPECT_NE(error.find("GiB, more than the 0.5 GiB allowed"), std::string::npos) << error;
+}
+
+TEST(CompressedLattice, VoxelizedDiscsFarApartAreTheirColumnsAndOneAirColumnAndReadBackIdentical) {
+  // Discs of radius 1 at x = 0 and x = 1000, agents of 0.2: each disc spans 10 columns and 10
+  // rows (the lattice starts at (-1, -1)); the gap of 4990 columns is one air slot: 21 x 10 slots.
+  const auto msh = test_support::scratch_folder() / "two_discs.msh";
+  const auto m = voxelize(kData + "two_discs.geo", 0.2, {}, msh);
+  const Grid& g = m.grid;
+  ASSERT_EQ(g.cells, (std::array<int, 3>{21, 10, 1}));
+  EXPECT_EQ(g.planes[0].size(), 22u);
+  EXPECT_TRUE(g.planes[1].empty());
+  EXPECT_NEAR(g.plane(0, 10), 1.0, 1e-9);      // the first disc's right side
+  EXPECT_NEAR(g.plane(0, 11), 999.0, 1e-9);    // the second disc's left side
+  EXPECT_NEAR(g.plane(0, 21), 1001.0, 1e-9);
+  for (int j = 0; j < 10; ++j) EXPECT_TRUE(g.is_air(g.index(10, j, 0)));
+  // The same disc twice: as many agents left of the gap as right of it, each within the rim's
+  // ring of pi r^2 / h^2 (test_mesh_import.cc, Voxelize.ADiscHasAboutPiRSquaredOverHSquaredAgents).
+  std::size_t left = 0, right = 0;
+  for (std::size_t c : m.cell_of_element) (g.coords(c)[0] < 10 ? left : right) += 1;
+  EXPECT_EQ(left, right);
+  EXPECT_NEAR(double(left), M_PI / 0.04, 2 * M_PI * std::sqrt(2.0) / 0.2);
+  for (const auto& f : m.face_groups.at("rim")) {
+    const Eigen::Vector3d c = g.centre(f.cell);
+    const double r = (c - Eigen::Vector3d(c[0] < 500 ? 0.0 : 1000.0, 0, 0)).head<2>().norm();
+    EXPECT_LT(std::abs(r - 1.0), 1.5 * 0.2) << f.cell;
+  }
+  // The staircase .msh holds the nodes at their true places: read back, it is the same grid.
+  const auto back = import_mesh(msh);
+  EXPECT_EQ(back.grid.cells, g.cells);
+  EXPECT_EQ(back.grid.flags, g.flags);
+  EXPECT_EQ(back.face_groups.at("rim").size(), m.face_groups.at("rim").size());
+  for (std::size_t c : m.cell_of_element) EXPECT_LT((back.grid.centre(c) - g.centre(c)).norm(), 1e-9) << c;
 }

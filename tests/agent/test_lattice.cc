@@ -260,3 +260,37 @@ TEST(CompressedLattice, VoxelizedDiscsFarApartAreTheirColumnsAndOneAirColumnAndR
   EXPECT_EQ(back.face_groups.at("rim").size(), m.face_groups.at("rim").size());
   for (std::size_t c : m.cell_of_element) EXPECT_LT((back.grid.centre(c) - g.centre(c)).norm(), 1e-9) << c;
 }
+
+TEST(CompressedLattice, TwoCubesFarApartIn3DAreThreeByOneByThreeSlots) {
+  // Unit cubes at (0, 0, 0) and (1e6, 0, 1e6) (MSH 2.2 hexahedra): x and z compress to cube, air,
+  // cube; the cube on the far side solves as it does alone, in each rule set.
+  std::ostringstream msh;
+  msh.precision(17);
+  msh << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n16\n";
+  const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int cube = 0; cube < 2; ++cube)
+    for (int k = 0; k < 8; ++k)
+      msh << 8 * cube + k + 1 << " " << corner[k][0] + 1e6 * cube << " " << corner[k][1] << " " << corner[k][2] + 1e6 * cube << "\n";
+  msh << "$EndNodes\n$Elements\n2\n";
+  for (int cube = 0; cube < 2; ++cube) {
+    msh << cube + 1 << " 5 2 1 1";
+    for (int k = 0; k < 8; ++k) msh << " " << 8 * cube + k + 1;
+    msh << "\n";
+  }
+  msh << "$EndElements\n";
+  const auto m = import_mesh(test_support::write_file("two_cubes.msh", msh.str()));
+  const Grid& g = m.grid;
+  ASSERT_EQ(g.cells, (std::array<int, 3>{3, 1, 3}));
+  EXPECT_EQ(g.agent_count(), 2u);
+  EXPECT_EQ(g.centre(g.index(2, 0, 2)), Eigen::Vector3d(1e6 + 0.5, 0.5, 1e6 + 0.5));
+  EXPECT_EQ(g.node_position(3, 1, 3), Eigen::Vector3d(1e6 + 1, 1, 1e6 + 1));
+  Grid body = g, alone = Grid::box(3, {1, 1, 1}, Eigen::Vector3d(1, 1, 1));
+  body.set_boundary({{g.index(2, 0, 2), kMinusY}}, Boundary::Rigid);
+  alone.set_boundary({{0, kMinusY}}, Boundary::Rigid);
+  for (RuleSet rules : {RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional}) {
+    const auto both = solved(body, rules, {{g.index(2, 0, 2), direction(1, false), 4.0}});
+    EXPECT_EQ(faces_at(both, {2, 0, 2}), faces_at(solved(alone, rules, {{0, direction(1, false), 4.0}}), {0, 0, 0}));
+    EXPECT_DOUBLE_EQ(both.diagnostics().rigid_reaction + both.diagnostics().passed_out + both.diagnostics().dropped +
+                         both.diagnostics().lost, 4.0);
+  }
+}

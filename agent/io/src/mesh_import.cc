@@ -119,7 +119,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
   // before any box is allocated.
   if (dim == 2) size[2] = 1.0;
   const double tol = 1e-4;
-  auto lattice = [&](double x, int a, const std::string& what) {
+  auto lattice_coordinate = [&](double x, int a, const std::string& what) {
     const double f = (x - lo_all[a]) / size[a];
     if (!(std::abs(f) < 1e15)) throw MeshError(name + ": " + what + " lies more than 1e15 agent sizes from the others");
     const std::int64_t l = std::llround(f);
@@ -130,7 +130,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
   std::array<std::vector<std::int64_t>, 3> occupied;
   for (std::size_t e = 0; e < n_elements; ++e)
     for (int a = 0; a < dim; ++a) {
-      element_at[e][a] = lattice(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
+      element_at[e][a] = lattice_coordinate(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
       occupied[a].push_back(element_at[e][a]);
     }
   // The compressed lattice: only the planes that hold agents, a run of empty planes one air slot.
@@ -184,7 +184,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       std::array<int, 3> p{0, 0, 0};
       for (int a = 0; a < dim; ++a) {
         const std::string what = "node " + std::to_string(tag);
-        p[a] = plane_of(lattice(x[a], a, what), a, what);
+        p[a] = plane_of(lattice_coordinate(x[a], a, what), a, what);
       }
       const std::size_t node = grid.node_index(p[0], p[1], p[2]);
       if (tag_at_node[node] != 0 && tag_at_node[node] != tag)

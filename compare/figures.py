@@ -19,6 +19,7 @@ import multiprocessing
 import os
 import sys
 import time
+import types
 
 import matplotlib
 
@@ -109,33 +110,56 @@ def in_slice(table, zc):
     return {k: v[keep] for k, v in table.items()}
 
 
-def lattice(x, y):
-    """The agents' lattice over their bounding box (a row or column that is all air keeps its
-    place): the image extent [mm] and grid_of(values), which puts one value per agent at its slot
-    (NaN elsewhere)."""
-    def axis(c):
+def agent_lattice(x, y, node_x, node_y):
+    """The agents' lattice as the agent grid holds it (docs/agent-model.md, "Memory"), from the
+    agents' centres and the nodes' coordinates [m]: a column or row that is all air keeps its
+    place, a run of them is one air column as wide as the gap. Gives grid_of(values) (one value per
+    agent at its slot, NaN elsewhere), draw(ax, grid, **style) and update(artist, grid) for a map,
+    and the agent size h [m] (the nearest two node planes: every agent has two)."""
+    def axis(c, node_c):
         u = np.unique(c)
-        h = np.diff(u).min() if len(u) > 1 else 1.0
-        index = np.rint((c - u[0]) / h).astype(int)
-        return u[0] + h * np.arange(index.max() + 1), index, h
+        h = np.diff(np.unique(node_c)).min()
+        steps = np.rint(np.diff(u) / h).astype(np.int64)  # lattice steps between occupied columns
+        column = np.concatenate(([0], np.cumsum(np.minimum(steps, 2))))  # a gap is one column
+        edges = np.empty(column[-1] + 2)
+        edges[column] = u - h / 2
+        edges[column + 1] = u + h / 2
+        return edges, column[np.searchsorted(u, c)], bool((steps > 2).any()), h
 
-    (xs, ix, hx), (ys, iy, hy) = axis(x), axis(y)
+    (xe, ix, x_collapsed, h), (ye, iy, y_collapsed, _) = axis(x, node_x), axis(y, node_y)
+    collapsed = x_collapsed or y_collapsed
 
     def grid_of(values):
-        g = np.full((len(ys), len(xs)), np.nan)
+        g = np.full((len(ye) - 1, len(xe) - 1), np.nan)
         g[iy, ix] = values
         return g
 
-    extent = [1e3 * (xs[0] - hx / 2), 1e3 * (xs[-1] + hx / 2), 1e3 * (ys[0] - hy / 2), 1e3 * (ys[-1] + hy / 2)]
-    return extent, grid_of, 1e3 * hx
+    # A regular lattice is drawn as an image; a collapsed one as a mesh with its columns at their
+    # true places and widths (an image would draw a gap of 1 m as wide as one agent).
+    def draw(ax, values, **style):
+        if collapsed:
+            ax.set_aspect("equal")  # as an image is drawn
+            return ax.pcolormesh(1e3 * xe, 1e3 * ye, values, shading="flat", **style)
+        extent = [1e3 * xe[0], 1e3 * xe[-1], 1e3 * ye[0], 1e3 * ye[-1]]
+        return ax.imshow(values, origin="lower", extent=extent, **style)
+
+    def update(artist, values):
+        if collapsed:
+            artist.set_array(values.ravel())
+        else:
+            artist.set_data(values)
+
+    return types.SimpleNamespace(grid_of=grid_of, draw=draw, update=update, h=h)
 
 
-def animation_gif(steps, out, name="agent_steps.gif"):
-    """The seed's animation: the agents' sigma_y as the load rises step by step (steps.csv only)."""
+def animation_gif(steps, agent_nodes, out, name="agent_steps.gif"):
+    """The seed's animation: the agents' sigma_y as the load rises step by step (steps.csv and
+    agent/agent_nodes.csv only)."""
     step = num(steps["step"]).astype(int)
     step_ids = np.unique(step)
     first = step == step_ids[0]  # every agent once, in cell order
-    extent, grid_of, _ = lattice(num(steps["x"][first]), num(steps["y"][first]))
+    agents = agent_lattice(num(steps["x"][first]), num(steps["y"][first]), num(agent_nodes["x"]), num(agent_nodes["y"]))
+    grid_of = agents.grid_of
     n = int(first.sum())
     sy = num(steps["sigma_y"])
     generation = num(steps["generation"])
@@ -146,10 +170,9 @@ def animation_gif(steps, out, name="agent_steps.gif"):
     # air blank (white, drawn over the grey).
     cmap = plt.get_cmap("magma_r").copy()
     cmap.set_bad("0.85")
-    image = ax.imshow(grid_of(np.zeros(n)), origin="lower", extent=extent, cmap=cmap, vmin=0, vmax=lim / 1e3)
+    image = agents.draw(ax, grid_of(np.zeros(n)), cmap=cmap, vmin=0, vmax=lim / 1e3)
     air = np.isnan(grid_of(np.zeros(n)))
-    if air.any():
-        ax.imshow(np.where(air, 1.0, np.nan), origin="lower", extent=extent, cmap="gray", vmin=0, vmax=1)
+    air_map = [agents.draw(ax, np.where(air, 1.0, np.nan), cmap="gray", vmin=0, vmax=1)] if air.any() else []
     fig.colorbar(image, ax=ax, label="agent compression -sigma_y [kPa] (grey: not reached; white: air)")
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
@@ -157,7 +180,7 @@ def animation_gif(steps, out, name="agent_steps.gif"):
     # Blitting: the figure is drawn once without the artists that change (the agents' image, the air
     # over it, the title) and the axes' frame drawn over them; each frame restores that and draws
     # only these, in a full draw's order (the same pixels, a third of the CPU of 20 full draws).
-    changing = [image] + ax.images[1:] + list(ax.spines.values()) + [label]  # in drawing order
+    changing = [image] + air_map + list(ax.spines.values()) + [label]  # in drawing order
     for artist in changing:
         artist.set_animated(True)
     fig.canvas.draw()
@@ -165,7 +188,7 @@ def animation_gif(steps, out, name="agent_steps.gif"):
     frames = []
     for k in step_ids:
         sel = step == k  # the same cell order in every step
-        image.set_data(grid_of(np.where(generation[sel] >= 0, -sy[sel] / 1e3, np.nan)))
+        agents.update(image, grid_of(np.where(generation[sel] >= 0, -sy[sel] / 1e3, np.nan)))
         label.set_text(f"agents, load {load[sel][0]:.3g} N (step {k}/{step_ids[-1]})")
         fig.canvas.restore_region(background)
         for artist in changing:
@@ -199,10 +222,11 @@ def main():
     # 3D: the slice through the first load's centre (its along line's z).
     zc = along[0]["from"][2]
     steps = in_slice(read_csv(os.path.join(args.dir, "steps.csv")), zc)
+    agent_nodes = read_csv(os.path.join(args.dir, "agent", "agent_nodes.csv"))  # for the agent size
     slice_note = f", slice z = {1e3 * zc:.4g} mm" if "z" in steps else ""
     print(f"figures: read steps.csv in {time.process_time():.2f} s CPU (with the imports)", flush=True)
     if args.wait:  # the animation needs only the agents: drawn while the workbench solves the FEM reference
-        run_all([lambda: animation_gif(steps, out)], ["animation_gif"])
+        run_all([lambda: animation_gif(steps, agent_nodes, out)], ["animation_gif"])
         start = time.time()
         if sys.stdin.readline().strip() != "draw":
             sys.exit("figures: the workbench stopped before the comparison's data was complete")
@@ -267,7 +291,8 @@ def main():
         fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
         save(fig, out, "fig9_stress_lines", formats)
 
-    extent, grid_of, h_mm = lattice(num(cells["x"]), num(cells["y"]))
+    agents = agent_lattice(num(cells["x"]), num(cells["y"]), num(nodes["x"]), num(nodes["y"]))
+    grid_of, draw_map, h = agents.grid_of, agents.draw, agents.h
 
     def fig9_maps():
         fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
@@ -276,8 +301,7 @@ def main():
             lim = np.percentile(np.abs(f), 99) or 1.0
             for col, model in enumerate(("fem", "agent")):
                 ax = axes[row, col]
-                im = ax.imshow(grid_of(num(cells[f"{model}_{comp}"])) / 1e3, origin="lower", extent=extent, cmap="RdBu_r",
-                               vmin=-lim / 1e3, vmax=lim / 1e3)
+                im = draw_map(ax, grid_of(num(cells[f"{model}_{comp}"])) / 1e3, cmap="RdBu_r", vmin=-lim / 1e3, vmax=lim / 1e3)
                 ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}")
                 ax.set_xlabel("x [mm]")
                 ax.set_ylabel("y [mm]")
@@ -302,18 +326,27 @@ def main():
                     np.abs(num(nodes["agent_u_x"])).max(), np.abs(num(nodes["agent_u_y"])).max(), 1e-300)
         magnification = 0.1 * span / u_max
         every = max(1, (nx_ - 1) // 25)
+        # A collapsed air column (row) lies between two node columns (rows) farther apart than an
+        # agent: no grid line crosses it.
+        wide_x = np.nonzero(np.diff(np.fmax.reduce(X, axis=0)) > 1.5 * h)[0] + 1
+        wide_y = np.nonzero(np.diff(np.fmax.reduce(Y, axis=1)) > 1.5 * h)[0] + 1
+        def columns(A):  # the drawn node columns, broken at wide rows
+            return np.insert(A[:, ::every], wide_y, np.nan, axis=0)
+        def rows(A):  # the drawn node rows, broken at wide columns
+            return np.insert(A[::every, :], wide_x, np.nan, axis=1).T
         fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True)
         for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
             U, V = node_grid(num(nodes[f"{model}_u_x"])), node_grid(num(nodes[f"{model}_u_y"]))
             Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
-            ax.plot(1e3 * X[:, ::every], 1e3 * Y[:, ::every], color="0.85", lw=0.5)
-            ax.plot(1e3 * X[::every, :].T, 1e3 * Y[::every, :].T, color="0.85", lw=0.5)
-            ax.plot(Xd[:, ::every], Yd[:, ::every], color="C0", lw=0.6)
-            ax.plot(Xd[::every, :].T, Yd[::every, :].T, color="C0", lw=0.6)
+            ax.plot(1e3 * columns(X), 1e3 * columns(Y), color="0.85", lw=0.5)
+            ax.plot(1e3 * rows(X), 1e3 * rows(Y), color="0.85", lw=0.5)
+            ax.plot(columns(Xd), columns(Yd), color="C0", lw=0.6)
+            ax.plot(rows(Xd), rows(Yd), color="C0", lw=0.6)
             ax.set_aspect("equal")
             ax.set_title(f"{label}, |u|max = {np.nanmax(np.hypot(U, V)):.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
+        h_mm = 1e3 * h
         fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
                      f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
         save(fig, out, "fig10_deformed", formats)
@@ -343,7 +376,7 @@ def main():
     if args.wait:
         jobs = ([fig8, fig9_lines], [fig9_maps, fig11, fig10])
     else:
-        jobs = ([fig8, fig9_lines, fig11], [fig9_maps, fig10, lambda: animation_gif(steps, out)])
+        jobs = ([fig8, fig9_lines, fig11], [fig9_maps, fig10, lambda: animation_gif(steps, agent_nodes, out)])
     if os.cpu_count() and os.cpu_count() > 1:
         procs = [multiprocessing.get_context("fork").Process(target=run_all, args=(j,)) for j in jobs]
         for proc in procs:

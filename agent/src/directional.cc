@@ -76,6 +76,25 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
 
   Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
   std::vector<double> row_force;
+  // Lateral positions are true distances in agents from the box's lower side: slot i starts at
+  // at[a][i] (i itself unless a run of empty planes was collapsed into a wider air slot), the box
+  // is width[a] agents wide. Packets move, fold and balance the row's moment in these units.
+  std::array<std::vector<double>, 3> at;
+  std::array<double, 3> width{1, 1, 1};
+  for (int a = 0; a < dim; ++a) {
+    // Planes lie on the lattice: rounding gives the whole number of agents exactly.
+    auto agents_to = [&](int i) { return g.planes[a].empty() ? double(i) : std::round((g.plane(a, i) - g.origin[a]) / g.size[a]); };
+    for (int i = 0; i < g.cells[a]; ++i) at[a].push_back(agents_to(i));
+    width[a] = agents_to(g.cells[a]);
+  }
+  if (dim == 2) at[2].assign(1, 0.0);
+  // The slot holding lateral position `pos` along axis `a` (clamped to the box).
+  auto slot_at = [&](int a, double pos) {
+    const int n_a = g.cells[a];
+    if (g.planes[a].empty()) return std::min(std::max(int(pos), 0), n_a - 1);
+    const int i = int(std::upper_bound(at[a].begin(), at[a].end(), pos) - at[a].begin()) - 1;
+    return std::min(std::max(i, 0), n_a - 1);
+  };
   for (const auto& load : loads) {
     d.applied += load.force;
     if (!(load.force > gamma)) {
@@ -117,6 +136,8 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     // row must have its centroid under the load, as in a beam. Packets reflected by a side shift
     // it; a linear, self-equilibrated correction across the row's agents (zero net force, so the
     // load balance is untouched) restores it. It puts the far side in tension, as FEM does.
+    const double* at_u = at[l0].data();
+    const double* at_v = at[l1].data();
     auto balance_row_moment = [&](std::size_t layer_base, bool last_layer, std::vector<double>& through) {
       double count = 0, cu = 0, cv = 0, total = 0, mu = 0, mv = 0;
       bool exits_rigid = true, exits_free = false;  // how the row's agents meet what is past the row
@@ -125,12 +146,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           const std::size_t cell = layer_base + u * s0 + v * s1;
           if (air(cell)) continue;
           count += 1;
-          cu += u;
-          cv += v;
+          cu += at_u[u];
+          cv += at_v[v];
           const double t = through[u + std::size_t(n0) * v];
           total += t;
-          mu += t * (u - eu);
-          mv += t * (v - ev);
+          mu += t * (at_u[u] - at_u[eu]);
+          mv += t * (at_v[v] - at_v[ev]);
           const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
           exits_rigid = exits_rigid && (!exits || rigid(cell, exit_face));
           exits_free = exits_free || (exits && !rigid(cell, exit_face));
@@ -143,9 +164,9 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u)
           if (!air(layer_base + u * s0 + v * s1)) {
-            suu += (u - cu) * (u - cu);
-            suv += (u - cu) * (v - cv);
-            svv += (v - cv) * (v - cv);
+            suu += (at_u[u] - cu) * (at_u[u] - cu);
+            suv += (at_u[u] - cu) * (at_v[v] - cv);
+            svv += (at_v[v] - cv) * (at_v[v] - cv);
           }
       // delta(u, v) = cu_coef (u - cu) + cv_coef (v - cv) with sum delta (u - eu) = -mu, likewise v.
       double ku = 0, kv = 0;
@@ -162,7 +183,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
         for (int u = 0; u < n0; ++u) {
           const std::size_t cell = layer_base + u * s0 + v * s1;
           if (air(cell)) continue;
-          const double delta = ku * (u - cu) + kv * (v - cv);
+          const double delta = ku * (at_u[u] - cu) + kv * (at_v[v] - cv);
           double* f = faces.data() + cell * nd;
           f[enter_face] += delta;
           const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
@@ -180,27 +201,28 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       // direction indices (du, dv): folded back into the box by the free sides (a mirror: the
       // slope changes sign), absorbed by a rigid side, passed out where the next row is air.
       auto deposit = [&](double x, double y, int du, int dv, double force) {
-        auto fold = [&](double& pos, int cells, int& index, int lateral, std::size_t across) {
-          while (pos < 0 || pos > cells) {
+        auto fold = [&](double& pos, int lateral, int& index, std::size_t across) {
+          const double w = width[lateral];
+          while (pos < 0 || pos > w) {
             const bool low = pos < 0;
-            const std::size_t edge = next_base + (low ? 0 : std::size_t(cells - 1)) * g.stride(lateral) + across;
+            const std::size_t edge = next_base + (low ? 0 : std::size_t(g.cells[lateral] - 1)) * g.stride(lateral) + across;
             if (rigid(edge, direction(lateral, !low))) return false;
-            pos = low ? -pos : 2.0 * cells - pos;
+            pos = low ? -pos : 2.0 * w - pos;
             index = n - 1 - index;
           }
           return true;
         };
-        const int iv_guess = std::min(std::max(int(y), 0), n1 - 1);
-        if (!fold(x, n0, du, l0, iv_guess * s1)) {
+        const int iv_guess = slot_at(l1, y);
+        if (!fold(x, l0, du, iv_guess * s1)) {
           d.rigid_reaction += force;
           return;
         }
-        const int iu = std::min(int(x), n0 - 1);
-        if (dim == 3 && !fold(y, n1, dv, l1, iu * s0)) {
+        const int iu = slot_at(l0, x);
+        if (dim == 3 && !fold(y, l1, dv, iu * s0)) {
           d.rigid_reaction += force;
           return;
         }
-        const int iv = dim == 3 ? std::min(int(y), n1 - 1) : 0;
+        const int iv = dim == 3 ? slot_at(l1, y) : 0;
         if (air(next_base + iu * s0 + iv * s1)) {
           d.passed_out += force;
           return;
@@ -208,8 +230,8 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
         const int dir = du + n * dv;
         const std::size_t slot = dir * layer_size + iu + std::size_t(n0) * iv;
         next.force[slot] += force;
-        next.moment_u[slot] += force * (x - iu - 0.5);
-        if (dim == 3) next.moment_v[slot] += force * (y - iv - 0.5);
+        next.moment_u[slot] += force * (x - at_u[iu] - 0.5);
+        if (dim == 3) next.moment_v[slot] += force * (y - at_v[iv] - 0.5);
         next.box[dir].add(iu, iv);
       };
 
@@ -255,7 +277,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
             any = true;
             // Move one row on, drift by the slope, and diffuse: two (3D: four) equal pieces
             // at +-r, which adds r^2 of variance per lateral axis exactly.
-            const double x = u + 0.5 + off_u + su * drift_u, y = v + 0.5 + off_v + sv * drift_v;
+            const double x = at_u[u] + 0.5 + off_u + su * drift_u, y = at_v[v] + 0.5 + off_v + sv * drift_v;
             if (dim == 2) {
               if (r_u == 0) {
                 deposit(x, y, du0, dv0, force);

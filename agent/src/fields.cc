@@ -76,7 +76,7 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
     else if (has_high[a])
       datums[a] = high[a];
     else
-      datums[a] = total > 0 ? (centre[a] - grid.origin[a]) / grid.size[a] : 0.5 * grid.cells[a];
+      datums[a] = total > 0 ? grid.slot_coordinate(a, centre[a]) : 0.5 * grid.cells[a];
   }
   return datums;
 }

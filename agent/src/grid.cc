@@ -42,7 +42,8 @@ double Grid::face_area(int axis) const {
 Eigen::Vector3d Grid::centre(std::size_t cell) const {
   const auto c = coords(cell);
   Eigen::Vector3d x = origin;
-  for (int a = 0; a < dim; ++a) x[a] += (c[a] + 0.5) * size[a];
+  for (int a = 0; a < dim; ++a)
+    x[a] = planes[a].empty() ? x[a] + (c[a] + 0.5) * size[a] : 0.5 * (planes[a][c[a]] + planes[a][c[a] + 1]);
   return x;
 }
 

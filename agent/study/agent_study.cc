@@ -168,8 +168,7 @@ workbench::OutputMesh output_mesh(const AgentStudy& study) {
   for (int k = 0; k < nn[2]; ++k)
     for (int j = 0; j < nn[1]; ++j)
       for (int i = 0; i < nn[0]; ++i) {
-        const Eigen::Vector3d x = grid.origin + Eigen::Vector3d(i * grid.size[0], j * grid.size[1],
-                                                                grid.dim == 3 ? k * grid.size[2] : 0.0);
+        const Eigen::Vector3d x = grid.node_position(i, j, k);
         mesh.points.insert(mesh.points.end(), {x[0], x[1], x[2]});
       }
   for (std::size_t cell : study.mesh.cell_of_element) {

@@ -9,9 +9,9 @@
 namespace compare {
 
 namespace {
-// Index and weight of `x` between sample positions origin + (i + offset) * h, i in [0, n).
-void bracket(double x, double origin, double h, double offset, int n, int& i0, double& t) {
-  double f = (x - origin) / h - offset;
+// Index and weight of slot coordinate `s` between sample positions i + offset, i in [0, n).
+void bracket(double s, double offset, int n, int& i0, double& t) {
+  double f = s - offset;
   if (n == 1 || f <= 0) {
     i0 = 0;
     t = 0;
@@ -32,7 +32,7 @@ double sample_lattice(const agent::Grid& g, const std::vector<double>& values, i
   int i[3] = {0, 0, 0};
   double t[3] = {0, 0, 0};
   for (int a = 0; a < g.dim; ++a)
-    bracket(p[a], g.origin[a], g.size[a], nodes ? 0.0 : 0.5, g.cells[a] + (nodes ? 1 : 0), i[a], t[a]);
+    bracket(g.slot_coordinate(a, p[a]), nodes ? 0.0 : 0.5, g.cells[a] + (nodes ? 1 : 0), i[a], t[a]);
   double sum = 0, weight = 0;
   for (int c = 0; c < (1 << g.dim); ++c) {
     int idx[3] = {0, 0, 0};
@@ -57,7 +57,7 @@ double sample_lattice(const agent::Grid& g, const std::vector<double>& values, i
 bool in_body(const agent::Grid& g, const Eigen::Vector3d& p) {
   int idx[3] = {0, 0, 0};
   for (int a = 0; a < g.dim; ++a) {
-    const double f = std::floor((p[a] - g.origin[a]) / g.size[a]);
+    const double f = std::floor(g.slot_coordinate(a, p[a]));
     if (!(f >= 0 && f < g.cells[a])) return false;
     idx[a] = int(f);
   }
@@ -103,7 +103,7 @@ std::string point_name(const Eigen::Vector3d& p, int dim) {
 
 Eigen::Vector3d box_hi(const agent::Grid& g) {
   Eigen::Vector3d hi = g.origin;
-  for (int a = 0; a < g.dim; ++a) hi[a] += g.cells[a] * g.size[a];
+  for (int a = 0; a < g.dim; ++a) hi[a] = g.plane(a, g.cells[a]);
   return hi;
 }
 
@@ -139,9 +139,24 @@ Line make_line(const agent::Grid& g, const Eigen::Vector3d& from, const Eigen::V
   l.kind = kind;
   l.from = from;
   l.to = to;
-  double agents = 0;  // agents crossed along the line's main axis
-  for (int a = 0; a < g.dim; ++a) agents = std::max(agents, std::abs(to[a] - from[a]) / g.size[a]);
+  double agents = 0;  // agents crossed along the line's main axis (slots on a compressed grid)
+  Eigen::Vector3d s_from = from, s_to = to;
+  for (int a = 0; a < g.dim; ++a) {
+    if (g.compressed()) s_from[a] = g.slot_coordinate(a, from[a]), s_to[a] = g.slot_coordinate(a, to[a]);
+    agents = std::max(agents, g.compressed() ? std::abs(s_to[a] - s_from[a]) : std::abs(to[a] - from[a]) / g.size[a]);
+  }
   l.samples = std::max(2, int(std::lround(agents)) + 1);
+  for (int i = 0; i < l.samples; ++i) {
+    const double t = double(i) / (l.samples - 1);
+    if (!g.compressed()) {
+      l.points.push_back(from + (to - from) * t);
+    } else {
+      Eigen::Vector3d p = from + (to - from) * t;  // the true line along an axis it does not cross
+      for (int a = 0; a < g.dim; ++a)
+        if (s_to[a] != s_from[a]) p[a] = g.position(a, s_from[a] + (s_to[a] - s_from[a]) * t);
+      l.points.push_back(p);
+    }
+  }
   for (int i = 0; i < l.samples; ++i)
     if (in_body(g, l.point(i))) l.body_samples.push_back(i);
   l.name = line_name(from, to, g.dim);
@@ -232,7 +247,7 @@ NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench:
   for (int k = 0; k < nn[2]; ++k)
     for (int j = 0; j < nn[1]; ++j)
       for (int i = 0; i < nn[0]; ++i) {
-        const Eigen::Vector3d p = g.origin + Eigen::Vector3d(i * g.size[0], j * g.size[1], k * g.size[2]);
+        const Eigen::Vector3d p = g.node_position(i, j, k);
         out.nodes[g.node_index(i, j, k)] = near(p);
       }
   return out;

@@ -22,9 +22,9 @@ namespace {
 bool locate_cell(const agent::Grid& g, const double* p, int idx[3]) {
   idx[0] = idx[1] = idx[2] = 0;
   for (int a = 0; a < g.dim; ++a) {
-    const double f = (p[a] - g.origin[a]) / g.size[a];
+    const double f = g.slot_coordinate(a, p[a]);
+    if (!(f >= 0 && f < g.cells[a])) return false;
     idx[a] = int(std::floor(f));
-    if (idx[a] < 0 || idx[a] >= g.cells[a]) return false;
   }
   return true;
 }
@@ -33,9 +33,11 @@ bool locate_cell(const agent::Grid& g, const double* p, int idx[3]) {
 bool locate_node(const agent::Grid& g, const double* p, int idx[3]) {
   idx[0] = idx[1] = idx[2] = 0;
   for (int a = 0; a < g.dim; ++a) {
-    const double f = (p[a] - g.origin[a]) / g.size[a];
+    const double f = g.slot_coordinate(a, p[a]);
+    if (!(f > -0.5 && f < g.cells[a] + 0.5)) return false;
     idx[a] = int(std::lround(f));
-    if (std::abs(f - idx[a]) > 1e-6 || idx[a] < 0 || idx[a] > g.cells[a]) return false;
+    if (std::abs(f - idx[a]) > 1e-6) return false;
+    if (g.compressed() && std::abs(p[a] - g.plane(a, idx[a])) > 1e-6 * g.size[a]) return false;  // beside a wide air slot
   }
   return true;
 }
@@ -106,9 +108,10 @@ std::vector<std::array<double, 3>> agent_probe_points(const agent::Grid& grid) {
   for (int k = 0; k < nn[2]; ++k)
     for (int j = 0; j < nn[1]; ++j)
       for (int i = 0; i < nn[0]; ++i)
-        if (body[grid.node_index(i, j, k)])
-          points.push_back({grid.origin[0] + i * grid.size[0], grid.origin[1] + j * grid.size[1],
-                            grid.dim == 3 ? grid.origin[2] + k * grid.size[2] : 0.0});
+        if (body[grid.node_index(i, j, k)]) {
+          const Eigen::Vector3d x = grid.node_position(i, j, k);
+          points.push_back({x[0], x[1], grid.dim == 3 ? x[2] : 0.0});
+        }
   return points;
 }
 

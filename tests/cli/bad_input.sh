@@ -60,7 +60,19 @@ expect cyclic_conserving "cyclic_conserving.toml: agent.readings: every_agent_al
 expect missing_group "missing_group.toml: boundary.rigid: group 'floor' is not a physical group" "$(with rigid 'rigid = ["floor"]')"
 expect no_rigid "no_rigid.toml: boundary.rigid: no rigid faces" "$(with rigid 'rigid = []')"
 expect triangles "triangles.geo: has Triangle 3 elements" "$(with file "file = \"$src/tests/data/triangles.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d' | sed 's/"load"/"load"/')"
-expect far_apart "far_apart.geo: the agent grid's bounding box" "$(with file "file = \"$src/tests/data/far_apart.geo\"" | sed '/^\[mesh.parameters\]/,/^lw/d')"
+# A connected diagonal staircase of 300 steps (two unit squares each, MSH 2.2): no lattice plane is
+# empty, so its compressed box is its bounding box, 301 x 300 slots, about 0.017 GiB: refused at 0.01.
+{
+  printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n' $((4 * 301))
+  for ((j = 0; j <= 300; j++)); do for ((d = 0; d < 4; d++)); do printf '%d %d %d 0\n' $((1 + 4 * j + d)) $((j - 1 + d)) $j; done; done
+  printf '$EndNodes\n$Elements\n600\n'
+  node() { echo $((1 + 4 * $2 + $1 - $2 + 1)); }
+  for ((j = 0; j < 300; j++)); do for i in $j $((j + 1)); do
+    printf '%d 3 2 1 1 %d %d %d %d\n' $((2 * j + i - j + 1)) "$(node $i $j)" "$(node $((i + 1)) $j)" "$(node $((i + 1)) $((j + 1)))" "$(node $i $((j + 1)))"
+  done; done
+  printf '$EndElements\n'
+} >"$work/staircase.msh"
+WORKBENCH_MEMORY_LIMIT=0.01 expect staircase "staircase.msh: the agent grid's compressed box (301 x 300 slots of 1 m" "$(with file "file = \"$work/staircase.msh\"" | sed '/^\[mesh.parameters\]/,/^lw/d')"
 expect bad_parameter "plate2d.geo: unknown mesh parameter 'hx'" "$(with 'h =' 'hx = 0.01')"
 expect geo_error "plate2d.geo: plate2d.geo: W, H, lw and the patch's left end xc - lw/2 must be multiples of h" "$(with 'h =' 'h = 0.003')"
 expect syntax "syntax.toml:2:" "$(base_case | sed '2s/.*/file = = "x"/')"

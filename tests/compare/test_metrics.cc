@@ -169,3 +169,30 @@ TEST(CompareAir, ALineAcrossAHoleStopsAtItsRim) {
   // Below the hole the same line runs through.
   EXPECT_EQ(make_line(g, Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(9.5, 0.5, 0), "below", "user").body_samples.size(), 10u);
 }
+
+TEST(CompareSampling, ACompressedGridIsSampledAndCrossedByLinesAtTrueCoordinates) {
+  // Two 4 x 2 parts of unit agents, columns 0-3 and 1000-1003: 9 x 2 slots (slot 4 the gap).
+  const agent::CompressedAxis ax({0, 1, 2, 3, 1000, 1001, 1002, 1003}), ay({0, 1});
+  agent::Grid g = agent::Grid::lattice(2, {&ax, &ay, nullptr}, Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 1, 1));
+  ASSERT_EQ(g.cells, (std::array<int, 3>{9, 2, 1}));
+  for (int j = 0; j < 2; ++j) g.make_air(g.index(4, j, 0));
+  EXPECT_TRUE(in_body(g, Eigen::Vector3d(1001.2, 0.5, 0)));
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(500, 0.5, 0)));
+  EXPECT_FALSE(in_body(g, Eigen::Vector3d(4.5, 0.5, 0)));  // the first column of the gap
+  // A cell field equal to x and a node field equal to x + y are sampled exactly in each part.
+  std::vector<double> cells(g.count()), nodes(g.node_count());
+  for (std::size_t c = 0; c < g.count(); ++c) cells[c] = g.centre(c)[0];
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 9; ++i) nodes[g.node_index(i, j, 0)] = g.node_position(i, j, 0)[0] + j;
+  EXPECT_DOUBLE_EQ(sample_cells(g, cells, 1, 0, Eigen::Vector3d(1001.5, 0.5, 0)), 1001.5);
+  EXPECT_DOUBLE_EQ(sample_cells(g, cells, 1, 0, Eigen::Vector3d(1001.75, 1.5, 0)), 1001.75);
+  EXPECT_DOUBLE_EQ(sample_nodes(g, nodes, 1, 0, Eigen::Vector3d(1002.25, 0.5, 0)), 1002.75);
+  // A line across both parts: one sample per slot (8 agents and the gap), the gap's sample in air.
+  const auto l = make_line(g, Eigen::Vector3d(0.5, 0.5, 0), Eigen::Vector3d(1003.5, 0.5, 0), "across", "user");
+  ASSERT_EQ(l.samples, 9);
+  EXPECT_EQ(l.body_samples, (std::vector<int>{0, 1, 2, 3, 5, 6, 7, 8}));
+  EXPECT_DOUBLE_EQ(l.point(3)[0], 3.5);
+  EXPECT_DOUBLE_EQ(l.point(4)[0], 502.0);  // the middle of the gap [4, 1000]
+  EXPECT_DOUBLE_EQ(l.point(5)[0], 1000.5);
+  EXPECT_DOUBLE_EQ(l.point(8)[0], 1003.5);
+}

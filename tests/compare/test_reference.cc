@@ -1,12 +1,17 @@
 // The converged FEM reference of the comparison: it converges under refinement (the next level
 // changes less than the reference's error estimate) and, for the plate under a centred patch
-// load, matches Flamant's strip load on a half-plane in the upper part of the plate.
+// load, matches Flamant's strip load on a half-plane in the upper part of the plate; on a
+// compressed grid (two plates 1 m apart) it is sampled at the agents' true places.
+#include <agent/mesh_import.h>
 #include <compare/metrics.h>
 #include <compare/reference.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 using namespace compare;
 
@@ -80,4 +85,48 @@ TEST(ConvergedReference, ConvergesWithinItsEstimateAndMatchesFlamantUnderTheLoad
     const double flamant = -p * (alpha + std::sin(alpha)) / kPi;
     EXPECT_NEAR(fem / flamant, 1.0, 0.025) << "depth " << z;
   }
+}
+
+TEST(ReferenceOnCompressedGrid, TwoPlates1mApartAreSampledAtTheirTrueAgents) {
+  // tests/data/two_plates.geo: two 10 x 5 plates (1 mm agents) 1 m apart, a compressed lattice of
+  // 21 x 5 slots. FEM on the same mesh, bases clamped, 1 N on plate A's top and 2 N on plate B's:
+  // linear elasticity makes every stress and displacement of B twice A's at the same place in
+  // its plate, which holds only if FEM is sampled at each agent's true coordinates.
+  const std::string file = WORKBENCH_SOURCE_DIR "/tests/data/two_plates.geo";
+  const auto mesh = agent::import_mesh(file);
+  const auto& g = mesh.grid;
+  ASSERT_EQ(g.cells, (std::array<int, 3>{21, 5, 1}));
+  fem_reference::FemProblem p;
+  p.name = "two_plates";
+  p.mesh_file = file;
+  p.thickness = 0.002;
+  p.supports.push_back({"base", fem_reference::SupportKind::Clamped, {}});
+  for (const auto& [group, force] : {std::pair<std::string, double>{"top_a", 1.0}, {"top_b", 2.0}}) {
+    fem_reference::Traction load;
+    load.group = group;
+    load.force = {0, -force, 0};
+    p.tractions.push_back(load);
+  }
+  p.options.write_vtu = false;
+  const auto fem = fem_reference::solve_fem(p);
+  const auto f = fem_on_grid(mesh, fem, "two_plates");
+  double largest = 0;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const std::size_t a = g.index(i, j, 0), b = g.index(11 + i, j, 0);
+      for (int c = 0; c < 2; ++c) {
+        EXPECT_NEAR(f.sigma[2 * b + c], 2 * f.sigma[2 * a + c], 1e-8 * std::abs(f.sigma[2 * a + 1]) + 1e-9) << i << "," << j;
+        largest = std::max(largest, std::abs(f.sigma[2 * a + c]));
+      }
+    }
+  EXPECT_GT(largest, 50.0);  // about 1 N / (10 mm x 2 mm) = 50 Pa and more under a clamped base
+  double u_largest = 0;
+  for (int j = 0; j <= 5; ++j)
+    for (int i = 0; i <= 10; ++i) u_largest = std::max(u_largest, std::abs(f.u[2 * g.node_index(i, j, 0) + 1]));
+  EXPECT_GT(u_largest, 1e-13);
+  for (int j = 0; j <= 5; ++j)
+    for (int i = 0; i <= 10; ++i)
+      for (int c = 0; c < 2; ++c)
+        EXPECT_NEAR(f.u[2 * g.node_index(11 + i, j, 0) + c], 2 * f.u[2 * g.node_index(i, j, 0) + c], 1e-8 * u_largest)
+            << i << "," << j;
 }

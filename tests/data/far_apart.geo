@@ -1,4 +1,5 @@
-// Two unit squares 1e10 apart on a diagonal: their bounding box (1e20 agent slots) cannot be held.
+// Two unit squares 1e10 apart on a diagonal: their bounding box (1e20 agent slots) could not be
+// held; the compressed lattice is 3 x 3 slots (square, air, square along each axis).
 Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};
 Point(5) = {1e10, 1e10, 0}; Point(6) = {1e10 + 1, 1e10, 0}; Point(7) = {1e10 + 1, 1e10 + 1, 0}; Point(8) = {1e10, 1e10 + 1, 0};
 Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};

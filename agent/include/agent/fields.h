@@ -25,8 +25,10 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
 /// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. Agents carry no shear.
 std::vector<double> agent_strains(const Grid& grid, const Material& material, const std::vector<double>& stresses);
 
-/// Where each displacement component is zero, per axis: a position along the axis in agent
-/// lengths from the grid's lower side (0 = the lower outer side, cells[a] = the upper one).
+/// Where each displacement component is zero, per axis: a position along the axis in slots
+/// from the grid's lower side (Grid::slot_coordinate: 0 = the lower outer side, cells[a] = the
+/// upper one; agent lengths unless a run of air was collapsed). Strains integrate over agents
+/// only (air carries none), so a collapsed air slot changes no displacement.
 using Datums = std::array<double, 3>;
 
 /// The seed plate's choice, generalised (docs/agent-model.md, "Displacement"): along an axis with

@@ -30,10 +30,28 @@ struct BoundaryFace {
   int side;
 };
 
+/// One axis of a compressed lattice (docs/agent-model.md, "Memory"): the lattice planes that hold
+/// cells are kept, and every run of two or more empty planes collapses into one wide air slot.
+/// Lattice coordinates are 64-bit integers (agent sizes from the lattice's origin).
+struct CompressedAxis {
+  /// Lattice coordinate of each plane of the compressed axis (slots + 1 values, increasing):
+  /// slot s spans [first[s], first[s + 1]); an agent's slot spans one, a collapsed air slot more.
+  std::vector<std::int64_t> first;
+  /// Keeps the planes of the given lattice coordinates (any order, repeats allowed, not empty).
+  explicit CompressedAxis(std::vector<std::int64_t> occupied);
+  std::size_t slots() const { return first.size() - 1; }
+  /// Slot holding lattice coordinate `l` (first[0] <= l < first.back()).
+  std::size_t slot(std::int64_t l) const;
+  /// Whether a run of empty planes was collapsed (some slot spans more than one coordinate).
+  bool collapsed() const;
+};
+
 /// The agents: a set of equal, axis-aligned squares (2D) or cubes (3D) on a lattice. Cells are
 /// addressed in their bounding box (i fastest, then j, then k); a slot of the box that holds no
 /// agent is air. Every face between an agent and air or the box's outside is a boundary face,
-/// free unless marked rigid.
+/// free unless marked rigid. Along an axis the box may be compressed (`planes`): a run of empty
+/// lattice planes is one air slot as wide as the gap, so memory follows the occupied planes;
+/// agents always have edge `size`, and face adjacency is that of the uncompressed lattice.
 struct Grid {
   int dim = 2;                                 ///< 2 (squares) or 3 (cubes)
   std::array<int, 3> cells{1, 1, 1};           ///< bounding box in agents per axis; cells[2] == 1 in 2D
@@ -43,9 +61,19 @@ struct Grid {
   /// Per slot of the box: bit `side` (0-5) marks that boundary face rigid, kAirBit marks air.
   std::vector<std::uint8_t> flags;
   static constexpr std::uint8_t kAirBit = 1 << 6;
+  /// Per axis, the position of each slot boundary (cells[a] + 1 values) where the axis is
+  /// compressed; empty where it is uniform (plane i at origin + i * size).
+  std::array<std::vector<double>, 3> planes;
 
   /// A box of n[0] x n[1] (x n[2]) agents of the given size, every outer face free.
   static Grid box(int dim, std::array<int, 3> n, Eigen::Vector3d size, double thickness = 1.0);
+
+  /// The compressed box of the given axes (axes[2] unused in 2D), every slot an agent with free
+  /// outer faces: lattice coordinate l of axis a lies at origin[a] + (l - first[0]) * size[a].
+  /// A collapsed axis stores its planes; an axis without a collapsed run stays uniform (the
+  /// same positions as Grid::box, bit for bit).
+  static Grid lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Eigen::Vector3d origin,
+                      Eigen::Vector3d size);
 
   /// Slots of the bounding box (agents and air).
   std::size_t count() const { return std::size_t(cells[0]) * cells[1] * cells[2]; }
@@ -70,8 +98,19 @@ struct Grid {
   Boundary boundary(int side, const std::array<int, 3>& c) const { return boundary(side, index(c[0], c[1], c[2])); }
   /// Area of an agent face whose normal is `axis` [m^2] (edge length times thickness in 2D).
   double face_area(int axis) const;
-  /// Centre of an agent [m].
+  /// Centre of a slot [m] (of an agent, or the middle of an air slot).
   Eigen::Vector3d centre(std::size_t cell) const;
+  /// Position of plane (slot boundary) i along `axis` [m], i in [0, cells[axis]].
+  double plane(int axis, int i) const { return planes[axis].empty() ? origin[axis] + i * size[axis] : planes[axis][i]; }
+  /// Position of node (i, j, k) [m] (z = origin z in 2D).
+  Eigen::Vector3d node_position(int i, int j, int k) const;
+  /// Position `x` [m] along `axis` in slots: i + the fraction of slot i below x (linear inside a
+  /// slot; outside the box, extended with the agent size). Uniform: (x - origin) / size.
+  double slot_coordinate(int axis, double x) const;
+  /// Inverse of slot_coordinate: the position [m] at slot coordinate `s` along `axis`.
+  double position(int axis, double s) const;
+  /// Whether some axis is compressed (a run of empty planes is one wider air slot).
+  bool compressed() const { return !planes[0].empty() || !planes[1].empty() || !planes[2].empty(); }
   /// Nodes per axis (cells + 1 along the grid's axes, 1 along z in 2D) and their count.
   std::array<int, 3> node_counts() const { return {cells[0] + 1, cells[1] + 1, dim == 3 ? cells[2] + 1 : 1}; }
   std::size_t node_count() const;

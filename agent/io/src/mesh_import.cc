@@ -115,35 +115,52 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
     hi_all = hi_all.cwiseMax(hi);
   }
 
-  // The bounding box holds the agents and the air between them: refuse it up front when the
-  // study would not fit in memory (two cells far apart make a huge box of air).
-  std::array<int, 3> n{1, 1, 1};
+  // Lattice coordinates (64-bit, agent sizes from the lower corner) of every element and node,
+  // before any box is allocated.
+  if (dim == 2) size[2] = 1.0;
+  const double tol = 1e-4;
+  auto lattice_coordinate = [&](double x, int a, const std::string& what) {
+    const double f = (x - lo_all[a]) / size[a];
+    if (!(std::abs(f) < 1e15)) throw MeshError(name + ": " + what + " lies more than 1e15 agent sizes from the others");
+    const std::int64_t l = std::llround(f);
+    if (std::abs(f - double(l)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
+    return l;
+  };
+  std::vector<std::array<std::int64_t, 3>> element_at(n_elements, {0, 0, 0});
+  std::array<std::vector<std::int64_t>, 3> occupied;
+  for (std::size_t e = 0; e < n_elements; ++e)
+    for (int a = 0; a < dim; ++a) {
+      element_at[e][a] = lattice_coordinate(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
+      occupied[a].push_back(element_at[e][a]);
+    }
+  // The compressed lattice: only the planes that hold agents, a run of empty planes one air slot.
+  std::vector<CompressedAxis> axes;
+  for (int a = 0; a < dim; ++a) axes.emplace_back(std::move(occupied[a]));
+  // Refuse up front a box that would not fit in memory (a connected but sparse body, e.g. a long
+  // diagonal staircase, still spans its compressed box).
   double slots = 1, longest = 1;
   for (int a = 0; a < dim; ++a) {
-    const double along = std::round((hi_all[a] - lo_all[a]) / size[a]);
-    slots *= along;
-    longest = std::max(longest, along);
+    slots *= double(axes[a].slots());
+    longest = std::max(longest, double(axes[a].slots()));
   }
   const double estimate = slots * study_bytes_per_slot(dim);
   const double limit = workbench::memory_limit_bytes();
   if (!(estimate <= limit) || !(longest < 1e9)) {
     std::ostringstream s;
-    s << name << ": the agent grid's bounding box " << point_text(hi_all - lo_all, dim) << " m holds " << slots
-      << " agent slots of " << size[0] << " m: about " << estimate / workbench::kGiB << " GiB, more than the " << limit / workbench::kGiB
+    s << name << ": the agent grid's compressed box (" << axes[0].slots() << " x " << axes[1].slots();
+    if (dim == 3) s << " x " << axes[2].slots();
+    s << " slots of " << size[0] << " m, bounding box " << point_text(hi_all - lo_all, dim) << " m) needs about "
+      << estimate / workbench::kGiB << " GiB, more than the " << limit / workbench::kGiB
       << " GiB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw MeshError(s.str());
   }
-  for (int a = 0; a < dim; ++a) n[a] = int(std::lround((hi_all[a] - lo_all[a]) / size[a]));
-  if (dim == 2) size[2] = 1.0;
-  Grid grid = Grid::box(dim, n, size);
-  grid.origin = lo_all;
-  const double tol = 1e-4;
-
-  auto grid_index = [&](double x, int a, const std::string& what) {
-    const double f = (x - lo_all[a]) / size[a];
-    const long i = std::lround(f);
-    if (std::abs(f - double(i)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
-    return int(i);
+  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo_all, size);
+  // Plane index of lattice coordinate l: a slot's first coordinate or the end of the box.
+  auto plane_of = [&](std::int64_t l, int a, const std::string& what) {
+    const auto& first = axes[a].first;
+    const auto it = std::lower_bound(first.begin(), first.end(), l);
+    if (it == first.end() || *it != l) throw MeshError(name + ": " + what + " is not a corner of its element's lattice cell");
+    return int(it - first.begin());
   };
 
   // Place every element; a second element in a slot is an overlap, an empty slot a hole.
@@ -153,7 +170,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
   std::vector<std::size_t> tag_at_node(grid.node_count(), 0);
   for (std::size_t e = 0; e < n_elements; ++e) {
     std::array<int, 3> c{0, 0, 0};
-    for (int a = 0; a < dim; ++a) c[a] = grid_index(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
+    for (int a = 0; a < dim; ++a) c[a] = int(axes[a].slot(element_at[e][a]));
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
     if (element_in[cell] != std::size_t(-1))
       throw MeshError(name + ": elements " + std::to_string(element_tags[0][element_in[cell]]) + " and " +
@@ -165,7 +182,10 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       const std::size_t tag = elements[e * corners + k];
       const Eigen::Vector3d& x = node_at.at(tag);
       std::array<int, 3> p{0, 0, 0};
-      for (int a = 0; a < dim; ++a) p[a] = grid_index(x[a], a, "node " + std::to_string(tag));
+      for (int a = 0; a < dim; ++a) {
+        const std::string what = "node " + std::to_string(tag);
+        p[a] = plane_of(lattice_coordinate(x[a], a, what), a, what);
+      }
       const std::size_t node = grid.node_index(p[0], p[1], p[2]);
       if (tag_at_node[node] != 0 && tag_at_node[node] != tag)
         throw MeshError(name + ": nodes " + std::to_string(tag_at_node[node]) + " and " + std::to_string(tag) +

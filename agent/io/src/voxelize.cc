@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -78,9 +79,9 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   for (std::size_t node = 0; node < g.node_count(); ++node)
     if (used[node]) {
       node_tags.push_back(node + 1);
-      const std::size_t i = node % nn[0], j = (node / nn[0]) % nn[1], k = node / (std::size_t(nn[0]) * nn[1]);
-      coords.insert(coords.end(), {g.origin[0] + i * g.size[0], g.origin[1] + j * g.size[1],
-                                   dim == 3 ? g.origin[2] + k * g.size[2] : g.origin[2]});
+      const int i = int(node % nn[0]), j = int((node / nn[0]) % nn[1]), k = int(node / (std::size_t(nn[0]) * nn[1]));
+      const Vector3d x = g.node_position(i, j, k);
+      coords.insert(coords.end(), {x[0], x[1], x[2]});
     }
   gmsh::model::mesh::addNodes(dim, body, node_tags, coords);
   gmsh::model::mesh::addElementsByType(body, dim == 2 ? 3 : 5, element_tags, element_nodes);
@@ -145,42 +146,101 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
   }
   if (dim == 2 && hi[2] - lo[2] > 1e-12 * (hi - lo).norm()) throw std::runtime_error(name + ": a 2D model must lie in the x-y plane");
 
-  // The lattice over the bounding box, refused up front when it would not fit in memory.
-  std::array<int, 3> n{1, 1, 1};
-  double slots = 1;
+  // The lattice over the bounding box, in 64-bit lattice coordinates: its first and last planes,
+  // and the cells whose centre may lie in an element (its bounding box, one cell wider each way).
+  std::array<std::int64_t, 3> n{1, 1, 1};
   for (int a = 0; a < dim; ++a) {
     const double along = std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9));
-    slots *= along;
-    if (!(along < 1e9)) slots = std::numeric_limits<double>::infinity();
+    if (!(along < 1e15)) throw std::runtime_error(name + ": agent size " + std::to_string(size) + " m gives more than 1e15 agents along an axis");
+    n[a] = std::int64_t(along);
   }
-  if (!(slots * study_bytes_per_slot(dim) <= workbench::memory_limit_bytes())) {
+  std::vector<int> body_types;
+  std::vector<std::vector<std::size_t>> body_tags, body_nodes;
+  gmsh::model::mesh::getElements(body_types, body_tags, body_nodes, dim);
+  std::vector<std::array<std::int64_t, 6>> element_boxes;  // lattice cells lo[0..2], hi[0..2] (inclusive)
+  double candidates = 0;
+  for (std::size_t t = 0; t < body_types.size(); ++t) {
+    const std::size_t per = body_nodes[t].size() / std::max<std::size_t>(body_tags[t].size(), 1);
+    for (std::size_t e = 0; e < body_tags[t].size(); ++e) {
+      Vector3d elo = Vector3d::Constant(std::numeric_limits<double>::infinity()), ehi = -elo;
+      for (std::size_t k = 0; k < per; ++k) {
+        const Vector3d& x = node_at.at(body_nodes[t][e * per + k]);
+        elo = elo.cwiseMin(x);
+        ehi = ehi.cwiseMax(x);
+      }
+      std::array<std::int64_t, 6> box{0, 0, 0, 0, 0, 0};
+      double cells = 1;
+      for (int a = 0; a < dim; ++a) {
+        box[a] = std::max<std::int64_t>(0, std::int64_t(std::floor((elo[a] - lo[a]) / size - 0.5)) - 1);
+        box[3 + a] = std::min<std::int64_t>(n[a] - 1, std::int64_t(std::ceil((ehi[a] - lo[a]) / size - 0.5)) + 1);
+        cells *= double(box[3 + a] - box[a] + 1);
+      }
+      candidates += cells;
+      element_boxes.push_back(box);
+    }
+  }
+  // Refused up front when the candidates, or later the compressed box, would not fit in memory.
+  auto refuse_if_too_big = [&](double slots, const char* what) {
+    if (slots * study_bytes_per_slot(dim) <= workbench::memory_limit_bytes()) return;
     std::ostringstream s;
-    s << name << ": agent size " << size << " m gives " << slots << " agent slots, about "
+    s << name << ": agent size " << size << " m gives " << slots << " " << what << ", about "
       << slots * study_bytes_per_slot(dim) / workbench::kGiB << " GiB, more than the " << workbench::memory_limit_bytes() / workbench::kGiB
       << " GiB allowed (set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw std::runtime_error(s.str());
-  }
-  for (int a = 0; a < dim; ++a) n[a] = int(std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9)));
-  Grid grid = Grid::box(dim, n, Vector3d(size, size, dim == 3 ? size : 1.0));
-  grid.origin = lo;
+  };
+  refuse_if_too_big(candidates, "agent slots to test");
+  using Cell = std::array<std::int64_t, 3>;
+  std::vector<Cell> tried;
+  tried.reserve(std::size_t(candidates));
+  for (const auto& box : element_boxes)
+    for (std::int64_t k = box[2]; k <= box[5]; ++k)
+      for (std::int64_t j = box[1]; j <= box[4]; ++j)
+        for (std::int64_t i = box[0]; i <= box[3]; ++i) tried.push_back({i, j, k});
+  // Grid order (k, then j, then i), as the cells are numbered.
+  auto grid_order = [](const Cell& p, const Cell& q) { return std::tie(p[2], p[1], p[0]) < std::tie(q[2], q[1], q[0]); };
+  std::sort(tried.begin(), tried.end(), grid_order);
+  tried.erase(std::unique(tried.begin(), tried.end()), tried.end());
 
   // An agent where its centre lies inside an element of the body (strict search: no tolerance).
+  std::vector<Cell> inside;
   std::vector<std::size_t> found;
-  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
-    const Vector3d c = grid.centre(cell);
+  for (const Cell& l : tried) {
+    Vector3d c = lo;
+    for (int a = 0; a < dim; ++a) c[a] += (double(l[a]) + 0.5) * size;
     found.clear();
     try {
       gmsh::model::mesh::getElementsByCoordinates(c[0], c[1], dim == 3 ? c[2] : lo[2], found, dim, true);
     } catch (const std::string&) {  // gmsh 4.8 reports "no element found" by throwing its message
       found.clear();
     }
-    if (found.empty())
-      grid.make_air(cell);
-    else
-      out.cell_of_element.push_back(cell);
+    if (!found.empty()) inside.push_back(l);
   }
-  if (out.cell_of_element.empty())
+  if (inside.empty())
     throw std::runtime_error(name + ": no agent of size " + std::to_string(size) + " m has its centre inside the body");
+
+  // The compressed lattice: the planes that hold agents and the bounding box's first and last,
+  // a run of empty planes one air slot.
+  std::vector<CompressedAxis> axes;
+  double slots = 1;
+  for (int a = 0; a < dim; ++a) {
+    std::vector<std::int64_t> kept{0, n[a] - 1};
+    for (const Cell& l : inside) kept.push_back(l[a]);
+    axes.emplace_back(std::move(kept));
+    slots *= double(axes[a].slots());
+  }
+  refuse_if_too_big(slots, "agent slots in the compressed box");
+  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo,
+                            Vector3d(size, size, dim == 3 ? size : 1.0));
+  std::vector<char> is_agent(grid.count(), 0);
+  for (const Cell& l : inside) {
+    std::array<int, 3> c{0, 0, 0};
+    for (int a = 0; a < dim; ++a) c[a] = int(axes[a].slot(l[a]));
+    const std::size_t cell = grid.index(c[0], c[1], c[2]);
+    is_agent[cell] = 1;
+    out.cell_of_element.push_back(cell);  // grid order: `inside` is sorted so
+  }
+  for (std::size_t cell = 0; cell < grid.count(); ++cell)
+    if (!is_agent[cell]) grid.make_air(cell);
 
   // The facets of the body's boundary, each with the physical groups of its entity.
   gmsh::vectorpair bodies, boundary;

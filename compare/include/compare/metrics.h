@@ -38,8 +38,9 @@ struct Line {
   std::string kind;        ///< "along" a load, "across" a load, or "user" ([[compare.line]])
   Eigen::Vector3d from, to;
   int samples = 0;
+  std::vector<Eigen::Vector3d> points;  ///< the samples' positions [m], `samples` of them
   std::vector<int> body_samples;  ///< the samples (0 .. samples-1) in the body: a line stops at air
-  Eigen::Vector3d point(int i) const { return from + (to - from) * (samples > 1 ? double(i) / (samples - 1) : 0.0); }
+  const Eigen::Vector3d& point(int i) const { return points[i]; }
   double length() const { return (to - from).norm(); }
 };
 
@@ -49,7 +50,8 @@ struct Line {
 std::string line_name(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int dim);
 
 /// A line from `from` to `to` with one sample per agent along its main axis (at least 2), named by
-/// line_name; body_samples lists those in_body.
+/// line_name; body_samples lists those in_body. On a compressed grid the samples are evenly spaced
+/// in slots, not metres: one per agent, and one per collapsed air slot however wide it is.
 Line make_line(const agent::Grid& grid, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                const std::string& description, const std::string& kind);
 

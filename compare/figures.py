@@ -8,8 +8,8 @@ writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_de
 fig11_displacement (in each of --formats, default png) and agent_steps.gif. Lines are named by
 their coordinates and described in the legends; 3D studies are drawn in the slice through the
 first load's centre. With --wait (how `workbench compare` runs it, beside the FEM reference) it
-draws the animation from steps.csv and lines.json first, then waits for a line "draw" on its
-standard input before it reads the other files.
+waits for a line "steps" on its standard input, draws the animation from steps.csv, lines.json and
+agent/agent_nodes.csv, then waits for a line "draw" before it reads the other files.
 Uses Debian's python3-matplotlib, python3-numpy and python3-pil only; call it with /usr/bin/python3.
 """
 import argparse
@@ -215,6 +215,15 @@ def main():
     title = args.title
     formats = args.formats.split(",")
 
+    def wait_for(word, what):
+        """--wait: blocks until the workbench writes `word` on our input (its files are complete)."""
+        start = time.time()
+        if sys.stdin.readline().strip() != word:
+            sys.exit(f"figures: the workbench stopped before {what} was complete")
+        print(f"figures: waited {time.time() - start:.2f} s for {what}", flush=True)
+
+    if args.wait:
+        wait_for("steps", "steps.csv")
     with open(os.path.join(args.dir, "lines.json")) as f:
         meta = json.load(f)
     along, across = line_groups(meta)
@@ -227,10 +236,7 @@ def main():
     print(f"figures: read steps.csv in {time.process_time():.2f} s CPU (with the imports)", flush=True)
     if args.wait:  # the animation needs only the agents: drawn while the workbench solves the FEM reference
         run_all([lambda: animation_gif(steps, agent_nodes, out)], ["animation_gif"])
-        start = time.time()
-        if sys.stdin.readline().strip() != "draw":
-            sys.exit("figures: the workbench stopped before the comparison's data was complete")
-        print(f"figures: waited {time.time() - start:.2f} s for the comparison's data", flush=True)
+        wait_for("draw", "the comparison's data")
     start = time.process_time()
 
     lines = read_csv(os.path.join(args.dir, "lines.csv"))

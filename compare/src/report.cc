@@ -175,6 +175,10 @@ BackgroundFigures::BackgroundFigures(const fs::path& dir, const std::string& tit
   log << "compare: drawing figures (figures.py) beside the FEM reference\n" << std::flush;
 }
 
+void BackgroundFigures::steps_ready() {
+  child_.send("steps");  // a script that already ended says why in finish()
+}
+
 void BackgroundFigures::data_ready() {
   child_.send("draw");  // a script that already ended says why in finish()
 }

@@ -56,15 +56,17 @@ void finish(const std::filesystem::path& dir, const std::filesystem::path& case_
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
                        const std::vector<std::string>& formats, std::ostream& log);
 
-/// compare/figures.py drawing beside the comparison (`--wait`): started once the agent's files
-/// (steps.csv, lines.json) are in `dir`, it draws the load-step animation while the FEM reference
-/// solves, then waits for data_ready() (lines.csv, cells.csv, nodes.csv complete) and draws
-/// Figures 8-11 while the reference's error estimate solves. Destroyed without finish() (an error
-/// in between), it ends the script.
+/// compare/figures.py drawing beside the comparison (`--wait`): started once the agent model has
+/// run (agent/ written), it loads matplotlib, waits for steps_ready() (steps.csv, lines.json) and
+/// draws the load-step animation while the FEM reference solves, then waits for data_ready()
+/// (lines.csv, cells.csv, nodes.csv complete) and draws Figures 8-11 while the reference's error
+/// estimate solves. Destroyed without finish() (an error in between), it ends the script.
 class BackgroundFigures {
  public:
   BackgroundFigures(const std::filesystem::path& dir, const std::string& title, const std::vector<std::string>& formats,
                     std::ostream& log);
+  /// steps.csv and lines.json are complete: the animation can be drawn.
+  void steps_ready();
   /// The files the figures need besides the agent's are complete.
   void data_ready();
   /// Waits for the script; throws workbench::Error with its last line when it failed.

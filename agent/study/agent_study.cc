@@ -90,6 +90,7 @@ void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTabl
 
 AgentStudy load_agent_study(const workbench::CaseFile& file) {
   AgentStudy study;
+  study.case_file = file.path();
   const auto root = file.root();
   study.setup = workbench::read_study_setup(root);
   read_agent_section(root, study.coefficients, study.rules);
@@ -144,7 +145,13 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
   std::vector<agent::EntryLoad> loads = study.loads;
   for (auto& l : loads) l.force *= factor;
-  model.solve(loads);
+  try {
+    model.solve(loads);
+  } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
+    throw Error(study.case_file.string() + ": agent.gamma: " + e.what() +
+                "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
+                "boundaries_return: docs/agent-model.md)");
+  }
   AgentState s;
   const auto& grid = study.mesh.grid;
   s.face_forces = model.face_forces();

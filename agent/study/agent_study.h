@@ -16,6 +16,7 @@
 namespace agent_study {
 
 struct AgentStudy {
+  std::filesystem::path case_file;  ///< for messages
   workbench::StudySetup setup;
   agent::ImportedMesh mesh;  ///< grid with the rigid groups set
   agent::Coefficients coefficients;

@@ -148,7 +148,7 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   try {
     model.solve(loads);
   } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
-    throw Error(study.case_file.string() + ": agent.gamma: " + e.what() +
+    throw TransferDidNotEnd(study.case_file.string() + ": agent.gamma: " + e.what() +
                 "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
                 "boundaries_return: docs/agent-model.md)");
   }

@@ -4,6 +4,7 @@
 #include <agent/load_transfer.h>
 #include <agent/mesh_import.h>
 #include <workbench/case_file.h>
+#include <workbench/error.h>
 #include <workbench/study_setup.h>
 #include <workbench/vtk_output.h>
 
@@ -54,7 +55,15 @@ struct AgentState {
   agent::Diagnostics diagnostics;
 };
 
-/// Solves with the loads scaled by `factor` (a load step).
+/// The cyclic transfer (readings 2 and 6) stopped at its cap: the case's coefficients keep too
+/// much load in transit. Bad input (a workbench::Error naming the case file and agent.gamma); a
+/// calibration refuses such a point instead.
+struct TransferDidNotEnd : workbench::Error {
+  using workbench::Error::Error;
+};
+
+/// Solves with the loads scaled by `factor` (a load step); throws TransferDidNotEnd at the cyclic
+/// transfer's cap.
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
 
 /// A run whose rigid faces return less than this share of the applied load warns (on the log and

@@ -125,7 +125,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
                     c.study.readings);
       solved = agent_study::evaluate(c.study, *model, 1.0);
     } catch (const std::invalid_argument&) {
-    } catch (const agent::CyclicCapReached&) {
+    } catch (const agent_study::TransferDidNotEnd&) {
     }
     if (!solved) {
       Score s;

@@ -12,13 +12,15 @@
 // not write; SIGINT/SIGTERM end the run cleanly with 130/143 (docs/reliability.md).
 #include "commands.h"
 
+#include <fem_reference/fem.h>
 #include <workbench/error.h>
 #include <workbench/interruption.h>
 
 #include <iostream>
 
 int main(int argc, char** argv) {
-  workbench::handle_interruptions("workbench");  // first: before any thread starts
+  fem_reference::configure_singleton_mpi();      // first: it sets the environment
+  workbench::handle_interruptions("workbench");  // before any thread starts
   CLI::App app{"Fast deformation models (agent load transfer, PBD angle bending) against a deal.II FEM reference"};
   app.require_subcommand(1);
   cli::Action action;

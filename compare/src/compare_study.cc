@@ -411,11 +411,6 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
 CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
                                  std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
-  // MPI, which the FEM reference needs, starts up (0.27 s) on a thread while the case is read and
-  // the agent model runs (neither uses MPI); joined before the reference solves, so MPI is used by
-  // one thread at a time.
-  auto mpi = std::async(std::launch::async, [] { fem_reference::mpi_rank(); });
-
   // 1. Read and check everything before running anything.
   const auto in = read_input(file, options);
   const auto& grid = in.study.mesh.grid;
@@ -441,7 +436,6 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
   // 4. The FEM reference (its output in dir/fem).
   t = std::chrono::steady_clock::now();
-  mpi.get();
   auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
   double fem_seconds = seconds_since(t);
 

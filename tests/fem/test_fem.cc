@@ -8,7 +8,12 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../support/scratch_folder.h"
 
@@ -637,4 +642,42 @@ TEST(FemProbes, PointValuesReproduceALinearFieldAndMissOutsidePoints) {
   }
   EXPECT_FALSE(r.probes[3].found);
   EXPECT_FALSE(r.probes[4].found);
+}
+
+// The environment that makes a one-process run start MPI in 0.02 s (docs/performance.md): set
+// when mpirun did not start the process, never over what the user or mpirun set.
+TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
+  const char* names[] = {"OMPI_MCA_pml", "OMPI_MCA_osc", "OMPI_MCA_ess_singleton_isolated", "OMPI_COMM_WORLD_SIZE",
+                         "PMIX_RANK"};
+  std::vector<std::pair<std::string, std::optional<std::string>>> saved;
+  for (const char* n : names) {
+    const char* v = std::getenv(n);
+    saved.emplace_back(n, v ? std::optional<std::string>(v) : std::nullopt);
+  }
+  auto value = [](const char* n) { const char* v = std::getenv(n); return std::string(v ? v : "(unset)"); };
+  auto clear = [&] { for (const char* n : names) ::unsetenv(n); };
+
+  clear();
+  fem_reference::configure_singleton_mpi();
+  EXPECT_EQ(value("OMPI_MCA_pml"), "ob1");
+  EXPECT_EQ(value("OMPI_MCA_osc"), "^ucx");
+  EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "1");
+
+  clear();
+  ::setenv("OMPI_MCA_pml", "ucx", 1);  // the user's choice stays
+  fem_reference::configure_singleton_mpi();
+  EXPECT_EQ(value("OMPI_MCA_pml"), "ucx");
+  EXPECT_EQ(value("OMPI_MCA_osc"), "^ucx");
+
+  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK"}) {  // started by mpirun: nothing set
+    clear();
+    ::setenv(launcher, "2", 1);
+    fem_reference::configure_singleton_mpi();
+    EXPECT_EQ(value("OMPI_MCA_pml"), "(unset)") << launcher;
+    EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "(unset)") << launcher;
+  }
+
+  clear();
+  for (const auto& [n, v] : saved)
+    if (v) ::setenv(n.c_str(), v->c_str(), 1);
 }

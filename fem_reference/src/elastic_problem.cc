@@ -172,7 +172,8 @@ const char* kind_name(SupportKind k) {
 }  // namespace
 
 void configure_singleton_mpi() {
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK")) return;  // started by mpirun
+  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
+    if (std::getenv(launcher)) return;  // started by mpirun or srun: their settings stand
   // Measured with MPI_Init_thread alone (docs/performance.md): 0.26 s as configured by Debian,
   // 0.08 s with ob1, 0.06 s without UCX's one-sided component too, 0.02 s without orted.
   ::setenv("OMPI_MCA_pml", "ob1", 0);

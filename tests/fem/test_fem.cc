@@ -648,7 +648,7 @@ TEST(FemProbes, PointValuesReproduceALinearFieldAndMissOutsidePoints) {
 // when mpirun did not start the process, never over what the user or mpirun set.
 TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
   const char* names[] = {"OMPI_MCA_pml", "OMPI_MCA_osc", "OMPI_MCA_ess_singleton_isolated", "OMPI_COMM_WORLD_SIZE",
-                         "PMIX_RANK"};
+                         "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"};
   std::vector<std::pair<std::string, std::optional<std::string>>> saved;
   for (const char* n : names) {
     const char* v = std::getenv(n);
@@ -669,7 +669,7 @@ TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
   EXPECT_EQ(value("OMPI_MCA_pml"), "ucx");
   EXPECT_EQ(value("OMPI_MCA_osc"), "^ucx");
 
-  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK"}) {  // started by mpirun: nothing set
+  for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"}) {  // mpirun, srun
     clear();
     ::setenv(launcher, "2", 1);
     fem_reference::configure_singleton_mpi();

@@ -5,12 +5,10 @@
 #include <workbench/interruption.h>
 
 #include <cerrno>
-#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <thread>
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -139,15 +137,8 @@ ChildProcess::~ChildProcess() {
   // Not waited for: the caller stopped on an error. The child's group is ended (SIGKILL after a
   // grace period for one that ignores SIGTERM) and the child reaped, so nothing outlives the run.
   ::close(input_);
-  ::kill(-pid_, SIGTERM);
-  int status = 0;
-  bool reaped = false;
-  for (int i = 0; i < 100 && !reaped; ++i) {
-    reaped = ::waitpid(pid_, &status, WNOHANG) == pid_;
-    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ::kill(-pid_, SIGKILL);  // the group's other members, or a child that ignored SIGTERM
-  while (!reaped && ::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  end_process_group(pid_);
+  while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {  // if not reaped there (then: ECHILD)
   }
   set_child_group(0);
 }

@@ -22,7 +22,9 @@ std::vector<std::filesystem::path> staging_folders;  // guarded by registry_mute
 std::atomic<int> child_group{0};
 std::atomic<bool> interrupted{false};
 
-void end_child_group(int pgid) {
+}  // namespace
+
+void end_process_group(int pgid) {
   if (pgid <= 0) return;
   ::kill(-pgid, SIGTERM);
   // A child that ignores SIGTERM gets SIGKILL after a grace period; the group is gone once every
@@ -35,8 +37,6 @@ void end_child_group(int pgid) {
   }
   ::kill(-pgid, SIGKILL);
 }
-
-}  // namespace
 
 std::unique_lock<std::mutex> hold_interruptions() { return std::unique_lock<std::mutex>(registry_mutex); }
 
@@ -67,7 +67,7 @@ void handle_interruptions(const std::string& program) {
     }
     interrupted = true;
     auto lock = hold_interruptions();  // waits for a commit or a spawn in progress to finish
-    end_child_group(child_group.exchange(0));
+    end_process_group(child_group.exchange(0));
     for (const auto& dir : staging_folders) {
       std::error_code ec;
       std::filesystem::remove_all(dir, ec);  // only folders this process created (StagedDirectory)

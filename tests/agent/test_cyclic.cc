@@ -8,23 +8,12 @@
 
 #include <random>
 
-#include "../support/agent_coefficients.h"
+#include "../support/agent_fixtures.h"
 
 using namespace agent;
+using namespace test_support;  // plate, face, coefficients, kMaterial, the face directions
 
 namespace {
-
-constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
-const Material kMaterial{1.0, 0.3};
-using test_support::coefficients;
-
-Grid plate(int w, int h) {
-  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
-  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
-  return g;
-}
-
-double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
 
 Readings with(bool every, bool returns) {
   Readings r;

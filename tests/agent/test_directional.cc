@@ -7,19 +7,14 @@
 
 #include <cmath>
 
+#include "../support/agent_fixtures.h"
+
 using namespace agent;
+using namespace test_support;  // plate, face, coefficients, kMaterial, the face directions
 
 namespace {
 
-constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
-const Material kMaterial{1.0, 0.3};
 const double kPi = std::acos(-1.0);
-
-Grid plate(int w, int h) {
-  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
-  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
-  return g;
-}
 
 /// Two packets of equal weight with slopes -+0.3, no diffusion.
 Coefficients two_packets() {
@@ -31,8 +26,6 @@ Coefficients two_packets() {
   k.directional.diffusion = 0;
   return k;
 }
-
-double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
 
 void expect_balanced(const Diagnostics& d) {
   EXPECT_EQ(d.lost, 0.0);

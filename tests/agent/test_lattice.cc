@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "../support/agent_coefficients.h"
+#include "../support/agent_fixtures.h"
 #include "../support/scratch_folder.h"
 
 using namespace agent;
@@ -22,8 +22,9 @@ using namespace agent;
 namespace {
 
 const std::string kData = WORKBENCH_SOURCE_DIR "/tests/data/";
-const Material kMaterial{1.0, 0.3};
-constexpr int kMinusY = 2, kPlusY = 3;
+using test_support::kMaterial;
+using test_support::kMinusY;
+using test_support::kPlusY;
 
 // The entry loads of a group of faces: `force` per face, pushing into the body, in grid order
 // (loads superpose: the same order gives the same sums, bit for bit).

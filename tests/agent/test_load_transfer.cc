@@ -12,27 +12,12 @@
 #include <sstream>
 #include <string>
 
-#include "../support/agent_coefficients.h"
+#include "../support/agent_fixtures.h"
 
 using namespace agent;
+using namespace test_support;  // plate, face, coefficients, kMaterial, the face directions
 
 namespace {
-
-constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
-
-// A W x H grid of unit squares, thickness 1, base (-y side) rigid, everything else free.
-Grid plate(int w, int h, bool rigid_base = true) {
-  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
-  if (rigid_base)
-    g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
-  return g;
-}
-
-double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
-
-using test_support::coefficients;
-
-const Material kMaterial{1.0, 0.3};
 
 // 1 N downwards into the top-centre agent of a w x h plate.
 std::vector<EntryLoad> top_centre(const Grid& g, double force = 1.0) {

@@ -9,26 +9,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "../support/agent_coefficients.h"
+#include "../support/agent_fixtures.h"
 #include "../support/scratch_folder.h"
 
 using namespace agent;
+using namespace test_support;  // plate, face, coefficients, kMaterial, the face directions
 
 namespace {
-
-constexpr int kMinusX = 0, kPlusX = 1, kMinusY = 2, kPlusY = 3;
-
-Grid plate(int w, int h) {
-  Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
-  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
-  return g;
-}
-
-double face(const LoadTransfer& m, int i, int j, int f) { return m.face_forces()[m.grid().index(i, j, 0) * 4 + f]; }
-
-using test_support::coefficients;
-
-const Material kMaterial{1.0, 0.3};
 
 Readings only(bool Readings::*r) {
   Readings x;

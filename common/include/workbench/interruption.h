@@ -25,6 +25,10 @@ void forget_on_interruption(const std::filesystem::path& staging);
 /// The process group of the running child (0: none), ended when interrupted.
 void set_child_group(int pgid);
 
+/// Ends process group `pgid`: SIGTERM, SIGKILL after a 2 s grace period, and reaps its leader when
+/// it is this process's child (a zombie still counts as a member of its group).
+void end_process_group(int pgid);
+
 /// True once a signal arrived: a child that ended then was ended by the watcher, whose exit
 /// follows; the caller must not report the child's failure as an error of its own.
 bool interruption_under_way();

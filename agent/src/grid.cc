@@ -26,12 +26,13 @@ std::size_t Grid::agent_count() const {
   return n;
 }
 
-bool Grid::has_neighbour(std::size_t cell, int side) const {
+std::size_t Grid::neighbour(std::size_t cell, int side) const {
   const int a = axis_of(side);
-  const int c = coords(cell)[a];
-  if (is_positive(side) ? c == cells[a] - 1 : c == 0) return false;
-  const std::size_t s = stride(a);
-  return !is_air(is_positive(side) ? cell + s : cell - s);
+  auto c = coords(cell);
+  c[a] += is_positive(side) ? 1 : -1;
+  if (c[a] < 0 || c[a] >= cells[a]) return npos;
+  if (!tiled()) return is_positive(side) ? cell + stride(a) : cell - stride(a);
+  return tiled_id(c[0], c[1], c[2]);
 }
 
 double Grid::face_area(int axis) const {
@@ -43,13 +44,29 @@ Eigen::Vector3d Grid::centre(std::size_t cell) const {
   const auto c = coords(cell);
   Eigen::Vector3d x = origin;
   for (int a = 0; a < dim; ++a)
-    x[a] = planes[a].empty() ? x[a] + (c[a] + 0.5) * size[a] : 0.5 * (planes[a][c[a]] + planes[a][c[a] + 1]);
+    x[a] = planes[a].empty() ? x[a] + (c[a] + 0.5) * size[a] : 0.5 * (plane(a, c[a]) + plane(a, c[a] + 1));
   return x;
 }
 
 std::size_t Grid::node_count() const {
+  if (tiled()) return count();
   const auto n = node_counts();
   return std::size_t(n[0]) * n[1] * n[2];
+}
+
+std::array<int, 3> Grid::node_coords(std::size_t node) const {
+  if (tiled()) return tiled_coords(node);
+  const auto n = node_counts();
+  const int i = int(node % n[0]);
+  const std::size_t rest = node / n[0];
+  return {i, int(rest % n[1]), int(rest / n[1])};
+}
+
+bool Grid::is_grid_node(std::size_t node) const {
+  if (!tiled()) return node < node_count();
+  const auto c = tiled_coords(node);
+  const auto n = node_counts();
+  return c[0] < n[0] && c[1] < n[1] && c[2] < n[2];
 }
 
 std::vector<BoundaryFace> Grid::boundary_faces() const {

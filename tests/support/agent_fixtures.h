@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace test_support {
 
 /// Face directions in 2D (agent::direction).
@@ -37,6 +39,23 @@ inline agent::Grid plate(int w, int h, bool rigid_base = true) {
 /// The compressive force on face `f` of agent (i, j) of a solved 2D model [N].
 inline double face(const agent::LoadTransfer& m, int i, int j, int f) {
   return m.face_forces()[m.grid().index(i, j, 0) * 4 + f];
+}
+
+/// Per-slot values of a grid laid out on tiles (`per` values per slot id of `tiled`), put in the
+/// slot order of the same body's dense grid; a slot the tiled grid does not store reads `fill`.
+/// With `nodes`, per-node values in the dense grid's node order instead.
+template <class T>
+std::vector<T> in_dense_order(const agent::Grid& dense, const agent::Grid& tiled, const std::vector<T>& values, int per,
+                              T fill, bool nodes = false) {
+  const std::size_t n = nodes ? dense.node_count() : dense.count();
+  std::vector<T> out(n * per, fill);
+  for (std::size_t d = 0; d < n; ++d) {
+    const auto c = nodes ? dense.node_coords(d) : dense.coords(d);
+    const std::size_t t = nodes ? tiled.node_index(c[0], c[1], c[2]) : tiled.index(c[0], c[1], c[2]);
+    if (t == agent::Grid::npos) continue;
+    for (int k = 0; k < per; ++k) out[d * per + k] = values[t * per + k];
+  }
+  return out;
 }
 
 }  // namespace test_support

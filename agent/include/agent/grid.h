@@ -46,26 +46,50 @@ struct CompressedAxis {
   bool collapsed() const;
 };
 
-/// The agents: a set of equal, axis-aligned squares (2D) or cubes (3D) on a lattice. Cells are
-/// addressed in their bounding box (i fastest, then j, then k); a slot of the box that holds no
-/// agent is air. Every face between an agent and air or the box's outside is a boundary face,
-/// free unless marked rigid. Along an axis the box may be compressed (`planes`): a run of empty
-/// lattice planes is one air slot as wide as the gap, so memory follows the occupied planes;
-/// agents always have edge `size`, and face adjacency is that of the uncompressed lattice.
+/// The tiles of a sparse grid (docs/agent-model.md, "Tiles"): the box is cut into tiles of
+/// 64 x 16 slots (2D) or 16 x 8 x 8 (3D), and only the tiles that hold an agent, with the tiles
+/// just above them along each axis (they hold those agents' upper nodes), are stored. A slot's id
+/// is then its tile's place among the stored tiles times 1024 plus its place in the tile (x
+/// fastest): memory follows the tiles an agent touches, not the box.
+struct Tiles {
+  static constexpr int kSlotsLog2 = 10;        ///< 1024 slots per tile
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+  std::array<int, 3> shift{};                  ///< log2 of a tile's slots per axis
+  std::array<int, 3> count{1, 1, 1};           ///< tiles per axis, covering the box's nodes
+  /// Per tile of the box (x fastest): its place among the stored tiles, kNone if not stored.
+  std::vector<std::uint32_t> number;
+  /// Per stored tile: the box coordinates of its first slot.
+  std::vector<std::array<int, 3>> first;
+};
+
+/// The agents: a set of equal, axis-aligned squares (2D) or cubes (3D) on a lattice. Each slot of
+/// the bounding box has an id: a **dense** grid numbers every slot of the box (i fastest, then j,
+/// then k), a **tiled** one (`tiles`, see agent::Tiles) only the slots of its stored tiles; a slot
+/// that holds no agent is air, and so is every slot of a tile that lies beyond the box. Every face
+/// between an agent and air or the box's outside is a boundary face, free unless marked rigid.
+/// Along an axis the box may be compressed (`planes`): a run of empty lattice planes is one air
+/// slot as wide as the gap, so memory follows the occupied planes; agents always have edge
+/// `size`, and face adjacency is that of the uncompressed lattice. Nodes (slot corners) have ids
+/// too: (cells + 1) per axis in a dense grid; in a tiled one, node (i, j, k) has the id of slot
+/// (i, j, k), so that node ids beyond the box exist (is_grid_node tells them apart).
 struct Grid {
   int dim = 2;                                 ///< 2 (squares) or 3 (cubes)
   std::array<int, 3> cells{1, 1, 1};           ///< bounding box in agents per axis; cells[2] == 1 in 2D
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< lower corner of the box [m]
   Eigen::Vector3d size = Eigen::Vector3d::Ones();    ///< agent edge length per axis [m]
   double thickness = 1.0;                      ///< out-of-plane thickness in 2D [m]
-  /// Per slot of the box: bit `side` (0-5) marks that boundary face rigid, kAirBit marks air.
+  /// Per slot id: bit `side` (0-5) marks that boundary face rigid, kAirBit marks air.
   std::vector<std::uint8_t> flags;
   static constexpr std::uint8_t kAirBit = 1 << 6;
   /// Per axis, the position of each slot boundary (cells[a] + 1 values) where the axis is
   /// compressed; empty where it is uniform (plane i at origin + i * size).
   std::array<std::vector<double>, 3> planes;
+  /// The stored tiles of a tiled grid; `tiles.number` is empty in a dense one.
+  Tiles tiles;
+  /// No slot: outside the box, or in a tile that is not stored (air).
+  static constexpr std::size_t npos = std::size_t(-1);
 
-  /// A box of n[0] x n[1] (x n[2]) agents of the given size, every outer face free.
+  /// A box of n[0] x n[1] (x n[2]) agents of the given size, every outer face free (dense).
   static Grid box(int dim, std::array<int, 3> n, Eigen::Vector3d size, double thickness = 1.0);
 
   /// The compressed box of the given axes (axes[2] unused in 2D), every slot an agent with free
@@ -75,21 +99,47 @@ struct Grid {
   static Grid lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Eigen::Vector3d origin,
                       Eigen::Vector3d size);
 
-  /// Slots of the bounding box (agents and air).
-  std::size_t count() const { return std::size_t(cells[0]) * cells[1] * cells[2]; }
+  /// The same lattice holding agents only at the given slots (box coordinates, repeats allowed),
+  /// every other slot air. It is tiled when its stored tiles hold at most half the box's slots
+  /// (see agent::tiled_slots), dense otherwise; either way no array of the box's size is made.
+  static Grid lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Eigen::Vector3d origin,
+                      Eigen::Vector3d size, const std::vector<std::array<int, 3>>& agents);
+
+  bool tiled() const { return !tiles.number.empty(); }
+  /// Slot ids: the box's slots (dense), or the stored tiles' slots (tiled).
+  std::size_t count() const {
+    return tiled() ? tiles.first.size() << Tiles::kSlotsLog2 : std::size_t(cells[0]) * cells[1] * cells[2];
+  }
   /// Agents: the slots that are not air.
   std::size_t agent_count() const;
   bool is_air(std::size_t cell) const { return flags[cell] & kAirBit; }
   /// Makes a slot air: its neighbours' faces toward it become (free) boundary faces.
   void make_air(std::size_t cell) { flags[cell] = kAirBit; }
   /// The agent across face `side` of `cell`, or false when that face is a boundary face.
-  bool has_neighbour(std::size_t cell, int side) const;
+  bool has_neighbour(std::size_t cell, int side) const {
+    const std::size_t n = neighbour(cell, side);
+    return n != npos && !is_air(n);
+  }
+  /// The slot across face `side` of slot `cell` (an agent or air), npos outside the box or in a
+  /// tile that is not stored.
+  std::size_t neighbour(std::size_t cell, int side) const;
+  /// Id step to the next slot along `axis` (dense grids only; a tiled grid steps with neighbour).
   std::size_t stride(int axis) const { return axis == 0 ? 1 : axis == 1 ? std::size_t(cells[0]) : std::size_t(cells[0]) * cells[1]; }
-  std::size_t index(int i, int j, int k) const { return i + std::size_t(cells[0]) * (j + std::size_t(cells[1]) * k); }
+  /// Id of slot (i, j, k) of the box (0 <= i < cells[0], ...); npos in a tile that is not stored.
+  std::size_t index(int i, int j, int k) const {
+    if (!tiled()) return i + std::size_t(cells[0]) * (j + std::size_t(cells[1]) * k);
+    return tiled_id(i, j, k);
+  }
+  /// Box coordinates of slot id `cell` (beyond the box for the air slots of an edge tile).
   std::array<int, 3> coords(std::size_t cell) const {
+    if (tiled()) return tiled_coords(cell);
     const int i = int(cell % cells[0]);
     const std::size_t rest = cell / cells[0];
     return {i, int(rest % cells[1]), int(rest / cells[1])};
+  }
+  /// Whether box coordinates lie in the box.
+  bool in_box(const std::array<int, 3>& c) const {
+    return c[0] >= 0 && c[0] < cells[0] && c[1] >= 0 && c[1] < cells[1] && c[2] >= 0 && c[2] < cells[2];
   }
   /// Kind of a boundary face of an agent (meaningful where has_neighbour is false).
   Boundary boundary(int side, std::size_t cell) const {
@@ -101,7 +151,11 @@ struct Grid {
   /// Centre of a slot [m] (of an agent, or the middle of an air slot).
   Eigen::Vector3d centre(std::size_t cell) const;
   /// Position of plane (slot boundary) i along `axis` [m], i in [0, cells[axis]].
-  double plane(int axis, int i) const { return planes[axis].empty() ? origin[axis] + i * size[axis] : planes[axis][i]; }
+  /// (Beyond the box, for the node ids of a tiled grid's edge tiles: extended with the agent size.)
+  double plane(int axis, int i) const {
+    if (planes[axis].empty()) return origin[axis] + i * size[axis];
+    return i <= cells[axis] ? planes[axis][i] : planes[axis].back() + (i - cells[axis]) * size[axis];
+  }
   /// Position of node (i, j, k) [m] (z = origin z in 2D).
   Eigen::Vector3d node_position(int i, int j, int k) const;
   /// Position `x` [m] along `axis` in slots: i + the fraction of slot i below x (linear inside a
@@ -113,14 +167,52 @@ struct Grid {
   bool compressed() const { return !planes[0].empty() || !planes[1].empty() || !planes[2].empty(); }
   /// Nodes per axis (cells + 1 along the grid's axes, 1 along z in 2D) and their count.
   std::array<int, 3> node_counts() const { return {cells[0] + 1, cells[1] + 1, dim == 3 ? cells[2] + 1 : 1}; }
+  /// Node ids (dense: every node of the box; tiled: as many as slot ids, some beyond the box).
   std::size_t node_count() const;
-  std::size_t node_index(int i, int j, int k) const { return i + std::size_t(cells[0] + 1) * (j + std::size_t(cells[1] + 1) * k); }
+  /// Id of node (i, j, k) (0 <= i <= cells[0], ...); tiled: npos where no agent has a corner
+  /// and its tile is not stored.
+  std::size_t node_index(int i, int j, int k) const {
+    if (!tiled()) return i + std::size_t(cells[0] + 1) * (j + std::size_t(cells[1] + 1) * k);
+    return tiled_id(i, j, k);
+  }
+  /// Box coordinates of node id `node`.
+  std::array<int, 3> node_coords(std::size_t node) const;
+  /// Whether node id `node` is a node of the box (a tiled grid has node ids beyond it).
+  bool is_grid_node(std::size_t node) const;
   /// Every boundary face of the body (faces toward air or the box's outside), cell by cell.
   std::vector<BoundaryFace> boundary_faces() const;
   /// The faces of the agents on the box's outer side `side` (a support along a whole side).
   std::vector<BoundaryFace> box_side(int side) const;
   /// Marks the given boundary faces with a boundary kind.
   void set_boundary(const std::vector<BoundaryFace>& faces, Boundary kind);
+
+ private:
+  std::size_t tiled_id(int i, int j, int k) const {
+    const auto& t = tiles;
+    const std::size_t tile =
+        std::size_t(i >> t.shift[0]) + std::size_t(t.count[0]) * (std::size_t(j >> t.shift[1]) + std::size_t(t.count[1]) * std::size_t(k >> t.shift[2]));
+    const std::uint32_t n = t.number[tile];
+    if (n == Tiles::kNone) return npos;
+    return (std::size_t(n) << Tiles::kSlotsLog2) | std::size_t(i & ((1 << t.shift[0]) - 1)) |
+           (std::size_t(j & ((1 << t.shift[1]) - 1)) << t.shift[0]) |
+           (std::size_t(k & ((1 << t.shift[2]) - 1)) << (t.shift[0] + t.shift[1]));
+  }
+  std::array<int, 3> tiled_coords(std::size_t cell) const {
+    const auto& t = tiles;
+    const auto& f = t.first[cell >> Tiles::kSlotsLog2];
+    const int local = int(cell & ((std::size_t(1) << Tiles::kSlotsLog2) - 1));
+    return {f[0] + (local & ((1 << t.shift[0]) - 1)), f[1] + ((local >> t.shift[0]) & ((1 << t.shift[1]) - 1)),
+            f[2] + (local >> (t.shift[0] + t.shift[1]))};
+  }
 };
+
+/// Slot ids a tiled grid would hold for these agents (box coordinates) in a box of `cells`:
+/// the slots of the tiles that hold an agent and of the tiles just above those along each axis.
+/// Counts without allocating the box (a sort of the agents' tile numbers).
+std::size_t tiled_slots(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents);
+
+/// The same body on tiles (tests and benchmarks): every agent, flag and position of a dense
+/// grid, its slots renumbered by agent::Tiles. A tiled grid is returned as it is.
+Grid tile(const Grid& dense);
 
 }  // namespace agent

@@ -119,8 +119,7 @@ Grid Grid::lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Ei
   Grid g = positioned(dim, axes, origin, size);
   for (const auto& c : agents)
     if (!g.in_box(c)) throw std::invalid_argument("agent::Grid::lattice: an agent lies outside the box");
-  const double box_slots = double(g.cells[0]) * g.cells[1] * g.cells[2];
-  if (2.0 * double(tiled_slots(dim, g.cells, agents)) <= box_slots) {
+  if (lattice_layout(dim, g.cells, agents).tiled) {
     lay_out_tiles(g, agents);
     return g;
   }
@@ -129,8 +128,12 @@ Grid Grid::lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Ei
   return g;
 }
 
-std::size_t tiled_slots(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents) {
-  return stored_tiles(dim, cells, agents).size() << Tiles::kSlotsLog2;
+LatticeLayout lattice_layout(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents) {
+  const double box = double(cells[0]) * cells[1] * cells[2];
+  const double tiled = double(stored_tiles(dim, cells, agents).size() << Tiles::kSlotsLog2);
+  if (!(2 * tiled <= box)) return {false, box, 0};
+  const auto count = tile_count(dim, cells, tile_shift(dim));
+  return {true, tiled, double(count[0]) * count[1] * count[2]};
 }
 
 Grid tile(const Grid& dense) {

@@ -201,9 +201,11 @@ TEST(CompressedLattice, AGapOfManyRowsAndColumnsGivesTheFaceForcesOfTheUncompres
   }
 }
 
-TEST(CompressedLattice, AConnectedSparseStaircaseStillSpansItsBoxAndIsRefusedWhenItWouldNotFit) {
+TEST(CompressedLattice, AConnectedSparseStaircaseImportsOnTilesAndIsRefusedOnlyWhenTheyWouldNotFit) {
   // 2000 steps of two unit squares, face to face: (i, i) and (i + 1, i). No lattice plane is
-  // empty, so the box is 2001 x 2000 slots (4.0e6, about 0.75 GiB at 200 B a slot) for 4000 agents.
+  // empty, so the box is 2001 x 2000 slots (4.0e6, about 0.75 GiB at 200 B a slot) for 4000 agents;
+  // on tiles it holds 188 tiles of 1024 slots (counted by hand in test_tiles.cc): 192512 slots,
+  // 38.5 MB at 200 B a slot, plus the tile table (32 x 126 x 4 B) and three layers (3 x 2001 x 8 B).
   std::ostringstream msh;
   const int steps = 2000;
   msh << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << 4 * (steps + 1) << "\n";
@@ -218,16 +220,39 @@ TEST(CompressedLattice, AConnectedSparseStaircaseStillSpansItsBoxAndIsRefusedWhe
           << node(i, j + 1) << "\n";
   msh << "$EndElements\n";
   const auto file = test_support::write_file("staircase.msh", msh.str());
-  ::setenv("WORKBENCH_MEMORY_LIMIT", "0.5", 1);
-  std::string error = "no error";
-  try {
-    import_mesh(file);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
+  auto import_with_limit = [&](const char* gib, std::string& error) {
+    ::setenv("WORKBENCH_MEMORY_LIMIT", gib, 1);
+    ImportedMesh m;
+    try {
+      m = import_mesh(file);
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+    ::unsetenv("WORKBENCH_MEMORY_LIMIT");
+    return m;
+  };
+  std::string error;
+  const auto m = import_with_limit("0.1", error);
+  ASSERT_EQ(error, "");
+  EXPECT_TRUE(m.grid.tiled());
+  EXPECT_EQ(m.grid.cells, (std::array<int, 3>{steps + 1, steps, 1}));
+  EXPECT_EQ(m.grid.count(), 188u * 1024u);
+  EXPECT_EQ(m.grid.agent_count(), 4000u);
+  const double bytes = 192512.0 * 200 + 32 * 126 * 4 + 3 * 2001 * 8;
+  std::vector<std::array<int, 3>> agents;
+  for (std::size_t c : m.cell_of_element) agents.push_back(m.grid.coords(c));
+  EXPECT_EQ(study_bytes(2, m.grid.cells, agents), bytes);
+  // Each step's two agents are face neighbours, and the step above sits on the right one.
+  for (int j = 0; j + 1 < steps; ++j) {
+    const std::size_t left = m.grid.index(j, j, 0), right = m.grid.index(j + 1, j, 0);
+    ASSERT_NE(left, Grid::npos);
+    EXPECT_EQ(m.grid.neighbour(left, 1), right);
+    EXPECT_EQ(m.grid.coords(m.grid.neighbour(right, 3)), (std::array<int, 3>{j + 1, j + 1, 0}));
+    EXPECT_FALSE(m.grid.has_neighbour(left, 3));
   }
-  ::unsetenv("WORKBENCH_MEMORY_LIMIT");
-  EXPECT_NE(error.find("compressed box (2001 x 2000 slots of 1 m"), std::string::npos) << error;
-  EXPECT_NE(error.find("GiB, more than the 0.5 GiB allowed"), std::string::npos) << error;
+  import_with_limit("0.02", error);
+  EXPECT_NE(error.find("4000 agents of 1 m in a compressed box of 2001 x 2000 slots"), std::string::npos) << error;
+  EXPECT_NE(error.find("GiB, more than the 0.02 GiB allowed"), std::string::npos) << error;
 }
 
 TEST(CompressedLattice, VoxelizedDiscsFarApartAreTheirColumnsAndOneAirColumnAndReadBackIdentical) {

@@ -100,7 +100,10 @@ TEST(Tiles, DiagonalStaircaseFollowsItsAgents) {
   }
   EXPECT_EQ(g.count(), tiles * 1024);
   EXPECT_LT(double(g.count()), 0.05 * double(g.cells[0]) * g.cells[1]);
-  EXPECT_EQ(tiled_slots(2, g.cells, agents), g.count());
+  const auto layout = lattice_layout(2, g.cells, agents);
+  EXPECT_TRUE(layout.tiled);
+  EXPECT_EQ(layout.slots, double(g.count()));
+  EXPECT_EQ(layout.tile_table, double(32 * 126));  // ceil(2002 / 64) x ceil(2001 / 16) tiles cover the nodes
   // A full box stays dense.
   std::vector<std::array<int, 3>> full;
   for (int j = 0; j < 40; ++j)

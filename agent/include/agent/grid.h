@@ -100,8 +100,8 @@ struct Grid {
                       Eigen::Vector3d size);
 
   /// The same lattice holding agents only at the given slots (box coordinates, repeats allowed),
-  /// every other slot air. It is tiled when its stored tiles hold at most half the box's slots
-  /// (see agent::tiled_slots), dense otherwise; either way no array of the box's size is made.
+  /// every other slot air, tiled or dense as agent::lattice_layout says; either way no array of
+  /// the box's size is made.
   static Grid lattice(int dim, const std::array<const CompressedAxis*, 3>& axes, Eigen::Vector3d origin,
                       Eigen::Vector3d size, const std::vector<std::array<int, 3>>& agents);
 
@@ -206,10 +206,15 @@ struct Grid {
   }
 };
 
-/// Slot ids a tiled grid would hold for these agents (box coordinates) in a box of `cells`:
-/// the slots of the tiles that hold an agent and of the tiles just above those along each axis.
-/// Counts without allocating the box (a sort of the agents' tile numbers).
-std::size_t tiled_slots(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents);
+/// How Grid::lattice lays out these agents (box coordinates) in a box of `cells`: on tiles when
+/// the tiles that hold an agent or an agent's corner node have at most half the box's slots,
+/// else dense. Computed without allocating the box (a sort of the agents' tile numbers).
+struct LatticeLayout {
+  bool tiled = false;
+  double slots = 0;        ///< slot ids stored (the stored tiles' slots, or the box's)
+  double tile_table = 0;   ///< entries of the tile table (tiles covering the box), 0 when dense
+};
+LatticeLayout lattice_layout(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents);
 
 /// The same body on tiles (tests and benchmarks): every agent, flag and position of a dense
 /// grid, its slots renumbered by agent::Tiles. A tiled grid is returned as it is.

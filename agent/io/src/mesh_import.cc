@@ -40,6 +40,18 @@ double study_bytes_per_slot(int dim) {
   return dim == 2 ? 200.0 : 300.0;
 }
 
+double study_bytes(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents) {
+  const LatticeLayout layout = lattice_layout(dim, cells, agents);
+  double bytes = layout.slots * study_bytes_per_slot(dim);
+  if (layout.tiled) {
+    const double box = double(cells[0]) * cells[1] * cells[2];
+    double layer = 0;
+    for (int a = 0; a < dim; ++a) layer = std::max(layer, box / cells[a]);
+    bytes += 4 * layout.tile_table + 3 * 8 * layer;
+  }
+  return bytes;
+}
+
 ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
   ImportedMesh out;
@@ -136,25 +148,37 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
   // The compressed lattice: only the planes that hold agents, a run of empty planes one air slot.
   std::vector<CompressedAxis> axes;
   for (int a = 0; a < dim; ++a) axes.emplace_back(std::move(occupied[a]));
-  // Refuse up front a box that would not fit in memory (a connected but sparse body, e.g. a long
-  // diagonal staircase, still spans its compressed box).
-  double slots = 1, longest = 1;
+  std::array<int, 3> cells{1, 1, 1};
+  double longest = 1;
   for (int a = 0; a < dim; ++a) {
-    slots *= double(axes[a].slots());
     longest = std::max(longest, double(axes[a].slots()));
+    cells[a] = int(std::min(axes[a].slots(), std::size_t(1) << 30));
   }
-  const double estimate = slots * study_bytes_per_slot(dim);
-  const double limit = workbench::memory_limit_bytes();
-  if (!(estimate <= limit) || !(longest < 1e9)) {
+  if (!(longest < 1e9)) {
     std::ostringstream s;
-    s << name << ": the agent grid's compressed box (" << axes[0].slots() << " x " << axes[1].slots();
-    if (dim == 3) s << " x " << axes[2].slots();
-    s << " slots of " << size[0] << " m, bounding box " << point_text(hi_all - lo_all, dim) << " m) needs about "
-      << estimate / workbench::kGiB << " GiB, more than the " << limit / workbench::kGiB
+    s << name << ": the agent grid has " << longest << " slots along an axis (bounding box " << point_text(hi_all - lo_all, dim)
+      << " m, agents of " << size[0] << " m), more than 1e9";
+    throw MeshError(s.str());
+  }
+  std::vector<std::array<int, 3>> slot_of_element(n_elements, {0, 0, 0});
+  for (std::size_t e = 0; e < n_elements; ++e)
+    for (int a = 0; a < dim; ++a) slot_of_element[e][a] = int(axes[a].slot(element_at[e][a]));
+  // Refuse up front a body that would not fit in memory (its stored slots: the compressed box, or
+  // the tiles its agents touch).
+  const double estimate = study_bytes(dim, cells, slot_of_element);
+  const double limit = workbench::memory_limit_bytes();
+  if (!(estimate <= limit)) {
+    std::ostringstream s;
+    s << name << ": the agent grid (" << n_elements << " agents of " << size[0] << " m in a compressed box of " << cells[0]
+      << " x " << cells[1];
+    if (dim == 3) s << " x " << cells[2];
+    s << " slots, bounding box " << point_text(hi_all - lo_all, dim) << " m) needs about " << estimate / workbench::kGiB
+      << " GiB, more than the " << limit / workbench::kGiB
       << " GiB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw MeshError(s.str());
   }
-  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo_all, size);
+  // Every slot no element fills is air.
+  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo_all, size, slot_of_element);
   // Plane index of lattice coordinate l: a slot's first coordinate or the end of the box.
   auto plane_of = [&](std::int64_t l, int a, const std::string& what) {
     const auto& first = axes[a].first;
@@ -163,14 +187,13 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
     return int(it - first.begin());
   };
 
-  // Place every element; a second element in a slot is an overlap, an empty slot a hole.
+  // Place every element; a second element in a slot is an overlap.
   out.cell_of_element.resize(n_elements);
   std::vector<std::size_t> element_in(grid.count(), std::size_t(-1));
   std::unordered_map<std::size_t, std::size_t> grid_node_of_tag;
   std::vector<std::size_t> tag_at_node(grid.node_count(), 0);
   for (std::size_t e = 0; e < n_elements; ++e) {
-    std::array<int, 3> c{0, 0, 0};
-    for (int a = 0; a < dim; ++a) c[a] = int(axes[a].slot(element_at[e][a]));
+    const auto& c = slot_of_element[e];
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
     if (element_in[cell] != std::size_t(-1))
       throw MeshError(name + ": elements " + std::to_string(element_tags[0][element_in[cell]]) + " and " +
@@ -186,6 +209,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
         const std::string what = "node " + std::to_string(tag);
         p[a] = plane_of(lattice_coordinate(x[a], a, what), a, what);
       }
+      // A node is a corner of its element's slot (plane_of passed); that slot's corners are stored.
       const std::size_t node = grid.node_index(p[0], p[1], p[2]);
       if (tag_at_node[node] != 0 && tag_at_node[node] != tag)
         throw MeshError(name + ": nodes " + std::to_string(tag_at_node[node]) + " and " + std::to_string(tag) +
@@ -194,12 +218,8 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       grid_node_of_tag[tag] = node;
     }
   }
-  // A slot of the box that no element fills is air.
-  for (std::size_t cell = 0; cell < grid.count(); ++cell)
-    if (element_in[cell] == std::size_t(-1)) grid.make_air(cell);
 
   // Physical groups of dimension dim-1: outer faces.
-  const auto nc = grid.node_counts();
   for (const auto& [group, elements] : workbench::gmsh_physical_groups(dim - 1)) {
     auto& faces = out.face_groups[group];
     for (const auto& element : elements) {
@@ -211,8 +231,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
         auto it = grid_node_of_tag.find(tag);
         if (it == grid_node_of_tag.end())
           throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
-        const std::size_t node = it->second;
-        const std::array<int, 3> p{int(node % nc[0]), int((node / nc[0]) % nc[1]), int(node / (std::size_t(nc[0]) * nc[1]))};
+        const auto p = grid.node_coords(it->second);
         for (int a = 0; a < 3; ++a) {
           lo[a] = std::min(lo[a], p[a]);
           hi[a] = std::max(hi[a], p[a]);
@@ -228,7 +247,9 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       below[axis] -= 1;
       if (dim == 2) below[2] = above[2] = 0;
       auto agent_at = [&](const std::array<int, 3>& c) {
-        return c[axis] >= 0 && c[axis] < grid.cells[axis] && !grid.is_air(grid.index(c[0], c[1], c[2]));
+        if (c[axis] < 0 || c[axis] >= grid.cells[axis]) return false;
+        const std::size_t cell = grid.index(c[0], c[1], c[2]);
+        return cell != Grid::npos && !grid.is_air(cell);
       };
       const bool has_below = agent_at(below), has_above = agent_at(above);
       if (has_below && has_above)

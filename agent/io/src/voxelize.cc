@@ -75,12 +75,11 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   }
   std::vector<std::size_t> node_tags;
   std::vector<double> coords;
-  const auto nn = g.node_counts();
   for (std::size_t node = 0; node < g.node_count(); ++node)
     if (used[node]) {
       node_tags.push_back(node + 1);
-      const int i = int(node % nn[0]), j = int((node / nn[0]) % nn[1]), k = int(node / (std::size_t(nn[0]) * nn[1]));
-      const Vector3d x = g.node_position(i, j, k);
+      const auto p = g.node_coords(node);
+      const Vector3d x = g.node_position(p[0], p[1], p[2]);
       coords.insert(coords.end(), {x[0], x[1], x[2]});
     }
   gmsh::model::mesh::addNodes(dim, body, node_tags, coords);
@@ -219,28 +218,33 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
     throw std::runtime_error(name + ": no agent of size " + std::to_string(size) + " m has its centre inside the body");
 
   // The compressed lattice: the planes that hold agents and the bounding box's first and last,
-  // a run of empty planes one air slot.
+  // a run of empty planes one air slot; the agents on it, every other slot air.
   std::vector<CompressedAxis> axes;
-  double slots = 1;
+  std::array<int, 3> cells{1, 1, 1};
   for (int a = 0; a < dim; ++a) {
     std::vector<std::int64_t> kept{0, n[a] - 1};
     for (const Cell& l : inside) kept.push_back(l[a]);
     axes.emplace_back(std::move(kept));
-    slots *= double(axes[a].slots());
+    if (!(axes[a].slots() < std::size_t(1e9)))
+      throw std::runtime_error(name + ": agent size " + std::to_string(size) + " m gives more than 1e9 slots along an axis");
+    cells[a] = int(axes[a].slots());
   }
-  refuse_if_too_big(slots, "agent slots in the compressed box");
+  std::vector<std::array<int, 3>> agents(inside.size(), {0, 0, 0});
+  for (std::size_t e = 0; e < inside.size(); ++e)
+    for (int a = 0; a < dim; ++a) agents[e][a] = int(axes[a].slot(inside[e][a]));
+  const double bytes = study_bytes(dim, cells, agents);
+  if (!(bytes <= workbench::memory_limit_bytes())) {
+    std::ostringstream s;
+    s << name << ": agent size " << size << " m gives " << inside.size() << " agents in a compressed box of " << cells[0] << " x "
+      << cells[1];
+    if (dim == 3) s << " x " << cells[2];
+    s << " slots, about " << bytes / workbench::kGiB << " GiB, more than the " << workbench::memory_limit_bytes() / workbench::kGiB
+      << " GiB allowed (set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
+    throw std::runtime_error(s.str());
+  }
   Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo,
-                            Vector3d(size, size, dim == 3 ? size : 1.0));
-  std::vector<char> is_agent(grid.count(), 0);
-  for (const Cell& l : inside) {
-    std::array<int, 3> c{0, 0, 0};
-    for (int a = 0; a < dim; ++a) c[a] = int(axes[a].slot(l[a]));
-    const std::size_t cell = grid.index(c[0], c[1], c[2]);
-    is_agent[cell] = 1;
-    out.cell_of_element.push_back(cell);  // grid order: `inside` is sorted so
-  }
-  for (std::size_t cell = 0; cell < grid.count(); ++cell)
-    if (!is_agent[cell]) grid.make_air(cell);
+                            Vector3d(size, size, dim == 3 ? size : 1.0), agents);
+  for (const auto& c : agents) out.cell_of_element.push_back(grid.index(c[0], c[1], c[2]));  // in (k, j, i) order, as `inside`
 
   // The facets of the body's boundary, each with the physical groups of its entity.
   gmsh::vectorpair bodies, boundary;

@@ -30,6 +30,11 @@ std::string point_text(const Eigen::Vector3d& x, int dim);
 /// memory check.
 double study_bytes_per_slot(int dim);
 
+/// Bytes a study of these agents (box coordinates in a box of `cells`) holds, for the up-front
+/// memory check: study_bytes_per_slot per slot id of the layout agent::lattice_layout picks,
+/// plus on tiles the tile table (4 B an entry) and the sweep's three buffers of one box layer.
+double study_bytes(int dim, const std::array<int, 3>& cells, const std::vector<std::array<int, 3>>& agents);
+
 /// Reads or generates the mesh. `parameters` override the .geo's DefineConstant values; a name
 /// the file does not declare is an error. Every error is a std::runtime_error whose message
 /// starts with the file name and says what is wrong (element type, overlap, size, ...).

@@ -2,6 +2,7 @@
 #include <agent/load_transfer.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstddef>
@@ -40,8 +41,10 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   }
   faces_.assign(grid.count() * 2 * grid.dim, 0.0);
   generation_.assign(grid.count(), -1);
+  // One layer of the box across each axis (on tiles too: the scratch is addressed by box position).
+  const std::size_t box = std::size_t(grid.cells[0]) * grid.cells[1] * grid.cells[2];
   std::size_t layer = 0;
-  for (int a = 0; a < grid.dim; ++a) layer = std::max(layer, grid.count() / grid.cells[a]);
+  for (int a = 0; a < grid.dim; ++a) layer = std::max(layer, box / grid.cells[a]);
   fresh_.assign(layer, 0.0);
   down_.assign(layer, 0.0);
   next_down_.assign(layer, 0.0);
@@ -57,6 +60,18 @@ std::size_t LoadTransfer::memory_bytes() const {
 void LoadTransfer::clear(const Touched& t) {
   const int nd = 2 * grid_.dim;
   const int l0 = t.axis == 0 ? 1 : 0, l1 = t.axis == 2 ? 1 : 2;
+  if (grid_.tiled()) {  // slot by slot through the tile table; an unstored tile holds nothing
+    std::array<int, 3> c{};
+    c[t.axis] = t.layer;
+    for (c[l1] = t.box.v_lo; c[l1] <= t.box.v_hi; ++c[l1])
+      for (c[l0] = t.box.u_lo; c[l0] <= t.box.u_hi; ++c[l0]) {
+        const std::size_t cell = grid_.index(c[0], c[1], c[2]);
+        if (cell == Grid::npos) continue;
+        std::fill_n(faces_.begin() + cell * nd, nd, 0.0);
+        generation_[cell] = -1;
+      }
+    return;
+  }
   const std::size_t base = std::size_t(t.layer) * grid_.stride(t.axis);
   const std::size_t s0 = grid_.stride(l0), s1 = grid_.stride(l1);
   const int width = t.box.u_hi - t.box.u_lo + 1;
@@ -122,12 +137,15 @@ void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
     clear_all_pending();
   diagnostics_ = Diagnostics{};
   for (const auto& load : loads) {
-    grid_.dim == 2 ? sweep<2>(load) : sweep<3>(load);
+    if (grid_.tiled())
+      grid_.dim == 2 ? sweep<2, true>(load) : sweep<3, true>(load);
+    else
+      grid_.dim == 2 ? sweep<2, false>(load) : sweep<3, false>(load);
     clear_all_pending();
   }
 }
 
-template <int Dim>
+template <int Dim, bool Tiled>
 void LoadTransfer::sweep(const EntryLoad& load) {
   // The dimension is a template parameter so that face offsets are compile-time constants.
   const Grid& g = grid_;
@@ -141,7 +159,6 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const auto entry = g.coords(load.cell);
   const int eu = entry[l0], ev = entry[l1];
   const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
-  const std::ptrdiff_t next_layer = forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa);  // cell offset below
   const bool patent = rules_ == RuleSet::Patent;
   const bool once_alpha1 = patent && readings_.non_compounding_entry;  // reading 1
   constexpr bool three_d = Dim == 3;
@@ -163,6 +180,25 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   const std::uint8_t* const flags = g.flags.data();
   constexpr std::uint8_t air = Grid::kAirBit;
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
+  // Ids: dense by strides; on tiles through the tile table (npos: an unstored tile, air).
+  // at(layer, u, v): the slot at that layer and lateral position; beside(cell, sgn, stride, side):
+  // the slot across face `side` (sgn, stride: the dense step); air(cell): no agent there.
+  auto at = [&g, a, l0, l1](int layer, int u, int v) {
+    std::array<int, 3> c{};
+    c[a] = layer;
+    c[l0] = u;
+    c[l1] = v;
+    return g.index(c[0], c[1], c[2]);
+  };
+  auto beside = [&g](std::size_t cell, int sgn, long cell_stride, int side) {
+    if constexpr (Tiled) return g.neighbour(cell, side);
+    else return cell + sgn * cell_stride;
+  };
+  auto air_at = [flags](std::size_t cell) {
+    if constexpr (Tiled)
+      if (cell == Grid::npos) return true;
+    return (flags[cell] & air) != 0;
+  };
   double* const fresh_buf = fresh_.data();
   // Each agent's entering force takes the place of its fresh input once that is consumed.
   double* const top_buf = fresh_buf;
@@ -206,7 +242,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         d.dropped += out;
         return 0.0;
       }
-      if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a boundary face
+      if (w + sgn == end || air_at(beside(cell, sgn, cell_stride, direction(lateral, sgn > 0)))) {  // a boundary face
         if (rigid(cell, direction(lateral, sgn > 0))) d.rigid_reaction += out;
         else d.passed_out += out;
         return 0.0;
@@ -219,6 +255,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       // latencies overlap; each adds to `fresh` once, and 0 + x + y == 0 + y + x).
       for (int v = box.v_lo; v <= box.v_hi; ++v) {
         const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        auto cell_at = [&](int w) {
+          if constexpr (Tiled) return at(layer, w, v);
+          else return row_cell + w * s0;
+        };
         double up = 0, dn = 0;
         for (int i = 0; i <= box.u_hi - box.u_lo; ++i) {
           const int wu = box.u_lo + i, wd = box.u_hi - i;
@@ -226,17 +266,17 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           fresh_buf[row_buf + wd] += dn;
           const double out_up = carry * up + emit * down_buf[row_buf + wu];
           const double out_dn = carry * dn + emit * down_buf[row_buf + wd];
-          up = out_up == 0 ? 0.0 : friction_pass(l0, 1, wu, n0, row_cell + wu * s0, long(s0), out_up, ext.u_hi);
-          dn = out_dn == 0 ? 0.0 : friction_pass(l0, -1, wd, -1, row_cell + wd * s0, long(s0), out_dn, ext.u_lo);
+          up = out_up == 0 ? 0.0 : friction_pass(l0, 1, wu, n0, cell_at(wu), long(s0), out_up, ext.u_hi);
+          dn = out_dn == 0 ? 0.0 : friction_pass(l0, -1, wd, -1, cell_at(wd), long(s0), out_dn, ext.u_lo);
         }
         // Past the box, each chain runs on until gamma or a boundary face.
         for (int w = box.u_hi + 1; up != 0 && w != n0; ++w) {
           fresh_buf[row_buf + w] += up;
-          up = friction_pass(l0, 1, w, n0, row_cell + w * s0, long(s0), carry * up, ext.u_hi);
+          up = friction_pass(l0, 1, w, n0, cell_at(w), long(s0), carry * up, ext.u_hi);
         }
         for (int w = box.u_lo - 1; dn != 0 && w != -1; --w) {
           fresh_buf[row_buf + w] += dn;
-          dn = friction_pass(l0, -1, w, -1, row_cell + w * s0, long(s0), carry * dn, ext.u_lo);
+          dn = friction_pass(l0, -1, w, -1, cell_at(w), long(s0), carry * dn, ext.u_lo);
         }
       }
       // Along l1 (3D), a whole layer plane at once in row order, one chain per column in
@@ -259,7 +299,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
               const std::size_t b = row_buf + u;
               fresh_buf[b] += carried;
               const double out = in_box ? carry * carried + emit * down_buf[b] : carry * carried;
-              carried = out == 0 ? 0.0 : friction_pass(l1, sgn, v, end, row_cell + u * s0, long(s1), out, reach_end);
+              std::size_t cell;
+              if constexpr (Tiled) cell = out == 0 ? Grid::npos : at(layer, u, v);
+              else cell = row_cell + u * s0;
+              carried = out == 0 ? 0.0 : friction_pass(l1, sgn, v, end, cell, long(s1), out, reach_end);
               line[u] = carried;
               running |= carried != 0;
             }
@@ -279,7 +322,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         if (from_above == 0 && from_side == 0) continue;
         down_buf[b] = fresh_buf[b] = 0;
         ++d.agent_updates;
-        const std::size_t cell = layer_base + u * s0 + v * s1;
+        std::size_t cell;
+        if constexpr (Tiled) cell = at(layer, u, v);
+        else cell = layer_base + u * s0 + v * s1;
         reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
         double* f = faces + cell * nd;
         double top, down_t;
@@ -305,7 +350,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         d.lost += from_above + from_side - down_t - (carry * from_side + lateral_dirs * emit * from_above);
         if (!(down_t > gamma)) {
           d.dropped += down_t;
-        } else if (!last_layer && !(flags[cell + next_layer] & air)) {
+        } else if (!last_layer && !air_at(beside(cell, forward ? 1 : -1, long(sa), exit_face))) {
           next_down_buf[b] += down_t;
           f[exit_face] += down_t;
           next.u_lo = std::min(next.u_lo, u);
@@ -335,7 +380,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       }
       const int face_out = direction(lateral, sgn > 0);
       double* f = faces + cell * nd;
-      if (w + sgn == end || (flags[cell + sgn * cell_stride] & air)) {  // a rigid face pushes back, a free one lets the push out
+      const std::size_t across = w + sgn == end ? Grid::npos : beside(cell, sgn, cell_stride, face_out);
+      if (w + sgn == end || air_at(across)) {  // a rigid face pushes back, a free one lets the push out
         if (rigid(cell, face_out)) {
           f[face_out] += t;
           d.lateral_reaction += t;
@@ -348,7 +394,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         *deferred = t;
       } else {
         f[face_out] += t;
-        faces[(cell + sgn * cell_stride) * nd + opposite(face_out)] += t;
+        faces[across * nd + opposite(face_out)] += t;
       }
       reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
       return t;
@@ -360,6 +406,10 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       // the row, so that each face adds its loads in the same order as one way after the other.
       for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
         const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        auto cell_at = [&](int w) {
+          if constexpr (Tiled) return at(layer, w, v);
+          else return row_cell + w * s0;
+        };
         const int line_distance = std::abs(v - ev);
         std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
         double up = 0, dn = 0;
@@ -367,23 +417,23 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           const int wu = ext.u_lo + i, wd = ext.u_hi - i;
           const double t_up = push0 * top_buf[row_buf + wu] + decay * up;
           const double t_dn = push0 * top_buf[row_buf + wd] + decay * dn;
-          up = t_up == 0 ? 0.0 : push_pass(l0, 1, wu, n0, row_cell + wu * s0, long(s0), t_up, touched.u_hi, nullptr);
-          dn = t_dn == 0 ? 0.0 : push_pass(l0, -1, wd, -1, row_cell + wd * s0, long(s0), t_dn, touched.u_lo, line + wd);
+          up = t_up == 0 ? 0.0 : push_pass(l0, 1, wu, n0, cell_at(wu), long(s0), t_up, touched.u_hi, nullptr);
+          dn = t_dn == 0 ? 0.0 : push_pass(l0, -1, wd, -1, cell_at(wd), long(s0), t_dn, touched.u_lo, line + wd);
         }
         for (int w = ext.u_lo; w <= ext.u_hi; ++w)
           if (line[w] != 0) {
-            const std::size_t cell = row_cell + w * s0;
+            const std::size_t cell = cell_at(w);
             faces[cell * nd + direction(l0, false)] += line[w];
-            faces[(cell - s0) * nd + direction(l0, true)] += line[w];
+            faces[beside(cell, -1, long(s0), direction(l0, false)) * nd + direction(l0, true)] += line[w];
           }
         // Past the loaded agents: a push reaching an agent with no load of its own.
         for (int w = ext.u_hi + 1; up != 0 && w != n0; ++w) {
-          const std::size_t cell = row_cell + w * s0;
+          const std::size_t cell = cell_at(w);
           reach(cell, depth + line_distance + std::abs(w - eu));
           up = push_pass(l0, 1, w, n0, cell, long(s0), decay * up, touched.u_hi, nullptr);
         }
         for (int w = ext.u_lo - 1; dn != 0 && w != -1; --w) {
-          const std::size_t cell = row_cell + w * s0;
+          const std::size_t cell = cell_at(w);
           reach(cell, depth + line_distance + std::abs(w - eu));
           dn = push_pass(l0, -1, w, -1, cell, long(s0), decay * dn, touched.u_lo, nullptr);
         }
@@ -405,7 +455,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
             running = in_ext;
             for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
               double carried = line[u];
-              const std::size_t cell = row_cell + u * s0;
+              std::size_t cell;
+              if constexpr (Tiled) cell = at(layer, u, v);
+              else cell = row_cell + u * s0;
               if (in_ext) {
                 const double t = push1 * top_buf[row_buf + u] + decay * carried;
                 carried = t == 0 ? 0.0 : push_pass(l1, sgn, v, end, cell, long(s1), t, reach_end, nullptr);

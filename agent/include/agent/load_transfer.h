@@ -151,7 +151,9 @@ class LoadTransfer {
     int axis, layer;
     Box box;
   };
-  template <int Dim>
+  // Tiled: the grid is laid out on tiles (agent::Tiles): ids from box coordinates through the
+  // tile table instead of strides.
+  template <int Dim, bool Tiled>
   void sweep(const EntryLoad& load);
   void clear(const Touched& t);
   void clear_pending(int layer);

@@ -26,13 +26,11 @@ std::size_t Grid::agent_count() const {
   return n;
 }
 
-std::size_t Grid::neighbour(std::size_t cell, int side) const {
+std::size_t Grid::dense_neighbour(std::size_t cell, int side) const {
   const int a = axis_of(side);
-  auto c = coords(cell);
-  c[a] += is_positive(side) ? 1 : -1;
-  if (c[a] < 0 || c[a] >= cells[a]) return npos;
-  if (!tiled()) return is_positive(side) ? cell + stride(a) : cell - stride(a);
-  return tiled_id(c[0], c[1], c[2]);
+  const int c = coords(cell)[a] + (is_positive(side) ? 1 : -1);
+  if (c < 0 || c >= cells[a]) return npos;
+  return is_positive(side) ? cell + stride(a) : cell - stride(a);
 }
 
 double Grid::face_area(int axis) const {

@@ -17,6 +17,38 @@ namespace {
 void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
+
+// The ids of one row of a tiled grid (agent::Tiles): fixed coordinates on two axes, position u
+// along the third; one tile-table read per slot, the rest bit operations.
+struct TiledRow {
+  const std::uint32_t* number = nullptr;
+  std::size_t tile_base = 0, tile_step = 0, local = 0;
+  int shift = 0, mask = 0, offset = 0;
+  std::size_t operator()(int u) const {
+    const std::uint32_t n = number[tile_base + std::size_t(u >> shift) * tile_step];
+    if (n == Tiles::kNone) return Grid::npos;
+    return (std::size_t(n) << Tiles::kSlotsLog2) | local | (std::size_t(u & mask) << offset);
+  }
+};
+
+// The row along axis `along` through box coordinates `c` (c[along] ignored).
+TiledRow tiled_row(const Grid& g, std::array<int, 3> c, int along) {
+  const Tiles& t = g.tiles;
+  const std::array<int, 3> offset{0, t.shift[0], t.shift[0] + t.shift[1]};
+  const std::array<std::size_t, 3> step{1, std::size_t(t.count[0]), std::size_t(t.count[0]) * t.count[1]};
+  c[along] = 0;
+  TiledRow r;
+  r.number = t.number.data();
+  r.tile_step = step[along];
+  r.shift = t.shift[along];
+  r.mask = (1 << t.shift[along]) - 1;
+  r.offset = offset[along];
+  for (int x = 0; x < 3; ++x) {
+    r.tile_base += std::size_t(c[x] >> t.shift[x]) * step[x];
+    r.local |= std::size_t(c[x] & ((1 << t.shift[x]) - 1)) << offset[x];
+  }
+  return r;
+}
 }  // namespace
 
 LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules, Readings readings)
@@ -181,14 +213,17 @@ void LoadTransfer::sweep(const EntryLoad& load) {
   constexpr std::uint8_t air = Grid::kAirBit;
   auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
   // Ids: dense by strides; on tiles through the tile table (npos: an unstored tile, air).
-  // at(layer, u, v): the slot at that layer and lateral position; beside(cell, sgn, stride, side):
-  // the slot across face `side` (sgn, stride: the dense step); air(cell): no agent there.
-  auto at = [&g, a, l0, l1](int layer, int u, int v) {
-    std::array<int, 3> c{};
-    c[a] = layer;
-    c[l0] = u;
-    c[l1] = v;
-    return g.index(c[0], c[1], c[2]);
+  // row_at(layer, v): the ids along l0 of a layer's row v; beside(cell, sgn, stride, side):
+  // the slot across face `side` (sgn, stride: the dense step); air_at(cell): no agent there.
+  auto row_at = [&g, a, l0, l1](int layer, int v) {
+    TiledRow row;
+    if constexpr (Tiled) {
+      std::array<int, 3> c{};
+      c[a] = layer;
+      c[l1] = v;
+      row = tiled_row(g, c, l0);
+    }
+    return row;
   };
   auto beside = [&g](std::size_t cell, int sgn, long cell_stride, int side) {
     if constexpr (Tiled) return g.neighbour(cell, side);
@@ -255,8 +290,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       // latencies overlap; each adds to `fresh` once, and 0 + x + y == 0 + y + x).
       for (int v = box.v_lo; v <= box.v_hi; ++v) {
         const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        const TiledRow row = row_at(layer, v);
         auto cell_at = [&](int w) {
-          if constexpr (Tiled) return at(layer, w, v);
+          if constexpr (Tiled) return row(w);
           else return row_cell + w * s0;
         };
         double up = 0, dn = 0;
@@ -292,6 +328,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           for (int v = up ? box.v_lo : box.v_hi; running && v != end; v += sgn) {
             const bool in_box = up ? v <= box.v_hi : v >= box.v_lo;
             const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+            const TiledRow row = row_at(layer, v);
             running = in_box;
             for (int u = box.u_lo; u <= box.u_hi; ++u) {
               double carried = line[u];
@@ -300,7 +337,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
               fresh_buf[b] += carried;
               const double out = in_box ? carry * carried + emit * down_buf[b] : carry * carried;
               std::size_t cell;
-              if constexpr (Tiled) cell = out == 0 ? Grid::npos : at(layer, u, v);
+              if constexpr (Tiled) cell = out == 0 ? Grid::npos : row(u);
               else cell = row_cell + u * s0;
               carried = out == 0 ? 0.0 : friction_pass(l1, sgn, v, end, cell, long(s1), out, reach_end);
               line[u] = carried;
@@ -315,7 +352,8 @@ void LoadTransfer::sweep(const EntryLoad& load) {
 
     // Each loaded agent: its entering force, and what it passes on in the load direction.
     const double entry_load = depth == 0 ? load.force : 0.0;
-    for (int v = ext.v_lo; v <= ext.v_hi; ++v)
+    for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
+      const TiledRow row = row_at(layer, v);
       for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
         const std::size_t b = u + std::size_t(n0) * v;
         const double from_above = down_buf[b], from_side = fresh_buf[b];
@@ -323,7 +361,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
         down_buf[b] = fresh_buf[b] = 0;
         ++d.agent_updates;
         std::size_t cell;
-        if constexpr (Tiled) cell = at(layer, u, v);
+        if constexpr (Tiled) cell = row(u);
         else cell = layer_base + u * s0 + v * s1;
         reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
         double* f = faces + cell * nd;
@@ -364,6 +402,7 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           d.passed_out += down_t;
         }
       }
+    }
 
     // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
     // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
@@ -406,8 +445,9 @@ void LoadTransfer::sweep(const EntryLoad& load) {
       // the row, so that each face adds its loads in the same order as one way after the other.
       for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
         const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+        const TiledRow row = row_at(layer, v);
         auto cell_at = [&](int w) {
-          if constexpr (Tiled) return at(layer, w, v);
+          if constexpr (Tiled) return row(w);
           else return row_cell + w * s0;
         };
         const int line_distance = std::abs(v - ev);
@@ -452,11 +492,12 @@ void LoadTransfer::sweep(const EntryLoad& load) {
           for (int v = up ? ext.v_lo : ext.v_hi; running && v != end; v += sgn) {
             const bool in_ext = up ? v <= ext.v_hi : v >= ext.v_lo;
             const std::size_t row_cell = layer_base + v * s1, row_buf = std::size_t(n0) * v;
+            const TiledRow row = row_at(layer, v);
             running = in_ext;
             for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
               double carried = line[u];
               std::size_t cell;
-              if constexpr (Tiled) cell = at(layer, u, v);
+              if constexpr (Tiled) cell = row(u);
               else cell = row_cell + u * s0;
               if (in_ext) {
                 const double t = push1 * top_buf[row_buf + u] + decay * carried;

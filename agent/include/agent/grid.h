@@ -122,7 +122,28 @@ struct Grid {
   }
   /// The slot across face `side` of slot `cell` (an agent or air), npos outside the box or in a
   /// tile that is not stored.
-  std::size_t neighbour(std::size_t cell, int side) const;
+  std::size_t neighbour(std::size_t cell, int side) const {
+    if (!tiled()) return dense_neighbour(cell, side);
+    // On tiles: a step of the local id inside the tile; across its side, the next tile's number
+    // from the table and the local id with the coordinate along the axis flipped (0 <-> last).
+    const Tiles& t = tiles;
+    const int a = axis_of(side), offset = a == 0 ? 0 : a == 1 ? t.shift[0] : t.shift[0] + t.shift[1];
+    const int last = (1 << t.shift[a]) - 1, l = int(cell >> offset) & last;
+    const auto& first = t.first[cell >> Tiles::kSlotsLog2];
+    if (is_positive(side)) {
+      if (first[a] + l + 1 >= cells[a]) return npos;
+      if (l < last) return cell + (std::size_t(1) << offset);
+    } else {
+      if (first[a] + l == 0) return npos;
+      if (l > 0) return cell - (std::size_t(1) << offset);
+    }
+    const std::size_t step = a == 0 ? 1 : a == 1 ? std::size_t(t.count[0]) : std::size_t(t.count[0]) * t.count[1];
+    const std::size_t tile = std::size_t(first[0] >> t.shift[0]) +
+                             std::size_t(t.count[0]) * (std::size_t(first[1] >> t.shift[1]) + std::size_t(t.count[1]) * std::size_t(first[2] >> t.shift[2]));
+    const std::uint32_t n = t.number[is_positive(side) ? tile + step : tile - step];
+    if (n == Tiles::kNone) return npos;
+    return (std::size_t(n) << Tiles::kSlotsLog2) | ((cell & ((std::size_t(1) << Tiles::kSlotsLog2) - 1)) ^ (std::size_t(last) << offset));
+  }
   /// Id step to the next slot along `axis` (dense grids only; a tiled grid steps with neighbour).
   std::size_t stride(int axis) const { return axis == 0 ? 1 : axis == 1 ? std::size_t(cells[0]) : std::size_t(cells[0]) * cells[1]; }
   /// Id of slot (i, j, k) of the box (0 <= i < cells[0], ...); npos in a tile that is not stored.
@@ -187,6 +208,7 @@ struct Grid {
   void set_boundary(const std::vector<BoundaryFace>& faces, Boundary kind);
 
  private:
+  std::size_t dense_neighbour(std::size_t cell, int side) const;
   std::size_t tiled_id(int i, int j, int k) const {
     const auto& t = tiles;
     const std::size_t tile =

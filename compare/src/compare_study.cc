@@ -313,24 +313,19 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
               << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell)
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
-  const std::vector<char> body_nodes = compare::body_nodes(grid);  // air has no nodes
   auto nodes_csv = open_csv(dir / "nodes.csv");
-  const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
             << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
             << (dim == 3 ? ",fem_u_z [m]" : "") << "\n";
-  for (int k = 0; k < nn[2]; ++k)
-    for (int j = 0; j < nn[1]; ++j)
-      for (int i = 0; i < nn[0]; ++i) {
-        const std::size_t n = grid.node_index(i, j, k);
-        if (!body_nodes[n]) continue;
-        nodes_csv << i << ',' << j;
-        if (dim == 3) nodes_csv << ',' << k;
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.u[n * dim + a];
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem.u[n * dim + a];
-        nodes_csv << '\n';
-      }
+  for (std::size_t n : compare::body_node_ids(grid)) {  // air has no nodes; box order on any layout
+    const auto c = grid.node_coords(n);
+    nodes_csv << c[0] << ',' << c[1];
+    if (dim == 3) nodes_csv << ',' << c[2];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.u[n * dim + a];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem.u[n * dim + a];
+    nodes_csv << '\n';
+  }
   cells_csv.close();
   nodes_csv.close();
 }

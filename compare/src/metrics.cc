@@ -77,19 +77,34 @@ std::vector<char> body_nodes(const agent::Grid& g) {
   return nodes;
 }
 
+namespace {
+/// Sorts slot ids (or node ids) of a tiled grid into box order (i fastest); a dense grid's ids
+/// are in box order already.
+void sort_in_box_order(const agent::Grid& g, std::vector<std::size_t>& ids, bool nodes) {
+  if (!g.tiled()) return;
+  const auto n = nodes ? g.node_counts() : g.cells;
+  auto key = [&](std::size_t id) {
+    const auto c = nodes ? g.node_coords(id) : g.coords(id);
+    return std::size_t(c[0]) + std::size_t(n[0]) * (std::size_t(c[1]) + std::size_t(n[1]) * std::size_t(c[2]));
+  };
+  std::sort(ids.begin(), ids.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+}
+}  // namespace
+
+std::vector<std::size_t> agent_ids(const agent::Grid& g) {
+  std::vector<std::size_t> ids;
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) ids.push_back(cell);
+  sort_in_box_order(g, ids, false);
+  return ids;
+}
+
 std::vector<std::size_t> body_node_ids(const agent::Grid& g) {
   const auto body = body_nodes(g);
   std::vector<std::size_t> ids;
   for (std::size_t n = 0; n < body.size(); ++n)
     if (body[n]) ids.push_back(n);
-  if (g.tiled()) {
-    const auto nn = g.node_counts();
-    auto box_order = [&](std::size_t n) {
-      const auto c = g.node_coords(n);
-      return std::size_t(c[0]) + std::size_t(nn[0]) * (std::size_t(c[1]) + std::size_t(nn[1]) * std::size_t(c[2]));
-    };
-    std::sort(ids.begin(), ids.end(), [&](std::size_t a, std::size_t b) { return box_order(a) < box_order(b); });
-  }
+  sort_in_box_order(g, ids, true);
   return ids;
 }
 

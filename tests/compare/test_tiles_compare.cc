@@ -277,6 +277,13 @@ TEST(TiledCompare, AnImportedSparseStaircaseIsSampledAsOnADenseGrid) {
   const auto& d = dense.grid;
   ASSERT_EQ(d.agent_count(), t.agent_count());
 
+  // The agents and the body's nodes in box order on both layouts (the order sums over the body add in).
+  const auto ad = agent_ids(d), at = agent_ids(t), nd_ids = body_node_ids(d), nt_ids = body_node_ids(t);
+  ASSERT_EQ(ad.size(), std::size_t(2 * kSteps));
+  ASSERT_EQ(at.size(), ad.size());
+  for (std::size_t a = 0; a < ad.size(); ++a) EXPECT_EQ(t.coords(at[a]), d.coords(ad[a])) << a;
+  ASSERT_EQ(nt_ids.size(), nd_ids.size());
+  for (std::size_t n = 0; n < nd_ids.size(); ++n) EXPECT_EQ(t.node_coords(nt_ids[n]), d.node_coords(nd_ids[n])) << n;
   EXPECT_EQ(agent_probe_points(d), agent_probe_points(t));
   EXPECT_EQ(agent_probe_points(t).size(), std::size_t(4 * 2 * kSteps + 4 * kSteps + 2));  // Gauss points, body nodes
   auto problem = fem_reference::problem_from_case(file);

@@ -219,6 +219,8 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     std::vector<std::size_t> cell_of_element;
     int dim;
     std::array<int, 3> cells;
+    bool tiled = false;
+    std::vector<std::int32_t> cell_coords, node_coords;  ///< box coordinates per slot id, per node id
   };
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
@@ -229,10 +231,16 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     const auto& grid = study.mesh.grid;
     agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules, study.readings);
     Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
-          {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}};
+          {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}, grid.tiled(), {}, {}};
     for (std::size_t cell = 0; cell < grid.count(); ++cell) {
       const Eigen::Vector3d x = grid.centre(cell);
       o.centres.insert(o.centres.end(), {x[0], x[1], x[2]});
+      const auto c = grid.coords(cell);
+      o.cell_coords.insert(o.cell_coords.end(), {c[0], c[1], c[2]});
+    }
+    for (std::size_t node = 0; node < grid.node_count(); ++node) {
+      const auto c = grid.node_coords(node);
+      o.node_coords.insert(o.node_coords.end(), {c[0], c[1], c[2]});
     }
     o.nodes = agent_study::output_mesh(study).points;
     return o;
@@ -241,7 +249,11 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   py::dict r;
   r["dim"] = out.dim;
   r["cells"] = py::make_tuple(out.cells[0], out.cells[1], out.cells[2]);
+  r["tiled"] = out.tiled;
   r["cell_centres"] = take(std::move(out.centres), {ssize(n), 3});
+  r["cell_coords"] = take(std::move(out.cell_coords), {ssize(n), 3});
+  const std::size_t node_ids = out.node_coords.size() / 3;
+  r["node_coords"] = take(std::move(out.node_coords), {ssize(node_ids), 3});
   r["node_points"] = take(std::move(out.nodes), {ssize(out.state.displacement.size() / dim), 3});
   r["face_force"] = take(std::move(out.state.face_forces), {ssize(n), ssize(2 * dim)});
   r["generation"] = take(std::move(out.state.generation), {ssize(n)});

@@ -170,14 +170,12 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
 workbench::OutputMesh output_mesh(const AgentStudy& study) {
   const auto& grid = study.mesh.grid;
   workbench::OutputMesh mesh;
-  const auto nn = grid.node_counts();
   mesh.points.reserve(grid.node_count() * 3);
-  for (int k = 0; k < nn[2]; ++k)
-    for (int j = 0; j < nn[1]; ++j)
-      for (int i = 0; i < nn[0]; ++i) {
-        const Eigen::Vector3d x = grid.node_position(i, j, k);
-        mesh.points.insert(mesh.points.end(), {x[0], x[1], x[2]});
-      }
+  for (std::size_t node = 0; node < grid.node_count(); ++node) {  // one point per node id (box order when dense)
+    const auto n = grid.node_coords(node);  // a tiled grid's ids beyond the box: unused points, as air's
+    const Eigen::Vector3d x = grid.node_position(n[0], n[1], n[2]);
+    mesh.points.insert(mesh.points.end(), {x[0], x[1], x[2]});
+  }
   for (std::size_t cell : study.mesh.cell_of_element) {
     const auto c = grid.coords(cell);
     auto n = [&](int di, int dj, int dk) { return (long long)grid.node_index(c[0] + di, c[1] + dj, c[2] + dk); };

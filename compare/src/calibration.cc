@@ -65,16 +65,15 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
     NearLoad near;
     if (w.far)
       near = near_load(c.study.mesh, c.study.setup.loads, w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
-    const auto body = body_nodes(grid);
     std::vector<double> a[3], r[3];
-    for (std::size_t cell = 0; cell < grid.count(); ++cell)
-      if (!grid.is_air(cell) && !(w.far && near.cells[cell]))
+    for (std::size_t cell : agent_ids(grid))  // box order on any layout: the same sums
+      if (!(w.far && near.cells[cell]))
         for (int f = 0; f < 2; ++f) {
           a[f].push_back(agent.sigma[2 * cell + f]);
           r[f].push_back(c.reference.sigma[2 * cell + f]);
         }
-    for (std::size_t n = 0; n < grid.node_count(); ++n)
-      if (body[n] && !(w.far && near.nodes[n]))
+    for (std::size_t n : body_node_ids(grid))
+      if (!(w.far && near.nodes[n]))
         for (int comp = 0; comp < dim; ++comp) {
           a[2].push_back(agent.u[n * dim + comp]);
           r[2].push_back(c.reference.u[n * dim + comp]);

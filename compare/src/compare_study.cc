@@ -74,9 +74,11 @@ using workbench::open_csv;
 using report::seconds_since;
 
 /// The entries of `v` (comps per entry) where `keep` is set.
-std::vector<double> select(const std::vector<double>& v, int comps, const std::vector<char>& keep) {
+/// The entries of `ids` (in their order) that `keep` marks, `comps` values each.
+std::vector<double> select(const std::vector<double>& v, int comps, const std::vector<std::size_t>& ids,
+                           const std::vector<char>& keep) {
   std::vector<double> out;
-  for (std::size_t i = 0; i < keep.size(); ++i)
+  for (std::size_t i : ids)
     if (keep[i]) out.insert(out.end(), v.begin() + i * comps, v.begin() + (i + 1) * comps);
   return out;
 }
@@ -195,7 +197,7 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
   }
 }
 
-/// The body's cells (grid order) and nodes, and the far field's: air counts in neither.
+/// The body's cells and nodes (box order), and the far field's: air counts in neither.
 void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* const fields[4], double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
@@ -203,6 +205,7 @@ void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Gr
   for (std::size_t cell : mesh.cell_of_element) body_cells[cell] = 1;
   std::vector<char> body_nodes = compare::body_nodes(grid);
   std::vector<char> far_cells = body_cells, far_nodes = body_nodes;
+  const auto cell_ids = agent_ids(grid), node_ids = body_node_ids(grid);  // box order on any layout
   for (std::size_t c = 0; c < far_cells.size(); ++c) far_cells[c] = far_cells[c] && !in.near.cells[c];
   for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
   for (const auto& [scope, cells, nodes] : {std::tuple{"body", &body_cells, &body_nodes},
@@ -210,10 +213,10 @@ void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Gr
     std::vector<double> sx[4], sy[4], u[4];
     for (int m = 0; m < 4; ++m) {
       if (!fields[m]) continue;
-      const auto sigma = select(fields[m]->sigma, 2, *cells);
+      const auto sigma = select(fields[m]->sigma, 2, cell_ids, *cells);
       sx[m] = component(sigma, 2, 0);
       sy[m] = component(sigma, 2, 1);
-      u[m] = select(fields[m]->u, grid.dim, *nodes);
+      u[m] = select(fields[m]->u, grid.dim, node_ids, *nodes);
     }
     add_scope(out, scope, sx, sy, u, mask);
   }
@@ -313,24 +316,19 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
               << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell)
               << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
   }
-  const std::vector<char> body_nodes = compare::body_nodes(grid);  // air has no nodes
   auto nodes_csv = open_csv(dir / "nodes.csv");
-  const auto nn = grid.node_counts();
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
             << ",agent_u_x [m],agent_u_y [m]" << (dim == 3 ? ",agent_u_z [m]" : "") << ",fem_u_x [m],fem_u_y [m]"
             << (dim == 3 ? ",fem_u_z [m]" : "") << "\n";
-  for (int k = 0; k < nn[2]; ++k)
-    for (int j = 0; j < nn[1]; ++j)
-      for (int i = 0; i < nn[0]; ++i) {
-        const std::size_t n = grid.node_index(i, j, k);
-        if (!body_nodes[n]) continue;
-        nodes_csv << i << ',' << j;
-        if (dim == 3) nodes_csv << ',' << k;
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.u[n * dim + a];
-        for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem.u[n * dim + a];
-        nodes_csv << '\n';
-      }
+  for (std::size_t n : compare::body_node_ids(grid)) {  // air has no nodes; box order on any layout
+    const auto c = grid.node_coords(n);
+    nodes_csv << c[0] << ',' << c[1];
+    if (dim == 3) nodes_csv << ',' << c[2];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << mesh.points[3 * n + a];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << agent.u[n * dim + a];
+    for (int a = 0; a < dim; ++a) nodes_csv << ',' << fem.u[n * dim + a];
+    nodes_csv << '\n';
+  }
   cells_csv.close();
   nodes_csv.close();
 }

@@ -43,10 +43,11 @@ double sample_lattice(const agent::Grid& g, const std::vector<double>& values, i
       w *= bit ? t[a] : 1 - t[a];
     }
     if (w == 0) continue;
-    // Cell fields: air slots hold no value; the agents' weights are renormalised.
-    if (!nodes && g.is_air(g.index(idx[0], idx[1], idx[2]))) continue;
     const std::size_t at = nodes ? g.node_index(idx[0], idx[1], idx[2]) : g.index(idx[0], idx[1], idx[2]);
-    sum += w * values[at * comps + comp];
+    // Cell fields: air slots (also a tiled grid's unstored ones) hold no value; the agents'
+    // weights are renormalised. Node fields are 0 at a node of no agent, stored or not.
+    if (!nodes && (at == agent::Grid::npos || g.is_air(at))) continue;
+    sum += w * (at == agent::Grid::npos ? 0.0 : values[at * comps + comp]);
     weight += w;
   }
   return weight > 0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
@@ -61,7 +62,8 @@ bool in_body(const agent::Grid& g, const Eigen::Vector3d& p) {
     if (!(f >= 0 && f < g.cells[a])) return false;
     idx[a] = int(f);
   }
-  return !g.is_air(g.index(idx[0], idx[1], idx[2]));
+  const std::size_t cell = g.index(idx[0], idx[1], idx[2]);
+  return cell != agent::Grid::npos && !g.is_air(cell);
 }
 
 std::vector<char> body_nodes(const agent::Grid& g) {
@@ -73,6 +75,37 @@ std::vector<char> body_nodes(const agent::Grid& g) {
       nodes[g.node_index(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + (g.dim == 3 ? (corner >> 2) & 1 : 0))] = 1;
   }
   return nodes;
+}
+
+namespace {
+/// Sorts slot ids (or node ids) of a tiled grid into box order (i fastest); a dense grid's ids
+/// are in box order already.
+void sort_in_box_order(const agent::Grid& g, std::vector<std::size_t>& ids, bool nodes) {
+  if (!g.tiled()) return;
+  const auto n = nodes ? g.node_counts() : g.cells;
+  auto key = [&](std::size_t id) {
+    const auto c = nodes ? g.node_coords(id) : g.coords(id);
+    return std::size_t(c[0]) + std::size_t(n[0]) * (std::size_t(c[1]) + std::size_t(n[1]) * std::size_t(c[2]));
+  };
+  std::sort(ids.begin(), ids.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+}
+}  // namespace
+
+std::vector<std::size_t> agent_ids(const agent::Grid& g) {
+  std::vector<std::size_t> ids;
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) ids.push_back(cell);
+  sort_in_box_order(g, ids, false);
+  return ids;
+}
+
+std::vector<std::size_t> body_node_ids(const agent::Grid& g) {
+  const auto body = body_nodes(g);
+  std::vector<std::size_t> ids;
+  for (std::size_t n = 0; n < body.size(); ++n)
+    if (body[n]) ids.push_back(n);
+  sort_in_box_order(g, ids, true);
+  return ids;
 }
 
 double sample_cells(const agent::Grid& g, const std::vector<double>& values, int comps, int comp,
@@ -242,14 +275,12 @@ NearLoad near_load(const agent::ImportedMesh& mesh, const std::vector<workbench:
   NearLoad out;
   out.cells.resize(g.count());
   for (std::size_t c = 0; c < g.count(); ++c) out.cells[c] = near(g.centre(c));
-  const auto nn = g.node_counts();
   out.nodes.resize(g.node_count());
-  for (int k = 0; k < nn[2]; ++k)
-    for (int j = 0; j < nn[1]; ++j)
-      for (int i = 0; i < nn[0]; ++i) {
-        const Eigen::Vector3d p = g.node_position(i, j, k);
-        out.nodes[g.node_index(i, j, k)] = near(p);
-      }
+  for (std::size_t n = 0; n < g.node_count(); ++n)
+    if (g.is_grid_node(n)) {  // a tiled grid has node ids beyond the box
+      const auto c = g.node_coords(n);
+      out.nodes[n] = near(g.node_position(c[0], c[1], c[2]));
+    }
   return out;
 }
 

@@ -57,6 +57,7 @@ GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::Fem
     int c[3];
     if (!locate_cell(grid, &fem.cell_centres[3 * e], c)) continue;
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
+    if (cell == agent::Grid::npos) continue;  // a tiled grid's unstored tile: air
     out.sigma[2 * cell] += fem.sigma_x[e];
     out.sigma[2 * cell + 1] += fem.sigma_y[e];
     ++hits[cell];
@@ -74,6 +75,7 @@ GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::Fem
     int p[3];
     if (!locate_node(grid, &fem.node_points[3 * n], p)) continue;
     const std::size_t node = grid.node_index(p[0], p[1], p[2]);
+    if (node == agent::Grid::npos) continue;  // no agent's corner
     for (int a = 0; a < dim; ++a) out.u[node * dim + a] = fem.node_displacement[n * dim + a];
     found[node] = 1;
   }
@@ -103,15 +105,11 @@ std::vector<std::array<double, 3>> agent_probe_points(const agent::Grid& grid) {
         points.push_back(p);
       }
     }
-  const auto body = body_nodes(grid);
-  const auto nn = grid.node_counts();
-  for (int k = 0; k < nn[2]; ++k)
-    for (int j = 0; j < nn[1]; ++j)
-      for (int i = 0; i < nn[0]; ++i)
-        if (body[grid.node_index(i, j, k)]) {
-          const Eigen::Vector3d x = grid.node_position(i, j, k);
-          points.push_back({x[0], x[1], grid.dim == 3 ? x[2] : 0.0});
-        }
+  for (std::size_t node : body_node_ids(grid)) {
+    const auto n = grid.node_coords(node);
+    const Eigen::Vector3d x = grid.node_position(n[0], n[1], n[2]);
+    points.push_back({x[0], x[1], grid.dim == 3 ? x[2] : 0.0});
+  }
   return points;
 }
 
@@ -156,9 +154,7 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
     }
     at += gauss;
   }
-  const auto body = body_nodes(grid);
-  for (std::size_t node = 0; node < grid.node_count(); ++node) {  // node_index order: i fastest, as agent_probe_points
-    if (!body[node]) continue;
+  for (std::size_t node : body_node_ids(grid)) {  // the order of agent_probe_points
     const auto& probe = fem.probes[at];
     const auto u = probe.found ? probe.u : fem.displacement_at(points[at]);
     outside[1] += !probe.found;

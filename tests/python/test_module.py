@@ -43,6 +43,10 @@ class Agent(unittest.TestCase):
         self.assertTrue(np.all(u[0, :, 1] == 0.0))  # the rigid base
         self.assertLess(u[:, :, 1].min(), -1e-10)
         self.assertGreater(u[:, :, 1].min(), -1e-7)
+        self.assertFalse(r["tiled"])
+        np.testing.assert_array_equal(r["cell_coords"][21], [1, 1, 0])  # dense: id = i + 20 j
+        np.testing.assert_array_equal(r["node_coords"][22], [1, 1, 0])  # dense: id = i + 21 j
+        self.assertEqual(r["node_coords"].shape, (441, 3))
         self.assertEqual(r["face_force"].shape, (400, 4))
         self.assertEqual(r["stress"].shape, (400, 2))
 

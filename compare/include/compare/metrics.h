@@ -31,6 +31,15 @@ double sample_nodes(const agent::Grid& grid, const std::vector<double>& values, 
 /// The grid nodes (Grid::node_index order) that are a corner of an agent: air has none.
 std::vector<char> body_nodes(const agent::Grid& grid);
 
+/// The ids of those nodes in the box's order (i fastest, then j, then k): node id order on a dense
+/// grid, sorted by box coordinates on a tiled one (whose ids are not in box order). Files and
+/// probe points list the body's nodes in this order, whatever the layout.
+std::vector<std::size_t> body_node_ids(const agent::Grid& grid);
+
+/// The agents' slot ids in the box's order, likewise: sums over the body (norms) add in the
+/// same order on a dense and a tiled grid, so they give the same number bit for bit.
+std::vector<std::size_t> agent_ids(const agent::Grid& grid);
+
 /// A straight sample line through the body.
 struct Line {
   std::string name;        ///< line_name(from, to): the same in every file and in the gate

@@ -46,7 +46,7 @@ struct CompressedAxis {
   bool collapsed() const;
 };
 
-/// The tiles of a sparse grid (docs/agent-model.md, "Tiles"): the box is cut into tiles of
+/// The tiles of a sparse grid (docs/agent-model.md, "Memory"): the box is cut into tiles of
 /// 64 x 16 slots (2D) or 16 x 8 x 8 (3D), and only the tiles that hold an agent, with the tiles
 /// just above them along each axis (they hold those agents' upper nodes), are stored. A slot's id
 /// is then its tile's place among the stored tiles times 1024 plus its place in the tile (x

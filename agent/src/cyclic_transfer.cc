@@ -180,7 +180,7 @@ void cyclic_transfer(const Grid& g, const Material& material, const Coefficients
           }
           if (g.has_neighbour(c, side)) {
             if (loads_face) fc[side] += child.weight;
-            child.cell = side % 2 ? c + g.stride(axis_of(side)) : c - g.stride(axis_of(side));
+            child.cell = g.tiled() ? g.neighbour(c, side) : side % 2 ? c + g.stride(axis_of(side)) : c - g.stride(axis_of(side));
             child.in_side = std::uint8_t(opposite(side));
           } else {
             const bool rigid = g.boundary(side, c) == Boundary::Rigid;

@@ -3,6 +3,7 @@
 #include <agent/load_transfer.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
@@ -71,8 +72,9 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
   const Fan fan = entry_fan(k, dim);
   const std::uint8_t* flags = g.flags.data();
-  auto rigid = [flags](std::size_t cell, int side) { return (flags[cell] >> side) & 1; };
-  auto air = [flags](std::size_t cell) { return flags[cell] & Grid::kAirBit; };
+  // Slot ids may be Grid::npos on a tiled grid (an unstored tile): air, no rigid face.
+  auto rigid = [flags](std::size_t cell, int side) { return cell != Grid::npos && ((flags[cell] >> side) & 1); };
+  auto air = [flags](std::size_t cell) { return cell == Grid::npos || (flags[cell] & Grid::kAirBit); };
 
   Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
   std::vector<double> row_force;
@@ -108,6 +110,17 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     const int n0 = g.cells[l0], n1 = g.cells[l1];
     const std::size_t sa = g.stride(a), s0 = g.stride(l0), s1 = g.stride(l1), layer_size = std::size_t(n0) * n1;
     const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
+    // The slot at a layer and lateral position: by strides on a dense grid, through the tile
+    // table on a tiled one.
+    const bool tiled = g.tiled();
+    auto slot_of = [&](int layer, int u, int v) {
+      if (!tiled) return std::size_t(layer) * sa + u * s0 + v * s1;
+      std::array<int, 3> c{};
+      c[a] = layer;
+      c[l0] = u;
+      c[l1] = v;
+      return g.index(c[0], c[1], c[2]);
+    };
     const auto entry = g.coords(load.cell);
     const int eu = entry[l0], ev = entry[l1];
     // Per row: the drift of a unit slope and the diffusion step, in lateral agents. Diffusion is
@@ -138,12 +151,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     // load balance is untouched) restores it. It puts the far side in tension, as FEM does.
     const double* at_u = at[l0].data();
     const double* at_v = at[l1].data();
-    auto balance_row_moment = [&](std::size_t layer_base, bool last_layer, std::vector<double>& through) {
+    auto balance_row_moment = [&](int layer, bool last_layer, std::vector<double>& through) {
       double count = 0, cu = 0, cv = 0, total = 0, mu = 0, mv = 0;
       bool exits_rigid = true, exits_free = false;  // how the row's agents meet what is past the row
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u) {
-          const std::size_t cell = layer_base + u * s0 + v * s1;
+          const std::size_t cell = slot_of(layer, u, v);
           if (air(cell)) continue;
           count += 1;
           cu += at_u[u];
@@ -152,7 +165,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           total += t;
           mu += t * (at_u[u] - at_u[eu]);
           mv += t * (at_v[v] - at_v[ev]);
-          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          const bool exits = last_layer || air(slot_of(layer + step, u, v));
           exits_rigid = exits_rigid && (!exits || rigid(cell, exit_face));
           exits_free = exits_free || (exits && !rigid(cell, exit_face));
         }
@@ -163,7 +176,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       double suu = 0, suv = 0, svv = 0;
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u)
-          if (!air(layer_base + u * s0 + v * s1)) {
+          if (!air(slot_of(layer, u, v))) {
             suu += (at_u[u] - cu) * (at_u[u] - cu);
             suv += (at_u[u] - cu) * (at_v[v] - cv);
             svv += (at_v[v] - cv) * (at_v[v] - cv);
@@ -181,12 +194,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       if (ku == 0 && kv == 0) return;
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u) {
-          const std::size_t cell = layer_base + u * s0 + v * s1;
+          const std::size_t cell = slot_of(layer, u, v);
           if (air(cell)) continue;
           const double delta = ku * (at_u[u] - cu) + kv * (at_v[v] - cv);
           double* f = faces.data() + cell * nd;
           f[enter_face] += delta;
-          const bool exits = last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)));
+          const bool exits = last_layer || air(slot_of(layer + step, u, v));
           // A boundary face takes it only where the whole row meets one rigid face (net zero there).
           if (!exits) f[exit_face] += delta;
           else if (exits_rigid && !exits_free) f[exit_face] += delta;
@@ -194,18 +207,18 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     };
 
     for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
-      const std::size_t layer_base = std::size_t(layer) * sa;
       const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
-      const std::size_t next_base = last_layer ? 0 : std::size_t(layer + step) * sa;
       // A packet piece arriving at lateral position (x, y) of the next row, in agents, with
       // direction indices (du, dv): folded back into the box by the free sides (a mirror: the
       // slope changes sign), absorbed by a rigid side, passed out where the next row is air.
       auto deposit = [&](double x, double y, int du, int dv, double force) {
-        auto fold = [&](double& pos, int lateral, int& index, std::size_t across) {
+        // `across`: the slot on the other lateral axis.
+        auto fold = [&](double& pos, int lateral, int& index, int across) {
           const double w = width[lateral];
           while (pos < 0 || pos > w) {
             const bool low = pos < 0;
-            const std::size_t edge = next_base + (low ? 0 : std::size_t(g.cells[lateral] - 1)) * g.stride(lateral) + across;
+            const int side_slot = low ? 0 : g.cells[lateral] - 1;
+            const std::size_t edge = lateral == l0 ? slot_of(layer + step, side_slot, across) : slot_of(layer + step, across, side_slot);
             if (rigid(edge, direction(lateral, !low))) return false;
             pos = low ? -pos : 2.0 * w - pos;
             index = n - 1 - index;
@@ -213,17 +226,17 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           return true;
         };
         const int iv_guess = slot_at(l1, y);
-        if (!fold(x, l0, du, iv_guess * s1)) {
+        if (!fold(x, l0, du, iv_guess)) {
           d.rigid_reaction += force;
           return;
         }
         const int iu = slot_at(l0, x);
-        if (dim == 3 && !fold(y, l1, dv, iu * s0)) {
+        if (dim == 3 && !fold(y, l1, dv, iu)) {
           d.rigid_reaction += force;
           return;
         }
         const int iv = dim == 3 ? slot_at(l1, y) : 0;
-        if (air(next_base + iu * s0 + iv * s1)) {
+        if (air(slot_of(layer + step, iu, iv))) {
           d.passed_out += force;
           return;
         }
@@ -250,7 +263,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
             const double off_u = now.moment_u[slot] / force, off_v = dim == 3 ? now.moment_v[slot] / force : 0.0;
             now.force[slot] = now.moment_u[slot] = now.moment_v[slot] = 0;
             ++d.packet_moves;
-            const std::size_t cell = layer_base + u * s0 + v * s1;
+            const std::size_t cell = slot_of(layer, u, v);
             const int gen = depth + std::abs(u - eu) + std::abs(v - ev);
             const auto current = std::uint32_t(generation[cell]);
             d.agents_generated += current == UINT32_MAX;
@@ -264,7 +277,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
               f[2 * l1] += force * side_force_v;
               f[2 * l1 + 1] += force * side_force_v;
             }
-            if (last_layer || air(cell + (forward ? std::ptrdiff_t(sa) : -std::ptrdiff_t(sa)))) {
+            if (last_layer || air(slot_of(layer + step, u, v))) {
               if (rigid(cell, exit_face)) {
                 f[exit_face] += force;
                 d.rigid_reaction += force;
@@ -292,7 +305,7 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
           }
         box = Box{};
       }
-      balance_row_moment(layer_base, last_layer, row_force);
+      balance_row_moment(layer, last_layer, row_force);
       if (!any) break;
       std::swap(now, next);
     }

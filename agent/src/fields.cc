@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace agent {
 
@@ -81,7 +83,91 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
   return datums;
 }
 
+namespace {
+
+// node_displacements on a tiled grid: the dense grid's numbers, bit for bit, from the stored tiles
+// only. A column's line (its strain integrated from the box's lower side) changes only inside
+// stored tiles (air adds 0.0 exactly), so it is integrated tile by tile along its tile column and
+// read between them as the value it carried out of the last stored tile below. Each stored node
+// then adds its adjacent columns in the dense loop's order (v, then w) and divides by their count.
+// Cost: each column that a stored node touches once over its tile column's stored tiles.
+std::vector<double> tiled_node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
+  const int dim = grid.dim;
+  const Tiles& t = grid.tiles;
+  std::vector<double> u(grid.node_count() * dim, 0.0);
+  for (int a = 0; a < dim; ++a) {
+    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;
+    const int n = grid.cells[a], tile_a = 1 << t.shift[a];
+    const double position = std::min(std::max(datums[a], 0.0), double(n));
+    const int datum_cell = std::min(int(position), n - 1);
+    const double frac = position - datum_cell;
+    // The stored tiles along a of each tile column (tile coordinates on l0, l1), in order.
+    std::map<std::pair<int, int>, std::vector<int>> along;
+    for (const auto& first : t.first) along[{first[l0] >> t.shift[l0], first[l1] >> t.shift[l1]}].push_back(first[a] >> t.shift[a]);
+    for (auto& [key, tiles] : along) std::sort(tiles.begin(), tiles.end());
+    // A column's line at the nodes of its stored tiles ((tile_a + 1) values each) and its shift.
+    struct Column {
+      const std::vector<int>* tiles = nullptr;
+      std::vector<double> line;
+      double shift = 0;
+    };
+    std::map<std::pair<int, int>, Column> columns;
+    auto line_at = [&](const Column& c, int i) {
+      if (!c.tiles) return 0.0;
+      const auto& tiles = *c.tiles;
+      const auto it = std::upper_bound(tiles.begin(), tiles.end(), i / tile_a);  // tiles starting at or below i
+      if (it == tiles.begin()) return 0.0;
+      const std::size_t k = std::size_t(it - tiles.begin()) - 1;
+      const int r = std::min(i - tiles[k] * tile_a, tile_a);  // past the tile: what it carried out
+      return c.line[k * (tile_a + 1) + r];
+    };
+    auto column = [&](int w, int v) -> const Column& {
+      auto [entry, added] = columns.try_emplace({w, v});
+      Column& c = entry->second;
+      if (!added) return c;
+      const auto found = along.find({w >> t.shift[l0], v >> t.shift[l1]});
+      if (found == along.end()) return c;
+      c.tiles = &found->second;
+      c.line.resize(c.tiles->size() * (tile_a + 1));
+      double carried = 0.0;
+      std::array<int, 3> at{};
+      at[l0] = w;
+      at[l1] = v;
+      for (std::size_t k = 0; k < c.tiles->size(); ++k) {
+        const int i0 = (*c.tiles)[k] * tile_a;
+        double* line = &c.line[k * (tile_a + 1)];
+        line[0] = carried;
+        for (int r = 0; r < tile_a; ++r) {
+          at[a] = i0 + r;
+          if (at[a] < n) carried = carried + strains[3 * grid.index(at[0], at[1], at[2]) + a] * grid.size[a];
+          line[r + 1] = carried;
+        }
+      }
+      const double below = line_at(c, datum_cell), above = line_at(c, datum_cell + 1);
+      c.shift = below + frac * (above - below);
+      return c;
+    };
+    for (std::size_t node = 0; node < grid.node_count(); ++node) {
+      if (!grid.is_grid_node(node)) continue;
+      const auto p = grid.node_coords(node);
+      double sum = 0.0, weight = 0;
+      const int v_lo = dim == 3 ? p[l1] - 1 : 0, v_hi = dim == 3 ? p[l1] : 0;
+      for (int v = std::max(v_lo, 0); v <= std::min(v_hi, grid.cells[l1] - 1); ++v)
+        for (int w = std::max(p[l0] - 1, 0); w <= std::min(p[l0], grid.cells[l0] - 1); ++w) {
+          const Column& c = column(w, v);
+          sum += line_at(c, p[a]) - c.shift;
+          weight += 1;
+        }
+      u[node * dim + a] = sum / weight;
+    }
+  }
+  return u;
+}
+
+}  // namespace
+
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
+  if (grid.tiled()) return tiled_node_displacements(grid, strains, datums);
   const int dim = grid.dim;
   std::vector<double> u(grid.node_count() * dim, 0.0);
   std::vector<double> weight(grid.node_count());

@@ -1,5 +1,7 @@
-// The layer sweep on a grid laid out on tiles: the same face forces, generations and tallies as on
-// the dense grid of the same body, bit for bit, and memory that follows the tiles.
+// Every rule set and the fields on a grid laid out on tiles: the same face forces, generations,
+// tallies, stresses, strains and node displacements as on the dense grid of the same body, bit
+// for bit, and memory that follows the tiles.
+#include <agent/fields.h>
 #include <agent/load_transfer.h>
 
 #include <gtest/gtest.h>
@@ -24,6 +26,22 @@ Grid holey_body(int dim, std::array<int, 3> n, unsigned seed) {
     const bool notch = x[0] < n[0] / 3 && x[1] > n[1] / 2 && x[1] < n[1] / 2 + 3;
     if (hole || notch || rng() % 10 == 0) g.make_air(c);
   }
+  std::vector<BoundaryFace> rigid;
+  for (const auto& f : g.boundary_faces())
+    if (rng() % 3 == 0) rigid.push_back(f);
+  g.set_boundary(rigid, Boundary::Rigid);
+  return g;
+}
+
+// A connected but sparse body: a diagonal band 12 agents wide (3D: 6 deep) across the box, so
+// that most tiles of the box are not stored; a random third of its boundary faces rigid.
+Grid band_body(int dim, std::array<int, 3> n, unsigned seed) {
+  Grid g = Grid::box(dim, n, Eigen::Vector3d(0.5, 0.25, 2.0));
+  for (std::size_t c = 0; c < g.count(); ++c) {
+    const auto x = g.coords(c);
+    if (std::abs(x[0] - 2 * x[1]) >= 6 || (dim == 3 && std::abs(2 * x[2] - n[2]) >= 6)) g.make_air(c);
+  }
+  std::mt19937 rng(seed);
   std::vector<BoundaryFace> rigid;
   for (const auto& f : g.boundary_faces())
     if (rng() % 3 == 0) rigid.push_back(f);
@@ -72,6 +90,9 @@ void expect_same(const LoadTransfer& dense, const LoadTransfer& tiled, const std
   EXPECT_EQ(a.lateral_reaction, b.lateral_reaction) << what;
   EXPECT_EQ(a.lateral_passed_out, b.lateral_passed_out) << what;
   EXPECT_EQ(a.lateral_dropped, b.lateral_dropped) << what;
+  EXPECT_EQ(a.packet_moves, b.packet_moves) << what;
+  EXPECT_EQ(a.returned_rigid, b.returned_rigid) << what;
+  EXPECT_EQ(a.returned_free, b.returned_free) << what;
   EXPECT_GT(a.agents_generated, 50u) << what;  // the loads went somewhere
 }
 
@@ -104,6 +125,74 @@ TEST(TiledSweep, SameFacesGenerationsAndTalliesAsTheDenseGrid) {
       md.solve(later);
       mt.solve(on_tiles(dense, tiled, later));
       expect_same(md, mt, what + ", third solve");
+    }
+  }
+}
+
+TEST(TiledTransfer, CyclicAndDirectionalRuleSetsAsOnTheDenseGrid) {
+  for (int body = 0; body < 4; ++body) {
+    const int dim = body % 2 ? 3 : 2;
+    const bool sparse = body >= 2;
+    const std::array<int, 3> n = sparse ? (dim == 2 ? std::array<int, 3>{200, 100, 1} : std::array<int, 3>{50, 25, 24})
+                                        : (dim == 2 ? std::array<int, 3>{90, 40, 1} : std::array<int, 3>{20, 18, 17});
+    const Grid dense = sparse ? band_body(dim, n, 21u + dim) : holey_body(dim, n, 21u + dim);
+    const Grid tiled = tile(dense);
+    const auto loads = loads_for(dense, 9u + dim);
+    for (int variant = 0; variant < 4; ++variant) {
+      Readings r;
+      r.every_agent_all_operations = variant == 0 || variant == 2;
+      r.boundaries_return = variant == 1 || variant == 2;
+      const RuleSet rules = variant == 3 ? RuleSet::Directional : RuleSet::Patent;
+      const Coefficients k = variant == 3 ? Coefficients{} : test_support::coefficients(0.5, 0.5, 0.2, 0.9, 1e-3);
+      LoadTransfer md(dense, test_support::kMaterial, k, rules, r), mt(tiled, test_support::kMaterial, k, rules, r);
+      const std::string what = std::to_string(dim) + "D body " + std::to_string(body) + " variant " + std::to_string(variant);
+      md.solve(loads);
+      mt.solve(on_tiles(dense, tiled, loads));
+      expect_same(md, mt, what);
+    }
+  }
+}
+
+TEST(TiledTransfer, StressesStrainsDatumsAndNodeDisplacementsAsOnTheDenseGrid) {
+  for (int body = 0; body < 4; ++body) {
+    const int dim = body % 2 ? 3 : 2;
+    const bool sparse = body >= 2;
+    const std::array<int, 3> n = sparse ? (dim == 2 ? std::array<int, 3>{300, 150, 1} : std::array<int, 3>{70, 35, 24})
+                                        : (dim == 2 ? std::array<int, 3>{150, 70, 1} : std::array<int, 3>{34, 30, 21});
+    const Grid dense = sparse ? band_body(dim, n, 31u + dim) : holey_body(dim, n, 31u + dim);
+    const Grid tiled = tile(dense);
+    const auto loads = loads_for(dense, 13u + dim);
+    const Coefficients k = test_support::coefficients(0.9, 0.8, 0.15, 0.5, 1e-6);
+    LoadTransfer md(dense, test_support::kMaterial, k, RuleSet::Patent), mt(tiled, test_support::kMaterial, k, RuleSet::Patent);
+    md.solve(loads);
+    const auto tiled_loads = on_tiles(dense, tiled, loads);
+    mt.solve(tiled_loads);
+    const auto sd = agent_stresses(dense, md.face_forces()), st = agent_stresses(tiled, mt.face_forces());
+    EXPECT_EQ(test_support::in_dense_order(dense, tiled, st, dim, 0.0), sd);
+    const auto ed = agent_strains(dense, test_support::kMaterial, sd), et = agent_strains(tiled, test_support::kMaterial, st);
+    EXPECT_EQ(test_support::in_dense_order(dense, tiled, et, 3, 0.0), ed);
+    const Datums dd = choose_datums(dense, loads), dt = choose_datums(tiled, tiled_loads);
+    EXPECT_EQ(dd, dt);
+    // The datum inside the body (the force-weighted centre) as well as at a rigid face.
+    for (const Datums datums : {dd, Datums{0.37 * n[0], 0.61 * n[1], 0.5 * n[2]}}) {
+      const auto ud = node_displacements(dense, ed, datums), ut = node_displacements(tiled, et, datums);
+      const auto ut_dense = test_support::in_dense_order(dense, tiled, ut, dim, 0.0, true);
+      // Every node a stored tile holds has the dense grid's value; the others are nodes of air only.
+      std::size_t compared = 0;
+      for (std::size_t node = 0; node < dense.node_count(); ++node) {
+        const auto p = dense.node_coords(node);
+        if (tiled.node_index(p[0], p[1], p[2]) == Grid::npos) continue;
+        ++compared;
+        for (int c = 0; c < dim; ++c) ASSERT_EQ(ut_dense[node * dim + c], ud[node * dim + c]) << dim << "D node " << node;
+      }
+      if (sparse) {
+        EXPECT_LT(double(compared), 0.6 * double(dense.node_count()));  // most tiles are air
+      } else {
+        EXPECT_EQ(compared, dense.node_count());  // this body touches every tile
+      }
+      double largest = 0;
+      for (double x : ud) largest = std::max(largest, std::abs(x));
+      EXPECT_GT(largest, 0.0);
     }
   }
 }

@@ -49,6 +49,15 @@ Grid band_body(int dim, std::array<int, 3> n, unsigned seed) {
   return g;
 }
 
+// Four test bodies: a holey box in 2D (body 0) and 3D (1), a sparse band in 2D (2) and 3D (3);
+// `scale` enlarges them.
+Grid test_body(int body, int scale, unsigned seed) {
+  const int dim = body % 2 ? 3 : 2;
+  const std::array<int, 3> n = body >= 2 ? (dim == 2 ? std::array<int, 3>{100 * scale, 50 * scale, 1} : std::array<int, 3>{50, 25, 24})
+                                         : (dim == 2 ? std::array<int, 3>{75 * scale, 35 * scale, 1} : std::array<int, 3>{20, 18, 17});
+  return body >= 2 ? band_body(dim, n, seed + dim) : holey_body(dim, n, seed + dim);
+}
+
 // Entry loads on a few agents per direction (every direction, so each axis is the load's once),
 // each on an agent whose face the load enters by is a boundary face.
 std::vector<EntryLoad> loads_for(const Grid& g, unsigned seed) {
@@ -131,11 +140,8 @@ TEST(TiledSweep, SameFacesGenerationsAndTalliesAsTheDenseGrid) {
 
 TEST(TiledTransfer, CyclicAndDirectionalRuleSetsAsOnTheDenseGrid) {
   for (int body = 0; body < 4; ++body) {
-    const int dim = body % 2 ? 3 : 2;
-    const bool sparse = body >= 2;
-    const std::array<int, 3> n = sparse ? (dim == 2 ? std::array<int, 3>{200, 100, 1} : std::array<int, 3>{50, 25, 24})
-                                        : (dim == 2 ? std::array<int, 3>{90, 40, 1} : std::array<int, 3>{20, 18, 17});
-    const Grid dense = sparse ? band_body(dim, n, 21u + dim) : holey_body(dim, n, 21u + dim);
+    const Grid dense = test_body(body, 2, 21u);
+    const int dim = dense.dim;
     const Grid tiled = tile(dense);
     const auto loads = loads_for(dense, 9u + dim);
     for (int variant = 0; variant < 4; ++variant) {
@@ -155,11 +161,9 @@ TEST(TiledTransfer, CyclicAndDirectionalRuleSetsAsOnTheDenseGrid) {
 
 TEST(TiledTransfer, StressesStrainsDatumsAndNodeDisplacementsAsOnTheDenseGrid) {
   for (int body = 0; body < 4; ++body) {
-    const int dim = body % 2 ? 3 : 2;
-    const bool sparse = body >= 2;
-    const std::array<int, 3> n = sparse ? (dim == 2 ? std::array<int, 3>{300, 150, 1} : std::array<int, 3>{70, 35, 24})
-                                        : (dim == 2 ? std::array<int, 3>{150, 70, 1} : std::array<int, 3>{34, 30, 21});
-    const Grid dense = sparse ? band_body(dim, n, 31u + dim) : holey_body(dim, n, 31u + dim);
+    const Grid dense = test_body(body, 3, 31u);
+    const int dim = dense.dim, sparse = body >= 2;
+    const auto& n = dense.cells;
     const Grid tiled = tile(dense);
     const auto loads = loads_for(dense, 13u + dim);
     const Coefficients k = test_support::coefficients(0.9, 0.8, 0.15, 0.5, 1e-6);

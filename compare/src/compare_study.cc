@@ -73,8 +73,7 @@ const char* kFields[] = {"sigma_x", "sigma_y", "displacement"};
 using workbench::open_csv;
 using report::seconds_since;
 
-/// The entries of `v` (comps per entry) where `keep` is set.
-/// The entries of `ids` (in their order) that `keep` marks, `comps` values each.
+/// The entries of `v` (comps per entry) at the `ids` (in their order) that `keep` marks.
 std::vector<double> select(const std::vector<double>& v, int comps, const std::vector<std::size_t>& ids,
                            const std::vector<char>& keep) {
   std::vector<double> out;

@@ -202,12 +202,7 @@ py::dict diagnostics_dict(const agent::Diagnostics& d) {
 
 py::dict coefficients_dict(const agent::Coefficients& k) {
   py::dict out;
-  out["alpha1"] = k.alpha1;
-  out["alpha2"] = k.alpha2;
-  out["alpha3"] = k.alpha3;
-  out["beta"] = k.beta;
-  out["gamma"] = k.gamma;
-  out["poisson_decay"] = k.decay();
+  for (const auto& [name, value] : agent_study::coefficient_values(k)) out[name.c_str()] = value;
   return out;
 }
 
@@ -415,9 +410,8 @@ class Objective {
  public:
   Objective(const std::vector<Case>& cases, const std::string& rule_set, double w_sigma_x, double w_sigma_y,
             double w_displacement, const py::object& progress) {
-    const auto all = {agent::RuleSet::Patent, agent::RuleSet::Conserving, agent::RuleSet::Directional};
-    const auto named = std::find_if(all.begin(), all.end(), [&](agent::RuleSet r) { return rule_set == agent::rule_set_name(r); });
-    if (named == all.end())
+    const auto named = agent::rule_set_named(rule_set);
+    if (!named)
       throw workbench::Error("rule_set: must be \"patent\", \"conserving\" or \"directional\", not \"" + rule_set + "\"");
     rules_ = *named;
     weights_.sigma_x = w_sigma_x;
@@ -443,7 +437,7 @@ class Objective {
     });
   }
   /// J at the coefficients: [alpha1, alpha2, alpha3, beta, gamma], or a dict of any of
-  /// compare::kCoefficientNames (the rest at the library's defaults; poisson_decay follows alpha2 as
+  /// agent::kCoefficients (the rest at the library's defaults; poisson_decay follows alpha2 as
   /// in `workbench calibrate`). Each case keeps its own [agent] readings.
   double operator()(const agent::Coefficients& k) const {
     py::gil_scoped_release release;
@@ -468,20 +462,20 @@ class Objective {
   }
 
  private:
-  /// The seed's rule sets' coefficients (alpha1..gamma, the first of compare::kCoefficientNames).
+  /// The seed's rule sets' coefficients (alpha1..gamma: the first five rows of agent::kCoefficients).
   static agent::Coefficients seed_coefficients(const std::array<double, 5>& values) {
     agent::Coefficients k;
-    for (std::size_t i = 0; i < values.size(); ++i) compare::coefficient(k, i) = values[i];
+    for (std::size_t i = 0; i < values.size(); ++i) agent::kCoefficients[i].set(k, values[i]);
     return k;
   }
-  /// Named coefficients (compare::kCoefficientNames), the rest at the library's defaults.
+  /// Named coefficients (any row of agent::kCoefficients), the rest at the library's defaults.
   static agent::Coefficients named_coefficients(const std::map<std::string, double>& values) {
     agent::Coefficients k;
     for (const auto& [name, value] : values) {
-      const auto* names = compare::kCoefficientNames.data();
-      const auto i = std::size_t(std::find(names, names + compare::kCoefficientCount, name) - names);
-      if (i == compare::kCoefficientCount) throw workbench::Error("coefficients: unknown coefficient \"" + name + "\"");
-      compare::coefficient(k, i) = value;
+      const auto* c = agent::find_coefficient(name);
+      if (!c) throw workbench::Error("coefficients: unknown coefficient \"" + name + "\"");
+      if (const auto why = c->problem(value); !why.empty()) throw workbench::Error("coefficients: " + name + " " + why);
+      c->set(k, value);
     }
     return k;
   }
@@ -503,7 +497,7 @@ void bind_objective(py::module_& m) {
       .def(
           "__call__",
           [](const Objective& o, const std::map<std::string, double>& v) { return o(Objective::named_coefficients(v)); },
-          py::arg("coefficients"), "J at named coefficients, e.g. {\"fan_angle\": 60, \"diffusion\": 0.002}")
+          py::arg("coefficients"), "J at named coefficients, e.g. {\"fan_angle\": 60, \"diffusion_length\": 0.002}")
       .def(
           "scores", [](const Objective& o, const std::array<double, 5>& v) { return o.scores(Objective::seed_coefficients(v)); },
           py::arg("coefficients"), "Each case's relative errors")
@@ -546,6 +540,31 @@ PYBIND11_MODULE(workbench, m) {
         return std::string(std::istreambuf_iterator<char>(in), {});
       }, "The case as TOML text");
 
+  m.def("coefficients", [] {
+    py::list out;
+    for (const auto& c : agent::kCoefficients) {
+      py::dict d;
+      d["name"] = c.name;
+      d["unit"] = c.unit;
+      d["meaning"] = c.meaning;
+      py::list rules;
+      for (agent::RuleSet r : agent::kRuleSets)
+        if (c.used_by(r)) rules.append(agent::rule_set_name(r));
+      d["rule_sets"] = rules;
+      d["default"] = c.default_value();
+      d["min"] = c.min;
+      d["max"] = c.max;
+      d["min_open"] = c.min_open;
+      d["max_open"] = c.max_open;
+      d["integer"] = c.integer;
+      d["fitted"] = c.fitted;
+      d["fit_min"] = c.fit_min;
+      d["fit_max"] = c.fit_max;
+      out.append(d);
+    }
+    return out;
+  }, "The table of the agent model's coefficients (agent/coefficients.h): name, unit, meaning, the rule sets "
+     "that use it, default, admissible range, whether a calibration fits it and its default bounds.");
   m.def("run_agent", &run_agent, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("load_factor") = 1.0,
         py::arg("progress") = py::none(),
         "The agent model at `load_factor` times the load: arrays in grid order (cell_of_element[e] is the agent of "

@@ -12,18 +12,6 @@
 
 namespace agent {
 
-void check_directional(const DirectionalCoefficients& k) {
-  auto check = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
-  };
-  check(k.directions >= 2 && k.directions <= 256 && k.directions % 2 == 0,
-        "directions must be an even number in [2, 256] (an odd count has a straight-down packet)");
-  check(k.fan_angle > 0 && k.fan_angle < 90, "fan_angle must be in (0, 90) degrees");
-  check(k.fan_power >= 0 && k.fan_power <= 100, "fan_power must be in [0, 100]");
-  check(k.fan_power_3d >= 0 && k.fan_power_3d <= 100, "fan_power_3d must be in [0, 100]");
-  check(k.diffusion >= 0 && k.diffusion <= 1000, "diffusion must be in [0, 1000] mm");
-}
-
 Fan entry_fan(const DirectionalCoefficients& k, int dim) {
   const double power = dim == 3 ? k.fan_power_3d : k.fan_power;
   // Angles evenly spaced over (-fan_angle, fan_angle), none straight down (an even count).
@@ -124,10 +112,10 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     const auto entry = g.coords(load.cell);
     const int eu = entry[l0], ev = entry[l1];
     // Per row: the drift of a unit slope and the diffusion step, in lateral agents. Diffusion is
-    // given in mm, so the spread at a depth does not depend on the agent size.
+    // a length [m], so the spread at a depth does not depend on the agent size.
     const double row = g.size[a];
     const double drift_u = row / g.size[l0], drift_v = row / g.size[l1];
-    const double spread_m = std::sqrt(k.diffusion * 1e-3 * row);
+    const double spread_m = std::sqrt(k.diffusion_length * row);
     const double r_u = spread_m / g.size[l0], r_v = spread_m / g.size[l1];
     // A packet along a ray carries stress along the ray: sigma_ll = slope_l^2 sigma_aa.
     const double side_u = g.face_area(l0) / g.face_area(a), side_v = dim == 3 ? g.face_area(l1) / g.face_area(a) : 0.0;

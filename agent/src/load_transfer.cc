@@ -57,15 +57,7 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
   check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
   check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
   check(material.poisson > -1 && material.poisson < 0.5, "poisson must be in (-1, 0.5)");
-  auto unit = [](double x) { return x >= 0 && x <= 1; };
-  check(unit(k.alpha1), "alpha1 must be in [0, 1]");
-  check(unit(k.alpha2), "alpha2 must be in [0, 1]");
-  check(unit(k.alpha3), "alpha3 must be in [0, 1]");
-  check(unit(k.beta), "beta must be in [0, 1]");
-  check(unit(k.decay()), "poisson_decay must be in [0, 1]");
-  check(k.gamma >= 0 && std::isfinite(k.gamma), "gamma must be >= 0");
-  check(rules != RuleSet::Conserving || k.alpha2 + k.alpha3 > 0, "the conserving rule set needs alpha2 + alpha3 > 0");
-  if (rules == RuleSet::Directional) check_directional(k.directional);
+  check_coefficients(k, rules);
   if (readings.cyclic()) {
     check(rules == RuleSet::Patent, "readings every_agent_all_operations and boundaries_return are readings of the "
                                     "patent rule set");

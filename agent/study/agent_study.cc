@@ -20,30 +20,41 @@ namespace fs = std::filesystem;
 using workbench::Error;
 using workbench::Range;
 
+namespace {
+/// Keys whose unit changed: refused with the new key, so that an old case is not read in the wrong unit.
+void refuse_renamed_keys(const workbench::CaseTable& t) {
+  t.refuse_renamed("diffusion", "diffusion_length", "in metres: diffusion [mm] / 1000");
+}
+}  // namespace
+
+agent::RuleSet read_rule_set(const workbench::CaseTable& t, agent::RuleSet fallback) {
+  std::vector<std::string> names;
+  for (agent::RuleSet r : agent::kRuleSets) names.push_back(agent::rule_set_name(r));
+  return *agent::rule_set_named(t.text("rule_set", agent::rule_set_name(fallback), names));
+}
+
 void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules) {
   const auto t = root.table("agent");
-  const std::string rule_set = t.text("rule_set", "patent", {"patent", "conserving", "directional"});
-  rules = rule_set == "patent" ? agent::RuleSet::Patent
-          : rule_set == "conserving" ? agent::RuleSet::Conserving : agent::RuleSet::Directional;
-  const auto unit = Range::closed(0, 1);
-  const agent::Coefficients defaults;  // the library's defaults, the seed's values
-  k.alpha1 = t.number("alpha1", defaults.alpha1, unit);
-  k.alpha2 = t.number("alpha2", defaults.alpha2, unit);
-  k.alpha3 = t.number("alpha3", defaults.alpha3, unit);
-  k.beta = t.number("beta", defaults.beta, unit);
-  k.gamma = t.number("gamma", defaults.gamma, Range::non_negative());
-  k.poisson_decay = t.has("poisson_decay") ? std::optional<double>(t.number("poisson_decay", {}, unit)) : std::nullopt;
-  if (rules == agent::RuleSet::Conserving && k.alpha2 + k.alpha3 <= 0)
-    t.fail("alpha2", "the conserving rule set needs alpha2 + alpha3 > 0");
-  // The directional rule set's coefficients (its defaults are the calibrated ones).
-  const agent::DirectionalCoefficients fan;
-  auto& dk = k.directional;
-  dk.directions = t.integer("directions", fan.directions, 2, 256);
-  if (dk.directions % 2) t.fail("directions", "must be even (an odd fan has a straight-down packet: a spike under the load)");
-  dk.fan_angle = t.number("fan_angle", fan.fan_angle, Range::open(0, 90));
-  dk.fan_power = t.number("fan_power", fan.fan_power, Range::closed(0, 100));
-  dk.fan_power_3d = t.number("fan_power_3d", fan.fan_power_3d, Range::closed(0, 100));
-  dk.diffusion = t.number("diffusion", fan.diffusion, Range::closed(0, 1000));
+  rules = read_rule_set(t, agent::RuleSet::Patent);
+  // Every coefficient from the one table (agent/coefficients.h), at the library's defaults.
+  for (const auto& c : agent::kCoefficients) {
+    if (c.optional && !t.has(c.name)) continue;  // unset: poisson_decay follows alpha2
+    if (c.integer) {
+      c.set(k, t.integer(c.name, int(c.default_value()), int(c.min), int(c.max)));
+      continue;
+    }
+    const double v = t.number(c.name, c.optional ? std::nullopt : std::optional<double>(c.default_value()),
+                              Range{c.min, c.max, c.min_open, c.max_open});
+    c.set(k, v);
+  }
+  refuse_renamed_keys(t);
+  try {
+    agent::check_coefficients(k, rules);  // what a rule set needs beyond the ranges
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what(), directions = "directions ";
+    if (what.rfind(directions, 0) == 0) t.fail("directions", what.substr(directions.size()));
+    t.fail("alpha2", what);
+  }
 }
 
 const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_names() {
@@ -54,6 +65,12 @@ const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_name
       {"every_agent_all_operations", &agent::Readings::every_agent_all_operations},
       {"boundaries_return", &agent::Readings::boundaries_return}};
   return names;
+}
+
+std::vector<std::pair<std::string, double>> coefficient_values(const agent::Coefficients& k) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& c : agent::kCoefficients) out.emplace_back(c.name, c.get(k));
+  return out;
 }
 
 std::vector<std::string> names_of(const agent::Readings& r) {
@@ -295,6 +312,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   nlohmann::json j;
   j["rule_set"] = agent::rule_set_name(study.rules);
   j["readings"] = names_of(study.readings);
+  for (const auto& [name, value] : coefficient_values(study.coefficients)) j["coefficients"][name] = value;
   j["load_vector"] = std::vector<double>(v.data(), v.data() + dim);
   j["load_balance"] = {{"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},
@@ -303,6 +321,8 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   j["returned"] = {{"rigid", d.returned_rigid}, {"free", d.returned_free}};  // reading 6, in the body
   j["agents"] = study.mesh.cell_of_element.size();
   j["agents_generated"] = d.agents_generated;
+  j["agent_updates"] = d.agent_updates;
+  j["packet_moves"] = d.packet_moves;
   j["warnings"] = warnings;
   std::ofstream out(file);
   out << j.dump(2) << '\n';

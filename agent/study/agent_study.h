@@ -26,11 +26,18 @@ struct AgentStudy {
   std::vector<agent::EntryLoad> loads;  ///< one per loaded face, at the full load
 };
 
-/// Reads the [agent] section (docs/case-file.md) into coefficients and a rule set.
+/// `rule_set` of a table (one of the names of agent::kRuleSets), `fallback` when absent.
+agent::RuleSet read_rule_set(const workbench::CaseTable& t, agent::RuleSet fallback);
+/// Reads the [agent] section (docs/case-file.md) into coefficients (every row of
+/// agent::kCoefficients) and a rule set.
 void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules);
 
 /// The case-file name of each reading (docs/case-file.md) and the flag it sets.
 const std::vector<std::pair<std::string, bool agent::Readings::*>>& reading_names();
+/// Every coefficient in effect (each row of agent::kCoefficients), by name, in table order: what
+/// summaries and the Python module report.
+std::vector<std::pair<std::string, double>> coefficient_values(const agent::Coefficients& k);
+
 /// The names of the readings set in `r`, in reading_names() order.
 std::vector<std::string> names_of(const agent::Readings& r);
 

@@ -110,6 +110,11 @@ std::string CaseTable::where(const std::string& key) const { return file_->path(
 
 void CaseTable::fail(const std::string& key, const std::string& reason) const { throw Error(where(key) + ": " + reason); }
 
+void CaseTable::refuse_renamed(const std::string& old_key, const std::string& new_key,
+                               const std::string& conversion) const {
+  if (has(old_key)) fail(old_key, "renamed: give " + new_key + " (" + conversion + ")");
+}
+
 bool CaseTable::has(const std::string& key) const { return table_ && table_->get(key) != nullptr; }
 
 double CaseTable::number(const std::string& key, std::optional<double> fallback, Range range) const {

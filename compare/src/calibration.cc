@@ -17,27 +17,9 @@
 
 namespace compare {
 
-double& coefficient(agent::Coefficients& k, std::size_t i) {
-  auto& d = k.directional;
-  double* const all[kCoefficientCount] = {&k.alpha1,    &k.alpha2,    &k.alpha3,       &k.beta,     &k.gamma,
-                                          &d.fan_angle, &d.fan_power, &d.fan_power_3d, &d.diffusion};
-  return *all[i];
-}
-
-double coefficient(const agent::Coefficients& k, std::size_t i) {
-  return coefficient(const_cast<agent::Coefficients&>(k), i);
-}
-
-bool uses(agent::RuleSet rules, std::size_t i) {
-  const std::string name = kCoefficientNames[i];
-  if (rules == agent::RuleSet::Directional) return name == "gamma" || i >= 5;
-  if (i >= 5) return false;
-  return !(name == "alpha1" && rules == agent::RuleSet::Conserving);
-}
-
 agent::Coefficients coefficients_from(const CoefficientValues& v) {
   agent::Coefficients k;
-  for (std::size_t i = 0; i < kCoefficientCount; ++i) coefficient(k, i) = v[i];
+  for (std::size_t i = 0; i < kCoefficientCount; ++i) agent::kCoefficients[i].set(k, v[i]);
   return k;
 }
 
@@ -45,7 +27,7 @@ agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coe
                              const std::array<bool, kCoefficientCount>& held) {
   agent::Coefficients k = fitted;
   for (std::size_t i = 0; i < kCoefficientCount; ++i)
-    if (held[i]) coefficient(k, i) = coefficient(own, i);
+    if (held[i]) agent::kCoefficients[i].set(k, agent::kCoefficients[i].get(own));
   k.poisson_decay = own.poisson_decay;  // a case's own value is held; unset, it follows alpha2
   k.directional.directions = own.directional.directions;  // an integer: not fitted
   return k;
@@ -64,7 +46,7 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
   if (w.far || !w.lines) {  // the body, or its far field (docs/compare.md): agents and their nodes only, air left out
     NearLoad near;
     if (w.far)
-      near = near_load(c.study.mesh, c.study.setup.loads, w.far_distance_mm > 0 ? 1e-3 * w.far_distance_mm : 5 * grid.size[0]);
+      near = near_load(c.study.mesh, c.study.setup.loads, w.far_distance > 0 ? w.far_distance : 5 * grid.size[0]);
     std::vector<double> a[3], r[3];
     for (std::size_t cell : agent_ids(grid))  // box order on any layout: the same sums
       if (!(w.far && near.cells[cell]))

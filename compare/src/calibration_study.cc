@@ -40,9 +40,7 @@ Plan read_plan(const workbench::CaseFile& file) {
   const auto t = root.table("calibrate");
   Plan plan;
   auto& o = plan.options;
-  const std::string rules = t.text("rule_set", "conserving", {"patent", "conserving", "directional"});
-  o.rules = rules == "patent" ? agent::RuleSet::Patent
-            : rules == "conserving" ? agent::RuleSet::Conserving : agent::RuleSet::Directional;
+  o.rules = agent_study::read_rule_set(t, agent::RuleSet::Conserving);
   if (t.has("readings")) plan.readings = agent_study::read_readings(t, o.rules);
   o.starts = t.integer("starts", 8, 1, 1000);
   o.seed = std::uint64_t(t.integer("seed", 1, 0, 2147483647));
@@ -59,7 +57,8 @@ Plan read_plan(const workbench::CaseFile& file) {
   const std::string scope = w.text("scope", "body", {"body", "far", "lines"});
   o.weights.lines = scope == "lines";
   o.weights.far = scope == "far";
-  o.weights.far_distance_mm = w.number("far_distance_mm", 0.0, Range::non_negative());
+  w.refuse_renamed("far_distance_mm", "far_distance", "in metres: far_distance_mm / 1000");
+  o.weights.far_distance = w.number("far_distance", 0.0, Range::non_negative());
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
   o.weights.keep_load = t.flag("keep_load", true);
 
@@ -69,38 +68,20 @@ Plan read_plan(const workbench::CaseFile& file) {
     plan.case_files.push_back(c.path("file", std::nullopt));
     plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
   }
-  // Defaults per coefficient: the library's value (the seed's for alpha1..gamma), the bounds of
-  // the fit and the values a case file accepts. Free by default: what the rule set uses, but gamma.
-  struct Default {
-    double start, lo, hi;
-    Range valid;
-  };
-  const agent::Coefficients library;
-  const auto& fan = library.directional;
-  const Range unit = Range::closed(0, 1);
-  const std::array<Default, kCoefficientCount> defaults{{
-      {library.alpha1, 0.0, 1.0, unit},
-      {library.alpha2, 0.01, 1.0, unit},  // a small floor: the conserving split needs alpha2 + alpha3 > 0
-      {library.alpha3, 0.0, 1.0, unit},
-      {library.beta, 0.0, 1.0, unit},
-      {library.gamma, 0.0, 10 * library.gamma, Range::non_negative()},
-      {fan.fan_angle, 20.0, 89.0, Range::open(0, 90)},
-      {fan.fan_power, 0.0, 8.0, Range::closed(0, 100)},
-      {fan.fan_power_3d, 0.0, 8.0, Range::closed(0, 100)},
-      {fan.diffusion, 0.0, 20.0, Range::closed(0, 1000)},
-  }};
+  // Per coefficient (agent::kCoefficients): the library's value as the start, the table's fit
+  // bounds, its range for what a file gives. Free by default: what the rule set uses, but gamma.
   int n_free = 0;
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
-    const std::string name = kCoefficientNames[i];
-    const auto p = t.table(name);
-    const auto& def = defaults[i];
+    const auto& c = agent::kCoefficients[i];
+    const Range valid{c.min, c.max, c.min_open, c.max_open};
+    const auto p = t.table(c.name);
     auto& param = o.parameters[i];
-    param.name = name;
-    param.free = p.flag("free", name != "gamma" && uses(o.rules, i));
-    param.lo = p.number("min", def.lo, def.valid);
-    param.hi = p.number("max", def.hi, def.valid);
+    param.name = c.name;
+    param.free = p.flag("free", std::string(c.name) != "gamma" && c.used_by(o.rules));
+    param.lo = p.number("min", c.fit_min, valid);
+    param.hi = p.number("max", c.fit_max, valid);
     plan.start_given[i] = p.has("start");
-    param.start = p.number("start", def.start, def.valid);
+    param.start = p.number("start", c.default_value(), valid);
     if (param.free && !(param.lo < param.hi))
       p.fail("max", "must be greater than min (" + std::to_string(param.lo) + ")");
     if (param.free && plan.start_given[i] && (param.start < param.lo || param.start > param.hi))
@@ -170,12 +151,11 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
   const toml::table original = toml::parse(text);
   std::vector<std::pair<std::string, std::string>> wanted{{"rule_set", quoted(agent::rule_set_name(rules))}};
   std::vector<double> values{0};
-  for (std::size_t i = 0; i < kCoefficientCount; ++i) {
-    wanted.push_back({kCoefficientNames[i], shortest(coefficient(k, i))});
-    values.push_back(coefficient(k, i));
-  }
-  wanted.push_back({"poisson_decay", shortest(k.decay())});
-  values.push_back(k.decay());
+  for (const auto& c : agent::kCoefficients)
+    if (!c.integer) {  // every real coefficient in effect (poisson_decay too); `directions` is the case's own
+      wanted.push_back({c.name, shortest(c.get(k))});
+      values.push_back(c.get(k));
+    }
   std::vector<std::string> lines;
   {
     std::istringstream in(text);
@@ -259,7 +239,8 @@ void write_calibrated_case(const fs::path& original, const fs::path& target, con
 std::string coefficient_row(const agent::Coefficients& k) {
   std::ostringstream s;
   s << std::setprecision(4);
-  for (std::size_t i = 0; i < kCoefficientCount; ++i) s << (i ? ", " : "") << kCoefficientNames[i] << " " << coefficient(k, i);
+  for (std::size_t i = 0; i < kCoefficientCount; ++i)
+    s << (i ? ", " : "") << agent::kCoefficients[i].name << " " << agent::kCoefficients[i].get(k);
   return s.str();
 }
 
@@ -302,7 +283,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
     if (plan.start_given[i]) continue;
     auto& p = plan.options.parameters[i];
-    p.start = coefficient(cases.front().study.coefficients, i);
+    p.start = agent::kCoefficients[i].get(cases.front().study.coefficients);
     plan.options.weights.held_from_case[i] = !p.free;
     if (p.free && (p.start < p.lo || p.start > p.hi))
       file.root().table("calibrate").table(p.name).fail(
@@ -399,8 +380,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
 
   nlohmann::json j;
   auto coeffs = [](const agent::Coefficients& k) {
-    nlohmann::json j{{"poisson_decay", k.decay()}, {"directions", k.directional.directions}};
-    for (std::size_t i = 0; i < kCoefficientCount; ++i) j[kCoefficientNames[i]] = coefficient(k, i);
+    nlohmann::json j;
+    for (const auto& [name, value] : agent_study::coefficient_values(k)) j[name] = value;
     return j;
   };
   j["calibration"] = file.path().string();

@@ -41,7 +41,8 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
       o.reference.mesh = r.path("mesh", std::nullopt);
       if (!fs::is_regular_file(o.reference.mesh)) r.fail("mesh", o.reference.mesh.string() + ": no such mesh file");
     }
-    o.far_distance_mm = t.number("far_distance_mm", o.far_distance_mm, workbench::Range::non_negative());
+    t.refuse_renamed("far_distance_mm", "far_distance", "in metres: far_distance_mm / 1000");
+    o.far_distance = t.number("far_distance", o.far_distance, workbench::Range::non_negative());
     o.min_reaction_share = t.number("min_reaction_share", o.min_reaction_share, workbench::Range::closed(0.0, 1.0));
     for (const auto& line : t.tables("line")) {
       std::array<Eigen::Vector3d, 2> ends{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -134,7 +135,7 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
     if (in.lines.back().body_samples.size() < 2)
       file.root().table("compare").fail("line", what + " has fewer than 2 samples inside the agents (the rest is air or outside)");
   }
-  in.far_distance = options.far_distance_mm > 0 ? 1e-3 * options.far_distance_mm : 5 * grid.size[0];
+  in.far_distance = options.far_distance > 0 ? options.far_distance : 5 * grid.size[0];
   in.near = near_load(in.study.mesh, in.study.setup.loads, in.far_distance);
   std::vector<std::string> names;
   for (const auto& l : in.lines) names.push_back(l.name);
@@ -374,12 +375,14 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["title"] = study.setup.title;
   json["model"] = "agent";
   json["agent"] = {{"rule_set", agent::rule_set_name(study.rules)},
-                   {"alpha1", k.alpha1}, {"alpha2", k.alpha2}, {"alpha3", k.alpha3}, {"beta", k.beta},
-                   {"gamma", k.gamma}, {"poisson_decay", k.decay()},
+                   {"readings", agent_study::names_of(study.readings)},
                    {"agents", study.mesh.cell_of_element.size()}, {"agent_size", study.mesh.grid.size[0]},
                    {"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                    {"dropped", d.dropped}, {"lost", d.applied - d.rigid_reaction - d.passed_out - d.dropped},
-                   {"agents_generated", d.agents_generated}};
+                   {"agents_generated", d.agents_generated}, {"agent_updates", d.agent_updates},
+                   {"packet_moves", d.packet_moves}};
+  for (const auto& [name, value] : agent_study::coefficient_values(study.coefficients))
+    json["agent"]["coefficients"][name] = value;
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};

@@ -23,7 +23,7 @@ Coefficients two_packets() {
   k.directional.directions = 2;
   k.directional.fan_angle = 2 * std::atan(0.3) * 180 / kPi;  // the angles are -+fan_angle / 2
   k.directional.fan_power = 0;
-  k.directional.diffusion = 0;
+  k.directional.diffusion_length = 0;
   return k;
 }
 
@@ -143,7 +143,7 @@ TEST(Directional, TheSpreadGrowsLinearlyWithDepth) {
   Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
   g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
   Coefficients k;
-  k.directional.diffusion = 0;
+  k.directional.diffusion_length = 0;
   k.directional.fan_angle = 60;  // keeps the fan inside the plate down to the base
   const Fan fan = entry_fan(k.directional, 2);
   double slope_variance = 0;
@@ -175,7 +175,7 @@ TEST(Directional, RejectsAnOddFanAndCoefficientsOutOfRange) {
                std::invalid_argument);
   EXPECT_THROW(LoadTransfer(g, kMaterial, with([](auto& d) { d.fan_angle = 90; }), RuleSet::Directional),
                std::invalid_argument);
-  EXPECT_THROW(LoadTransfer(g, kMaterial, with([](auto& d) { d.diffusion = -1; }), RuleSet::Directional),
+  EXPECT_THROW(LoadTransfer(g, kMaterial, with([](auto& d) { d.diffusion_length = -1; }), RuleSet::Directional),
                std::invalid_argument);
   // The seed's rule sets do not read the directional coefficients.
   EXPECT_NO_THROW(LoadTransfer(g, kMaterial, with([](auto& d) { d.directions = 31; }), RuleSet::Conserving));

@@ -237,7 +237,7 @@ TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
   auto c = agent_target("0.1", truth);
   auto w = options().weights;
   w.far = true;
-  w.far_distance_mm = 30;
+  w.far_distance = 0.03;
   std::vector<Score> before;
   objective({c}, truth, agent::RuleSet::Conserving, w, &before);
   EXPECT_LT(before[0].objective, 1e-20);  // the agent model against itself

@@ -4,6 +4,7 @@
 // packets that each carry a slope from a fan; row by row every packet moves one agent along the
 // load and drifts sideways by its slope, keeping its position inside the agent, so a load spreads
 // linearly with depth (as in elasticity) while every agent still talks only to its neighbours.
+#include <agent/coefficients.h>
 #include <agent/grid.h>
 
 #include <cstdint>
@@ -14,21 +15,6 @@ namespace agent {
 struct Material;
 struct EntryLoad;
 struct Diagnostics;
-
-/// Coefficients of the directional rule set. The defaults are the calibrated ones
-/// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
-struct DirectionalCoefficients {
-  int directions = 32;      ///< slopes in the fan per lateral axis; even (no straight-down packet)
-  double fan_angle = 66.1;   ///< half-opening of the entry fan [degrees], in (0, 90)
-  double fan_power = 2.59;    ///< 2D: entry weight of a packet at angle t from the load: cos(t)^fan_power
-  /// 3D: the weight is the product over the two lateral axes of cos(t)^fan_power_3d (a point load
-  /// spreads with a more concentrated fan than a line load: fitted separately)
-  double fan_power_3d = 3.99;
-  double diffusion = 2.0;    ///< lateral diffusion [mm]: each row adds diffusion * row height [mm^2] of variance
-};
-
-/// Throws std::invalid_argument naming the coefficient out of its range.
-void check_directional(const DirectionalCoefficients& k);
 
 /// The slopes of the fan along one lateral axis (lateral drift per unit depth) and the entry
 /// weight of each (sum 1; in 3D a packet's weight is the product of its two axes' weights).

@@ -10,6 +10,7 @@
 //
 // Cost grows with the agents a load reaches, not with the body: solve() clears only what the
 // previous solve touched.
+#include <agent/coefficients.h>
 #include <agent/cyclic_transfer.h>
 #include <agent/directional.h>
 #include <agent/grid.h>
@@ -19,31 +20,6 @@
 #include <vector>
 
 namespace agent {
-
-/// The two readings of the seed's transfer rules and the project's extension (docs/agent-model.md).
-enum class RuleSet {
-  Patent,      ///< literal: entry x alpha1, each step down x alpha2, friction alpha3 re-entered with alpha1
-  Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
-  Directional, ///< not the seed's: packets with slopes from a fan (agent/directional.h); uses gamma only
-};
-
-/// The rule set's name in case files and reports ("patent", "conserving", "directional").
-constexpr const char* rule_set_name(RuleSet r) {
-  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : "directional";
-}
-
-struct Coefficients {
-  double alpha1 = 0.5;         ///< entry coefficient (seed: P1 = alpha1 P0)
-  double alpha2 = 0.5;         ///< passing on in the load direction (P2 = alpha2 P1)
-  double alpha3 = 0.25;        ///< friction to each side neighbour (P3 = alpha3 P0)
-  double beta = 0.5;           ///< share of the Poisson expansion an agent keeps; 1 - beta is pushed out
-  double gamma = 1e-3;         ///< threshold [N]: a load at or below it is not passed on
-  /// Factor per agent on a sideways (Poisson) push as it is passed on; unset, it follows alpha2
-  /// ("the same rule set turned 90 degrees", docs/agent-model.md). Read it through decay().
-  std::optional<double> poisson_decay;
-  double decay() const { return poisson_decay.value_or(alpha2); }
-  DirectionalCoefficients directional;  ///< the directional rule set's own coefficients
-};
 
 /// Readings of the patent rule set where the seed's Japanese original supports more than one
 /// (docs/agent-model.md, "Readings of the patent rules"). The defaults are the rules as first

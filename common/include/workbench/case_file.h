@@ -28,8 +28,8 @@ class table;
 namespace workbench {
 
 /// An interval of admissible values, each end open or closed. No range admits NaN, an infinity,
-/// or a non-zero magnitude above kMaxMagnitude or below kMinMagnitude: every quantity is in SI
-/// units, where such a value is a typo, and a product or quotient of three of them must stay
+/// or a non-zero magnitude above kMaxMagnitude or below kMinMagnitude: every quantity of a case
+/// file is in SI units (keys renamed when a unit changed: CaseTable::refuse_renamed), where such a value is a typo, and a product or quotient of three of them must stay
 /// finite and non-zero.
 struct Range {
   static constexpr double kMaxMagnitude = 1e100;
@@ -75,6 +75,9 @@ class CaseTable {
   /// "file: prefix.key" for messages.
   std::string where(const std::string& key) const;
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+  /// Fails when `old_key` is present: a key renamed when its unit changed, so that an old case is
+  /// never read in the wrong unit ("renamed: give NEW_KEY (CONVERSION)").
+  void refuse_renamed(const std::string& old_key, const std::string& new_key, const std::string& conversion) const;
   const CaseFile& file() const { return *file_; }
 
  private:

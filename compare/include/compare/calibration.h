@@ -14,18 +14,10 @@
 
 namespace compare {
 
-/// The coefficients a calibration can fit, in this order: the seed's rule sets' (alpha1..gamma),
-/// then the directional rule set's (agent/directional.h; its integer `directions` is not fitted).
-constexpr std::array<const char*, 9> kCoefficientNames{"alpha1",    "alpha2",    "alpha3",       "beta",     "gamma",
-                                                       "fan_angle", "fan_power", "fan_power_3d", "diffusion"};
-constexpr std::size_t kCoefficientCount = kCoefficientNames.size();
+/// The coefficients a calibration can fit: the first agent::kFittedCount rows of
+/// agent::kCoefficients, in that order (the seed's rule sets', then the directional one's).
+constexpr std::size_t kCoefficientCount = agent::kFittedCount;
 using CoefficientValues = std::array<double, kCoefficientCount>;
-
-/// Coefficient `i` (in kCoefficientNames order) of a set of coefficients.
-double& coefficient(agent::Coefficients& k, std::size_t i);
-double coefficient(const agent::Coefficients& k, std::size_t i);
-/// Whether the rule set uses coefficient `i` (so a calibration fits it by default).
-bool uses(agent::RuleSet rules, std::size_t i);
 
 struct Parameter {
   std::string name;
@@ -41,13 +33,13 @@ struct ObjectiveWeights {
   bool lines = false;
   std::vector<double> depths{0.25, 0.5, 0.75};  ///< the lines across each load, when `lines`
   bool far = false;              ///< over the far field (docs/compare.md) instead of the body
-  double far_distance_mm = 0;    ///< far: what is closer to a loaded face is left out; 0: 5 agent sizes
+  double far_distance = 0;       ///< far: what is closer to a loaded face is left out [m]; 0: 5 agent sizes
   /// The load-balance constraint (on by default): a point where a case's equilibrium deviation
   /// |rigid reaction - applied| / applied exceeds `equilibrium_ceiling[case]` is refused (objective 1e30).
   bool keep_load = true;
   /// Per case: the start's deviation + kLoadTolerance; set by calibrate().
   std::vector<double> equilibrium_ceiling;
-  /// Coefficients (kCoefficientNames) that are not fitted and come from each case's own [agent].
+  /// Coefficients (agent::kCoefficients) that are not fitted and come from each case's own [agent].
   std::array<bool, kCoefficientCount> held_from_case{};
 };
 
@@ -60,7 +52,7 @@ struct CalibrationCase {
 
 struct CalibrationOptions {
   agent::RuleSet rules = agent::RuleSet::Conserving;
-  std::array<Parameter, kCoefficientCount> parameters;  ///< in kCoefficientNames order
+  std::array<Parameter, kCoefficientCount> parameters;  ///< in agent::kCoefficients order
   ObjectiveWeights weights;
   int starts = 8;               ///< the given start, then random points in the bounds
   std::uint64_t seed = 1;
@@ -105,7 +97,7 @@ struct CalibrationResult {
 CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress = nullptr);
 
-/// Coefficients from a parameter vector (kCoefficientNames order; the library's defaults for the
+/// Coefficients from a parameter vector (agent::kCoefficients order; the library's defaults for the
 /// rest): poisson_decay is left to follow alpha2, the directional `directions` at its default.
 agent::Coefficients coefficients_from(const CoefficientValues& values);
 

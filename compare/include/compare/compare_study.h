@@ -24,8 +24,8 @@ struct CompareOptions {
   std::vector<double> depths{0.25, 0.5, 0.75};  ///< agent: lines across each load, fractions of the body along it
   double mask = 0.01;                           ///< agent: ratio masked where |FEM| < mask * max |FEM|
   ReferenceOptions reference;                   ///< agent: [compare.reference]
-  /// agent: the far field leaves out cells closer than this to a loaded face [mm]; 0: 5 agent sizes
-  double far_distance_mm = 0;
+  /// agent: the far field leaves out cells closer than this to a loaded face [m]; 0: 5 agent sizes
+  double far_distance = 0;
   /// agent: the warning when the agent model carries less than this share of the load to a rigid face
   double min_reaction_share = 0.9;
   std::vector<std::array<Eigen::Vector3d, 2>> lines;  ///< agent: [[compare.line]] from, to [m]

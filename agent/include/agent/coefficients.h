@@ -1,0 +1,161 @@
+#pragma once
+// The transfer coefficients of every rule set and the one table that describes them.
+//
+// agent::kCoefficients is the only list of coefficient names in the project: the library's range
+// check, the case reader, the calibration (its parameters and bounds), the Python module's dicts,
+// summary.json and docs/case-file.md's table all read it. Adding a coefficient is one member of
+// Coefficients (or of a rule set's own struct) and one row here (README, "Adding a coefficient").
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace agent {
+
+/// The two readings of the seed's transfer rules and the project's extension (docs/agent-model.md).
+enum class RuleSet {
+  Patent,      ///< literal: entry x alpha1, each step down x alpha2, friction alpha3 re-entered with alpha1
+  Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
+  Directional, ///< not the seed's: packets with slopes from a fan (agent/directional.h); uses gamma only
+};
+
+/// Every rule set, in the order of the enum.
+constexpr std::array<RuleSet, 3> kRuleSets{RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional};
+
+/// The rule set's name in case files and reports ("patent", "conserving", "directional").
+constexpr const char* rule_set_name(RuleSet r) {
+  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : "directional";
+}
+
+/// Coefficients of the directional rule set. The defaults are the calibrated ones
+/// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
+struct DirectionalCoefficients {
+  int directions = 32;      ///< slopes in the fan per lateral axis; even (no straight-down packet)
+  double fan_angle = 66.1;   ///< half-opening of the entry fan [degrees], in (0, 90)
+  double fan_power = 2.59;    ///< 2D: entry weight of a packet at angle t from the load: cos(t)^fan_power
+  /// 3D: the weight is the product over the two lateral axes of cos(t)^fan_power_3d (a point load
+  /// spreads with a more concentrated fan than a line load: fitted separately)
+  double fan_power_3d = 3.99;
+  /// Lateral diffusion length [m]: each row adds diffusion_length * row height [m^2] of variance
+  double diffusion_length = 2e-3;
+};
+
+struct Coefficients {
+  double alpha1 = 0.5;         ///< entry coefficient (seed: P1 = alpha1 P0)
+  double alpha2 = 0.5;         ///< passing on in the load direction (P2 = alpha2 P1)
+  double alpha3 = 0.25;        ///< friction to each side neighbour (P3 = alpha3 P0)
+  double beta = 0.5;           ///< share of the Poisson expansion an agent keeps; 1 - beta is pushed out
+  double gamma = 1e-3;         ///< threshold [N]: a load at or below it is not passed on
+  /// Factor per agent on a sideways (Poisson) push as it is passed on; unset, it follows alpha2
+  /// ("the same rule set turned 90 degrees", docs/agent-model.md). Read it through decay().
+  std::optional<double> poisson_decay;
+  double decay() const { return poisson_decay.value_or(alpha2); }
+  DirectionalCoefficients directional;  ///< the directional rule set's own coefficients
+};
+
+/// The rule set of a name (rule_set_name's inverse), or nothing.
+inline std::optional<RuleSet> rule_set_named(const std::string& name) {
+  for (RuleSet r : kRuleSets)
+    if (name == rule_set_name(r)) return r;
+  return std::nullopt;
+}
+
+/// Bit of a rule set in CoefficientSpec::rules.
+constexpr unsigned rule_bit(RuleSet r) { return 1u << unsigned(r); }
+
+/// One coefficient: its name in case files, Python and summaries, where it lives, its default,
+/// the values it admits, its unit, the bounds a calibration searches by default, and the rule sets
+/// that use it.
+struct CoefficientSpec {
+  const char* name;
+  const char* unit;      ///< SI; "" for a pure number
+  const char* meaning;   ///< one line for docs/case-file.md and the Python help
+  unsigned rules;        ///< rule_bit() of every rule set whose transfer reads it
+  double min, max;       ///< admissible values
+  bool min_open, max_open;
+  /// Fitted by a calibration (a real number a rule set reads). Not fitted: poisson_decay (unset
+  /// by default: it follows alpha2) and the integer `directions`.
+  bool fitted;
+  double fit_min, fit_max;  ///< a calibration's default bounds (fitted coefficients)
+  bool integer;          ///< an integer (directions)
+  bool optional;         ///< absent from a case, it stays unset (poisson_decay: then it follows alpha2)
+  double (*get)(const Coefficients&);  ///< the value in effect
+  void (*set)(Coefficients&, double);
+  /// The library's default (in effect: poisson_decay's is alpha2's).
+  double default_value() const { return get(Coefficients{}); }
+  bool used_by(RuleSet r) const { return rules & rule_bit(r); }
+  /// "" when `v` is admissible, else why not ("must be in [0, 1] (got 2)").
+  std::string problem(double v) const;
+};
+
+namespace detail {
+constexpr unsigned kSeedRules = rule_bit(RuleSet::Patent) | rule_bit(RuleSet::Conserving);
+constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
+}  // namespace detail
+
+/// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector.
+inline constexpr std::array<CoefficientSpec, 11> kCoefficients{{
+    {"alpha1", "", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)",
+     rule_bit(RuleSet::Patent), 0, 1, false, false, true, 0.0, 1.0, false, false,
+     [](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }},
+    {"alpha2", "", "share passed on in the load direction (P2 = alpha2 P1)",
+     detail::kSeedRules, 0, 1, false, false, true, 0.01, 1.0, false, false,  // the conserving split needs alpha2 + alpha3 > 0
+     [](const Coefficients& k) { return k.alpha2; }, [](Coefficients& k, double v) { k.alpha2 = v; }},
+    {"alpha3", "", "friction to each side neighbour (P3 = alpha3 P0)",
+     detail::kSeedRules, 0, 1, false, false, true, 0.0, 1.0, false, false,
+     [](const Coefficients& k) { return k.alpha3; }, [](Coefficients& k, double v) { k.alpha3 = v; }},
+    {"beta", "", "share of its Poisson expansion an agent keeps; 1 - beta is pushed out sideways",
+     detail::kSeedRules, 0, 1, false, false, true, 0.0, 1.0, false, false,
+     [](const Coefficients& k) { return k.beta; }, [](Coefficients& k, double v) { k.beta = v; }},
+    {"gamma", "N", "threshold: a load at or below it is not passed on",
+     detail::kAllRules, 0, 1e100, false, false, true, 0.0, 1e-2, false, false,
+     [](const Coefficients& k) { return k.gamma; }, [](Coefficients& k, double v) { k.gamma = v; }},
+    {"fan_angle", "degrees", "half-opening of the entry fan",
+     rule_bit(RuleSet::Directional), 0, 90, true, true, true, 20.0, 89.0, false, false,
+     [](const Coefficients& k) { return k.directional.fan_angle; },
+     [](Coefficients& k, double v) { k.directional.fan_angle = v; }},
+    {"fan_power", "", "2D: a packet at angle t from the load enters with weight cos(t)^fan_power",
+     rule_bit(RuleSet::Directional), 0, 100, false, false, true, 0.0, 8.0, false, false,
+     [](const Coefficients& k) { return k.directional.fan_power; },
+     [](Coefficients& k, double v) { k.directional.fan_power = v; }},
+    {"fan_power_3d", "", "3D: the weight is the product over both lateral axes of cos(t)^fan_power_3d",
+     rule_bit(RuleSet::Directional), 0, 100, false, false, true, 0.0, 8.0, false, false,
+     [](const Coefficients& k) { return k.directional.fan_power_3d; },
+     [](Coefficients& k, double v) { k.directional.fan_power_3d = v; }},
+    {"diffusion_length", "m", "lateral diffusion: each row adds diffusion_length x row height of variance",
+     rule_bit(RuleSet::Directional), 0, 1, false, false, true, 0.0, 0.02, false, false,
+     [](const Coefficients& k) { return k.directional.diffusion_length; },
+     [](Coefficients& k, double v) { k.directional.diffusion_length = v; }},
+    {"poisson_decay", "", "factor per agent on a sideways (Poisson) push as it is passed on; unset: alpha2",
+     detail::kSeedRules, 0, 1, false, false, false, 0.0, 1.0, false, true,
+     [](const Coefficients& k) { return k.decay(); },
+     [](Coefficients& k, double v) { k.poisson_decay = v; }},
+    {"directions", "", "slopes in the fan per lateral axis, even (an odd fan has a straight-down packet)",
+     rule_bit(RuleSet::Directional), 2, 256, false, false, false, 2, 256, true, false,
+     [](const Coefficients& k) { return double(k.directional.directions); },
+     [](Coefficients& k, double v) { k.directional.directions = int(v); }},
+}};
+
+/// How many coefficients a calibration can fit: the first rows of kCoefficients.
+constexpr std::size_t fitted_count() {
+  std::size_t n = 0;
+  while (n < kCoefficients.size() && kCoefficients[n].fitted) ++n;
+  return n;
+}
+inline constexpr std::size_t kFittedCount = fitted_count();
+static_assert([] {
+  for (std::size_t i = kFittedCount; i < kCoefficients.size(); ++i)
+    if (kCoefficients[i].fitted) return false;
+  return true;
+}(), "the fitted coefficients come first in kCoefficients");
+
+/// The row of a coefficient by name, or nullptr.
+const CoefficientSpec* find_coefficient(const std::string& name);
+
+/// Throws std::invalid_argument naming the first coefficient the rule set uses that lies outside
+/// its range, or what the rule set needs beyond the ranges (the conserving split: alpha2 + alpha3
+/// > 0; the directional fan: an even `directions`). Coefficients a rule set does not use are not
+/// read by it and not checked.
+void check_coefficients(const Coefficients& k, RuleSet rules);
+
+}  // namespace agent

@@ -1,0 +1,55 @@
+// The coefficient table's checks (agent/coefficients.h).
+#include <agent/coefficients.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace agent {
+
+namespace {
+std::string shortest(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  double back = 0;
+  for (int p = 1; p <= 17; ++p) {  // the fewest digits that read back as v
+    std::ostringstream t;
+    t.precision(p);
+    t << v;
+    if (std::istringstream(t.str()) >> back && back == v) return t.str();
+  }
+  return s.str();
+}
+}  // namespace
+
+std::string CoefficientSpec::problem(double v) const {
+  const bool inside = std::isfinite(v) && (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max) &&
+                      (!integer || v == std::floor(v));
+  if (inside) return "";
+  std::string range;
+  if (max >= 1e100)
+    range = min_open ? "> " + shortest(min) : ">= " + shortest(min);
+  else
+    range = "in " + std::string(min_open ? "(" : "[") + shortest(min) + ", " + shortest(max) + (max_open ? ")" : "]");
+  return std::string("must be ") + (integer ? "an integer " : "") + range + (*unit ? std::string(" ") + unit : "") +
+         " (got " + shortest(v) + ")";
+}
+
+const CoefficientSpec* find_coefficient(const std::string& name) {
+  for (const auto& c : kCoefficients)
+    if (name == c.name) return &c;
+  return nullptr;
+}
+
+void check_coefficients(const Coefficients& k, RuleSet rules) {
+  for (const auto& c : kCoefficients)
+    if (c.used_by(rules))
+      if (const auto why = c.problem(c.get(k)); !why.empty()) throw std::invalid_argument(std::string(c.name) + " " + why);
+  if (rules == RuleSet::Directional && k.directional.directions % 2)
+    throw std::invalid_argument("directions must be even (an odd fan has a straight-down packet: a spike under the load)");
+  if (rules == RuleSet::Conserving && !(k.alpha2 + k.alpha3 > 0))
+    throw std::invalid_argument("the conserving rule set needs alpha2 + alpha3 > 0");
+}
+
+}  // namespace agent

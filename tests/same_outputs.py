@@ -58,7 +58,11 @@ def json_diff(a, b, path=""):
             if TIMING.search(k):
                 continue
             if k not in b:
-                diffs.append(f"{path}/{k}: gone")
+                moved = b.get("coefficients", {})  # the coefficients gathered in one table
+                if isinstance(moved, dict) and moved.get(k) == a[k]:
+                    added.append(f"{path}/{k} -> {path}/coefficients/{k}")
+                else:
+                    diffs.append(f"{path}/{k}: gone")
             else:
                 d, ad = json_diff(a[k], b[k], f"{path}/{k}")
                 diffs += d

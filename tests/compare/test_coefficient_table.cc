@@ -58,7 +58,9 @@ TEST(CoefficientTable, NamesAreUniqueAndDefaultsAdmissible) {
     EXPECT_EQ(c.problem(other_value(c)), "") << c.name;
     EXPECT_NE(other_value(c), c.default_value()) << c.name;
     EXPECT_NE(c.problem(c.min - 1), "") << c.name;
-    if (c.fitted) EXPECT_TRUE(c.fit_min < c.fit_max && c.problem(c.fit_min) == "" && c.problem(c.fit_max) == "") << c.name;
+    if (c.fitted) {
+      EXPECT_TRUE(c.fit_min < c.fit_max && c.problem(c.fit_min) == "" && c.problem(c.fit_max) == "") << c.name;
+    }
     EXPECT_NE(c.rules, 0u) << c.name << " is used by no rule set";
   }
 }

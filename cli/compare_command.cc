@@ -44,8 +44,7 @@ void add_compare_command(CLI::App& app, Action& action) {
       }
       std::cerr << "compare: wrote " << staged.target().string() << "\n";
       for (const auto& f : outcome.failures)
-        std::cerr << "compare: gate: " << f.metric << " = " << f.value << " exceeds " << f.limit << " by "
-                  << f.value - f.limit << "\n";
+        std::cerr << "compare: gate: " << f.describe() << "\n";
       if (outcome.gated > 0)
         std::cerr << "compare: gate: " << outcome.gated - outcome.failures.size() << " passed, "
                   << outcome.failures.size() << " failed\n";

@@ -301,14 +301,21 @@ def main():
     grid_of, draw_map, h = agents.grid_of, agents.draw, agents.h
 
     def fig9_maps():
-        fig, axes = plt.subplots(2, 2, figsize=(10, 9), constrained_layout=True)
-        for row, comp in enumerate(("sigma_x", "sigma_y")):
-            f = num(cells[f"fem_{comp}"])
+        # Every stress field the comparison has (cells.csv): the seed's sigma_x, sigma_y, then tau_xy and
+        # von Mises. A field whose body error is not below the zero model's (relative L2 1) says so.
+        comps = [c for c in ("sigma_x", "sigma_y", "tau_xy", "von_mises") if f"fem_{c}" in cells]
+        fig, axes = plt.subplots(len(comps), 2, figsize=(10, 4.5 * len(comps)), constrained_layout=True, squeeze=False)
+        for row, comp in enumerate(comps):
+            f, a = num(cells[f"fem_{comp}"]), num(cells[f"agent_{comp}"])
+            rel_l2 = np.linalg.norm(a - f) / (np.linalg.norm(f) or 1.0)
+            verdict = f"body rel. L2 {rel_l2:.3g}" + (": WORSE THAN ZERO" if rel_l2 >= 1 else "")
             lim = np.percentile(np.abs(f), 99) or 1.0
+            sequential = comp == "von_mises"
             for col, model in enumerate(("fem", "agent")):
                 ax = axes[row, col]
-                im = draw_map(ax, grid_of(num(cells[f"{model}_{comp}"])) / 1e3, cmap="RdBu_r", vmin=-lim / 1e3, vmax=lim / 1e3)
-                ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}")
+                im = draw_map(ax, grid_of(num(cells[f"{model}_{comp}"])) / 1e3, cmap="viridis" if sequential else "RdBu_r",
+                              vmin=0 if sequential else -lim / 1e3, vmax=lim / 1e3)
+                ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}" + ("" if model == "fem" else f" ({verdict})"))
                 ax.set_xlabel("x [mm]")
                 ax.set_ylabel("y [mm]")
                 fig.colorbar(im, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")

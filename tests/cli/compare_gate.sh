@@ -36,6 +36,43 @@ check tight_message $? "$(grep gate "$work/log")"
 grep -q '<failure message="line_x100y197p5_x100y2p5.sigma_y.rel_l2 = ' "$work/tight/junit.xml"
 check tight_junit $? "no failure element"
 
+# Every field, and the zero model beside every error: the agents carry no shear, so their tau_xy
+# error is exactly the zero model's 1 (flagged worse than zero); sigma_y (0.76) is below it.
+/usr/bin/python3 -c "
+import json, sys
+m = json.load(open(sys.argv[1]))['metrics']
+tau, sy, vm = m['body.tau_xy.rel_l2'], m['body.sigma_y.rel_l2'], m['far.von_mises.rel_l2']
+ok = tau['value'] == 1.0 and tau['worse_than_zero'] and tau['zero_model'] == 1.0
+ok = ok and not sy['worse_than_zero'] and 0 < vm['value'] and 'far.u_x.rel_l2' in m and 'far.u_y.rel_max' in m
+sys.exit(0 if ok else 1)" "$work/pass/summary.json"
+check zero_model $? "$(grep -A5 '"body.tau_xy.rel_l2"' "$work/pass/summary.json")"
+grep -q "WARNING: worse than predicting zero (relative L2 error >= 1, the zero model's): .*body.tau_xy" "$work/pass/summary.txt"
+check zero_model_warning $? "$(grep WARNING "$work/pass/summary.txt")"
+head -1 "$work/pass/lines.csv" | grep -q ",sigma_x \[Pa\],sigma_y \[Pa\],tau_xy \[Pa\],von_mises \[Pa\],u_x \[m\],u_y \[m\]$"
+check lines_columns $? "$(head -1 "$work/pass/lines.csv")"
+head -1 "$work/pass/cells.csv" | grep -q ",agent_tau_xy \[Pa\],fem_tau_xy \[Pa\],agent_von_mises \[Pa\],fem_von_mises \[Pa\]$"
+check cells_columns $? "$(head -1 "$work/pass/cells.csv")"
+
+# The gate can require a field to beat predicting zero: tau_xy cannot (exit 1, named), sigma_y does.
+sed 's/^\[compare\]$/[compare]\nbetter_than_zero = ["body.sigma_y", "far.tau_xy"]/' "$work/tight.toml" |
+  sed 's/^"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = .*/"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = 10/' >"$work/zero.toml"
+"$bin" compare "$work/zero.toml" -o "$work/zero" 2>"$work/log"
+rc=$?
+check zero_exit $((rc != 1)) "exit $rc"
+grep -q "gate: far.tau_xy.rel_l2 = 1 is not below the zero model's 1: worse than predicting zero" "$work/log"
+check zero_message $? "$(grep gate "$work/log")"
+grep -q "gate: 7 passed, 1 failed" "$work/log"
+check zero_count $? "$(grep gate "$work/log")"
+grep -q '<testcase classname="compare" name="far.tau_xy.better_than_zero"><failure' "$work/zero/junit.xml" &&
+  grep -q '<testcase classname="compare" name="body.sigma_y.better_than_zero"></testcase>' "$work/zero/junit.xml"
+check zero_junit $? "$(grep better_than_zero "$work/zero/junit.xml")"
+sed 's/^better_than_zero = .*/better_than_zero = ["far.tau"]/' "$work/zero.toml" >"$work/zero_bad.toml"
+"$bin" compare "$work/zero_bad.toml" -o "$work/zero_bad" 2>"$work/log"
+rc=$?
+check zero_bad_exit $((rc != 2)) "exit $rc"
+grep -q 'zero_bad.toml: compare.better_than_zero: "far.tau" is no compared field' "$work/log"
+check zero_bad_message $? "$(cat "$work/log")"
+
 sed 's/^"fem.equilibrium_dev"/"fem.equilibrium"/' "$work/tight.toml" >"$work/unknown.toml"
 "$bin" compare "$work/unknown.toml" -o "$work/unknown" 2>"$work/log"
 rc=$?

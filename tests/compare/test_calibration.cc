@@ -243,7 +243,7 @@ TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
   EXPECT_LT(before[0].objective, 1e-20);  // the agent model against itself
   const auto near = near_load(c.study.mesh, c.study.setup.loads, 0.03);
   for (std::size_t cell = 0; cell < near.cells.size(); ++cell)
-    if (near.cells[cell]) c.reference.sigma[2 * cell + 1] *= 2;
+    if (near.cells[cell]) c.reference.stress[kStressSlots * cell + kSigmaY] *= 2;
   std::vector<Score> far, body;
   objective({c}, truth, agent::RuleSet::Conserving, w, &far);
   EXPECT_LT(far[0].sigma_y, 1e-12);

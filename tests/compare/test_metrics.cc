@@ -1,5 +1,6 @@
 // Sampling and error norms of the comparison, against closed forms.
 #include <compare/metrics.h>
+#include <compare/sampling.h>
 
 #include <gtest/gtest.h>
 
@@ -195,4 +196,30 @@ TEST(CompareSampling, ACompressedGridIsSampledAndCrossedByLinesAtTrueCoordinates
   EXPECT_DOUBLE_EQ(l.point(4)[0], 502.0);  // the middle of the gap [4, 1000]
   EXPECT_DOUBLE_EQ(l.point(5)[0], 1000.5);
   EXPECT_DOUBLE_EQ(l.point(8)[0], 1003.5);
+}
+
+TEST(VonMises, ClosedForms) {
+  const double uniaxial[6] = {100, 0, 0, 0, 0, 0};
+  EXPECT_DOUBLE_EQ(compare::von_mises(uniaxial), 100);
+  const double shear[6] = {0, 0, 0, 0, 0, 2};
+  EXPECT_DOUBLE_EQ(compare::von_mises(shear), 2 * std::sqrt(3.0));
+  const double hydrostatic[6] = {-5, -5, -5, 0, 0, 0};
+  EXPECT_DOUBLE_EQ(compare::von_mises(hydrostatic), 0);
+  const double plane[6] = {3, -1, 0, 1, 0, 0};  // sqrt(sx^2 - sx sy + sy^2 + 3 txy^2) = sqrt(9 + 3 + 1 + 3)
+  EXPECT_DOUBLE_EQ(compare::von_mises(plane), 4);
+}
+
+TEST(Fields, OneTableNamesEveryComparedField) {
+  // 2D compares sigma_x, sigma_y, tau_xy, von Mises and the displacement (vector and components);
+  // 3D adds sigma_z, tau_yz, tau_xz and u_z. Names are unique; ratios only for the seed's normal stresses.
+  int in2 = 0, in3 = 0, ratios = 0;
+  for (std::size_t i = 0; i < std::size(compare::kFields); ++i) {
+    in2 += compare::kFields[i].in(2);
+    in3 += compare::kFields[i].in(3);
+    ratios += compare::kFields[i].ratios;
+    for (std::size_t j = 0; j < i; ++j) EXPECT_STRNE(compare::kFields[i].name, compare::kFields[j].name);
+  }
+  EXPECT_EQ(in2, 7);
+  EXPECT_EQ(in3, 11);
+  EXPECT_EQ(ratios, 2);
 }

@@ -51,7 +51,7 @@ Level level(const agent::ImportedMesh& mesh, int refine) {
 
 std::vector<double> sigma_y(const GridFields& f) {
   std::vector<double> out;
-  for (std::size_t i = 1; i < f.sigma.size(); i += 2) out.push_back(f.sigma[i]);
+  for (std::size_t i = kSigmaY; i < f.stress.size(); i += kStressSlots) out.push_back(f.stress[i]);
   return out;
 }
 
@@ -80,7 +80,7 @@ TEST(ConvergedReference, ConvergesWithinItsEstimateAndMatchesFlamantUnderTheLoad
   const double a = lw / 2, p = F / (lw * t);
   for (double z : {0.02, 0.03, 0.04}) {
     const Eigen::Vector3d at(W / 2, H - z, 0);
-    const double fem = sample_cells(mesh.grid, l2.f.sigma, 2, 1, at);
+    const double fem = sample_cells(mesh.grid, l2.f.stress, kStressSlots, kSigmaY, at);
     const double alpha = 2 * std::atan(a / z);
     const double flamant = -p * (alpha + std::sin(alpha)) / kPi;
     EXPECT_NEAR(fem / flamant, 1.0, 0.025) << "depth " << z;
@@ -114,9 +114,10 @@ TEST(ReferenceOnCompressedGrid, TwoPlates1mApartAreSampledAtTheirTrueAgents) {
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 10; ++i) {
       const std::size_t a = g.index(i, j, 0), b = g.index(11 + i, j, 0);
-      for (int c = 0; c < 2; ++c) {
-        EXPECT_NEAR(f.sigma[2 * b + c], 2 * f.sigma[2 * a + c], 1e-8 * std::abs(f.sigma[2 * a + 1]) + 1e-9) << i << "," << j;
-        largest = std::max(largest, std::abs(f.sigma[2 * a + c]));
+      for (int c = 0; c < kStressSlots; ++c) {  // every component and von Mises: linear in the load
+        EXPECT_NEAR(f.stress[kStressSlots * b + c], 2 * f.stress[kStressSlots * a + c],
+                    1e-8 * std::abs(f.stress[kStressSlots * a + kSigmaY]) + 1e-9) << i << "," << j << "," << c;
+        largest = std::max(largest, std::abs(f.stress[kStressSlots * a + c]));
       }
     }
   EXPECT_GT(largest, 50.0);  // about 1 N / (10 mm x 2 mm) = 50 Pa and more under a clamped base

@@ -76,7 +76,7 @@ TEST(TiledCompare, FemOnGridProbesAndNearLoadEqualTheDenseGrids) {
 
   const auto fem = fem_reference::solve_fem(plate_problem());
   const auto fd = fem_on_grid(dense, fem, "plate"), ft = fem_on_grid(tiled, fem, "plate");
-  EXPECT_EQ(test_support::in_dense_order(d, t, ft.sigma, 2, 0.0), fd.sigma);
+  EXPECT_EQ(test_support::in_dense_order(d, t, ft.stress, kStressSlots, 0.0), fd.stress);
   EXPECT_EQ(test_support::in_dense_order(d, t, ft.u, 2, 0.0, true), fd.u);
   // FEM evaluated at the probe points (as on a true geometry's mesh): the same fields again.
   auto probed = plate_problem();
@@ -84,13 +84,13 @@ TEST(TiledCompare, FemOnGridProbesAndNearLoadEqualTheDenseGrids) {
   const auto fem_probed = fem_reference::solve_fem(probed);
   std::array<std::size_t, 2> outside_d{}, outside_t{};
   const auto pd = fem_at_agents(d, fem_probed, outside_d), pt = fem_at_agents(t, fem_probed, outside_t);
-  EXPECT_EQ(test_support::in_dense_order(d, t, pt.sigma, 2, 0.0), pd.sigma);
+  EXPECT_EQ(test_support::in_dense_order(d, t, pt.stress, kStressSlots, 0.0), pd.stress);
   EXPECT_EQ(test_support::in_dense_order(d, t, pt.u, 2, 0.0, true), pd.u);
   EXPECT_EQ(outside_d, outside_t);
   for (std::size_t n : dn)  // the plate's own mesh: every probe found, the nodal values FEM's
     for (int c = 0; c < 2; ++c) EXPECT_NEAR(pd.u[2 * n + c], fd.u[2 * n + c], 1e-9 * std::abs(fd.u[2 * n + 1]) + 1e-18);
   double largest = 0;
-  for (double s : fd.sigma) largest = std::max(largest, std::abs(s));
+  for (double s : fd.stress) largest = std::max(largest, std::abs(s));
   EXPECT_GT(largest, 10.0);  // 2 N on 8 mm x 2 mm: about 125 kPa under the load
 
   workbench::LoadSpec load;
@@ -114,7 +114,7 @@ TEST(TiledCompare, FemOnGridProbesAndNearLoadEqualTheDenseGrids) {
     for (int i = 0; i < lines_d[l].samples; ++i) {
       const auto p = lines_d[l].point(i);
       for (int c = 0; c < 2; ++c) {
-        EXPECT_EQ(sample_cells(d, fd.sigma, 2, c, p), sample_cells(t, ft.sigma, 2, c, p));
+        EXPECT_EQ(sample_cells(d, fd.stress, kStressSlots, c, p), sample_cells(t, ft.stress, kStressSlots, c, p));
         EXPECT_EQ(sample_nodes(d, fd.u, 2, c, p), sample_nodes(t, ft.u, 2, c, p));
       }
     }
@@ -290,11 +290,11 @@ TEST(TiledCompare, AnImportedSparseStaircaseIsSampledAsOnADenseGrid) {
   problem.options.write_vtu = false;
   const auto fem = fem_reference::solve_fem(problem);
   const auto fd = fem_on_grid(dense, fem, "staircase"), ft = fem_on_grid(tiled.mesh, fem, "staircase");
-  EXPECT_EQ(test_support::in_dense_order(d, t, ft.sigma, 2, 0.0), fd.sigma);
+  EXPECT_EQ(test_support::in_dense_order(d, t, ft.stress, kStressSlots, 0.0), fd.stress);
   EXPECT_EQ(test_support::in_dense_order(d, t, ft.u, 2, 0.0, true), fd.u);
   // Equilibrium of the top step: its two agents carry the load, 1 N over 2 mm x 1 mm, on average.
   const std::size_t top[2] = {d.index(kSteps - 1, kSteps - 1, 0), d.index(kSteps, kSteps - 1, 0)};
-  EXPECT_NEAR(0.5 * (fd.sigma[2 * top[0] + 1] + fd.sigma[2 * top[1] + 1]), -1.0 / (2e-3 * 1e-3), 0.3 / (2e-3 * 1e-3));
+  EXPECT_NEAR(0.5 * (fd.stress[kStressSlots * top[0] + kSigmaY] + fd.stress[kStressSlots * top[1] + kSigmaY]), -1.0 / (2e-3 * 1e-3), 0.3 / (2e-3 * 1e-3));
 
   const auto nd = near_load(dense, tiled.setup.loads, 0.005), nt = near_load(tiled.mesh, tiled.setup.loads, 0.005);
   const auto near_cells = test_support::in_dense_order(d, t, nt.cells, 1, char(2));
@@ -318,7 +318,7 @@ TEST(TiledCompare, AnImportedSparseStaircaseIsSampledAsOnADenseGrid) {
     for (int i = 0; i < lines_d[l].samples; ++i) {
       const auto p = lines_d[l].point(i);
       for (int c = 0; c < 2; ++c) {
-        const double a = sample_cells(d, fd.sigma, 2, c, p), b = sample_cells(t, ft.sigma, 2, c, p);
+        const double a = sample_cells(d, fd.stress, kStressSlots, c, p), b = sample_cells(t, ft.stress, kStressSlots, c, p);
         EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << l << " " << i;
         EXPECT_EQ(sample_nodes(d, fd.u, 2, c, p), sample_nodes(t, ft.u, 2, c, p)) << l << " " << i;
       }

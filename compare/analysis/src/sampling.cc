@@ -4,6 +4,7 @@
 #include <compare/metrics.h>
 #include <workbench/error.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace compare {
@@ -38,6 +39,11 @@ bool locate_node(const agent::Grid& g, const double* p, int idx[3]) {
 
 }  // namespace
 
+double von_mises(const double* s) {
+  const double dxy = s[0] - s[1], dyz = s[1] - s[2], dzx = s[2] - s[0];
+  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+}
+
 GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::FemResult& fem,
                        const std::string& case_name) {
   const auto& grid = mesh.grid;
@@ -45,23 +51,23 @@ GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::Fem
   if (fem.dim != dim) throw Error(case_name + ": the FEM mesh is " + std::to_string(fem.dim) + "D, the agents " +
                                   std::to_string(dim) + "D");
   GridFields out;
-  out.sigma.assign(grid.count() * 2, 0.0);
+  out.stress.assign(grid.count() * kStressSlots, 0.0);
   std::vector<int> hits(grid.count(), 0);
+  const std::vector<double>* components[kStressSlots] = {&fem.sigma_x, &fem.sigma_y, &fem.sigma_z, &fem.tau_xy,
+                                                         &fem.tau_yz,  &fem.tau_xz,  &fem.von_mises};
   for (std::size_t e = 0; e < fem.cell_count(); ++e) {
     int c[3];
     if (!locate_cell(grid, &fem.cell_centres[3 * e], c)) continue;
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
     if (cell == agent::Grid::npos) continue;  // a tiled grid's unstored tile: air
-    out.sigma[2 * cell] += fem.sigma_x[e];
-    out.sigma[2 * cell + 1] += fem.sigma_y[e];
+    for (int k = 0; k < kStressSlots; ++k) out.stress[kStressSlots * cell + k] += (*components[k])[e];
     ++hits[cell];
   }
   for (std::size_t cell : mesh.cell_of_element) {
     if (hits[cell] == 0)
       throw Error(case_name + ": no FEM cell centre lies in agent " + std::to_string(cell) +
                   " (the FEM mesh does not cover the agents' body, or its cells are larger than the agents)");
-    out.sigma[2 * cell] /= hits[cell];
-    out.sigma[2 * cell + 1] /= hits[cell];
+    for (int k = 0; k < kStressSlots; ++k) out.stress[kStressSlots * cell + k] /= hits[cell];
   }
   out.u.assign(grid.node_count() * dim, 0.0);
   std::vector<char> found(grid.node_count(), 0);
@@ -122,7 +128,7 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
     return best;
   };
   GridFields out;
-  out.sigma.assign(grid.count() * 2, 0.0);
+  out.stress.assign(grid.count() * kStressSlots, 0.0);
   out.u.assign(grid.node_count() * dim, 0.0);
   outside = {0, 0};
   std::size_t at = 0;
@@ -133,17 +139,19 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
     for (int q = 0; q < gauss; ++q) {
       const auto& probe = fem.probes[at + q];
       if (!probe.found) continue;
-      out.sigma[2 * cell] += probe.sigma[0];
-      out.sigma[2 * cell + 1] += probe.sigma[1];
+      double* s = &out.stress[kStressSlots * cell];
+      for (int k = 0; k < 6; ++k) s[k] += probe.sigma[k];
+      s[kVonMises] += von_mises(probe.sigma.data());
       ++found;
     }
+    double* s = &out.stress[kStressSlots * cell];
     if (found > 0) {
-      out.sigma[2 * cell] /= found;
-      out.sigma[2 * cell + 1] /= found;
+      for (int k = 0; k < kStressSlots; ++k) s[k] /= found;
     } else {  // the whole agent lies outside the true body
       const std::size_t e = nearest_element(points[at]);
-      out.sigma[2 * cell] = fem.sigma_x[e];
-      out.sigma[2 * cell + 1] = fem.sigma_y[e];
+      const double nearest[kStressSlots] = {fem.sigma_x[e], fem.sigma_y[e], fem.sigma_z[e], fem.tau_xy[e],
+                                            fem.tau_yz[e],  fem.tau_xz[e],  fem.von_mises[e]};
+      std::copy(nearest, nearest + kStressSlots, s);
       ++outside[0];
     }
     at += gauss;

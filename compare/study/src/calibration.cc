@@ -51,8 +51,8 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
     for (std::size_t cell : agent_ids(grid))  // box order on any layout: the same sums
       if (!(w.far && near.cells[cell]))
         for (int f = 0; f < 2; ++f) {
-          a[f].push_back(agent.sigma[2 * cell + f]);
-          r[f].push_back(c.reference.sigma[2 * cell + f]);
+          a[f].push_back(agent.stress[kStressSlots * cell + kSigmaX + f]);
+          r[f].push_back(c.reference.stress[kStressSlots * cell + kSigmaX + f]);
         }
     for (std::size_t n : body_node_ids(grid))
       if (!(w.far && near.nodes[n]))
@@ -69,8 +69,8 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
       for (int i : line.body_samples) {  // a line stops at air
         const Eigen::Vector3d p = line.point(i);
         for (int f = 0; f < 2; ++f) {
-          a[f].push_back(sample_cells(grid, agent.sigma, 2, f, p));
-          r[f].push_back(sample_cells(grid, c.reference.sigma, 2, f, p));
+          a[f].push_back(sample_cells(grid, agent.stress, kStressSlots, kSigmaX + f, p));
+          r[f].push_back(sample_cells(grid, c.reference.stress, kStressSlots, kSigmaX + f, p));
         }
         for (int comp = 0; comp < dim; ++comp) {
           a[2].push_back(sample_nodes(grid, agent.u, dim, comp, p));

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <optional>
 #include <ostream>
+#include <sstream>
 
 namespace compare {
 
@@ -59,6 +60,7 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
   o.gate = t.number_map("gate");
   for (const auto& [name, limit] : o.gate)
     if (!(limit >= 0) || !std::isfinite(limit)) t.fail("gate." + name, "a limit must be a finite number >= 0");
+  o.better_than_zero = t.texts("better_than_zero", std::vector<std::string>{});
   o.figures = t.flag("figures", true);
   o.figure_formats = t.texts("figure_formats", o.figure_formats);
   if (o.figure_formats.empty()) t.fail("figure_formats", "name at least one format (\"png\", \"pdf\")");
@@ -69,9 +71,14 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
 
 namespace {
 
-const char* kFields[] = {"sigma_x", "sigma_y", "displacement"};
-
 using workbench::open_csv;
+
+/// The name of a stress slot in kFields ("tau_xy").
+std::string stress_name(int slot) {
+  for (const auto& f : kFields)
+    if (!f.per_node && f.slot == slot) return f.name;
+  return "stress";
+}
 using report::seconds_since;
 
 /// The entries of `v` (comps per entry) at the `ids` (in their order) that `keep` marks.
@@ -83,17 +90,19 @@ std::vector<double> select(const std::vector<double>& v, int comps, const std::v
   return out;
 }
 
-std::vector<std::string> agent_metric_names(const std::vector<std::string>& line_names) {
+std::vector<std::string> agent_metric_names(const std::vector<std::string>& line_names, int dim) {
   std::vector<std::string> scopes{"body", "far"};
   scopes.insert(scopes.end(), line_names.begin(), line_names.end());
   std::vector<std::string> names;
   for (const auto& s : scopes) {
-    for (const char* f : kFields)
-      for (const char* n : {"rel_l2", "rel_max"}) names.push_back(s + "." + f + "." + n);
-    for (const char* f : {"sigma_x", "sigma_y"}) {
-      names.push_back(s + "." + f + ".ratio_median_dev");
-      names.push_back(s + "." + f + ".masked_fraction");
-    }
+    for (const auto& f : kFields)
+      if (f.in(dim))
+        for (const char* n : {"rel_l2", "rel_max"}) names.push_back(s + "." + f.name + "." + n);
+    for (const auto& f : kFields)
+      if (f.ratios) {
+        names.push_back(s + "." + f.name + ".ratio_median_dev");
+        names.push_back(s + "." + f.name + ".masked_fraction");
+      }
   }
   for (const char* n : {"agent.equilibrium_dev", "agent.lost_share", "agent.reaction_share", "fem.equilibrium_dev",
                         "agent.reach_fraction", "time.agent_s", "time.fem_s", "time.compare_s", "time.figures_wait_s",
@@ -104,8 +113,18 @@ std::vector<std::string> agent_metric_names(const std::vector<std::string>& line
 
 }  // namespace
 
-std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names) {
-  return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(line_names);
+std::string GateFailure::describe() const {
+  std::ostringstream s;
+  s << metric << " = " << value;
+  if (zero_model)
+    s << " is not below the zero model's " << limit << ": worse than predicting zero";
+  else
+    s << " exceeds " << limit << " by " << value - limit;
+  return s.str();
+}
+
+std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names, int dim) {
+  return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(line_names, dim);
 }
 
 namespace {
@@ -139,7 +158,7 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
   in.near = near_load(in.study.mesh, in.study.setup.loads, in.far_distance);
   std::vector<std::string> names;
   for (const auto& l : in.lines) names.push_back(l.name);
-  report::check_gate_names(options, metric_names(options, names), file.root());
+  report::check_gate_names(options, metric_names(options, names, grid.dim), file.root());
   file.reject_unknown_keys();
   return in;
 }
@@ -164,10 +183,8 @@ struct Sources {
 struct Samples {
   std::vector<double> agent, reference, estimate, staircase;
 };
-/// A scope's values of each field of kFields: sigma_x, sigma_y per agent, u per node component.
-struct ScopeSamples {
-  Samples sigma_x, sigma_y, u;
-};
+/// A scope's values of each field of kFields (empty for a field not compared in the grid's dimension).
+using ScopeSamples = std::array<Samples, std::size(kFields)>;
 /// Each source with where its samples go.
 const std::pair<const GridFields* Sources::*, std::vector<double> Samples::*> kSources[] = {
     {&Sources::agent, &Samples::agent},
@@ -178,38 +195,47 @@ const std::pair<const GridFields* Sources::*, std::vector<double> Samples::*> kS
 /// Samples the sources that are given (not null) along `line` into `s`: first the agent and the
 /// reference, then, once solved, the estimate (and staircase).
 void sample_line(const agent::Grid& grid, const Line& line, const Sources& sources, ScopeSamples& s) {
+  const int dim = grid.dim;
   for (int i : line.body_samples) {
     const Eigen::Vector3d p = line.point(i);
     for (const auto& [from, to] : kSources) {
       const GridFields* f = sources.*from;
       if (!f) continue;
-      (s.sigma_x.*to).push_back(sample_cells(grid, f->sigma, 2, 0, p));
-      (s.sigma_y.*to).push_back(sample_cells(grid, f->sigma, 2, 1, p));
-      for (int a = 0; a < 2; ++a) (s.u.*to).push_back(sample_nodes(grid, f->u, grid.dim, a, p));
+      for (std::size_t k = 0; k < std::size(kFields); ++k) {
+        const auto& field = kFields[k];
+        if (!field.in(dim)) continue;
+        auto& out = s[k].*to;
+        if (!field.per_node)
+          out.push_back(sample_cells(grid, f->stress, kStressSlots, field.slot, p));
+        else if (field.slot >= 0)
+          out.push_back(sample_nodes(grid, f->u, dim, field.slot, p));
+        else
+          for (int a = 0; a < dim; ++a) out.push_back(sample_nodes(grid, f->u, dim, a, p));
+      }
     }
   }
 }
 
 // Step 7: the metrics of one scope; each error norm with the reference's own error beside it (and
-// the staircase's own error beside a true-geometry reference).
-void add_scope(CompareOutcome& out, const std::string& scope, const ScopeSamples& s, double mask) {
-  const Samples* fields[3] = {&s.sigma_x, &s.sigma_y, &s.u};  // kFields
-  for (int f = 0; f < 3; ++f) {
-    const Samples& v = *fields[f];
+// the staircase's own error beside a true-geometry reference). The zero model's relative L2 error
+// is 1 (kZeroModelRelL2): report::finish flags the errors that are not below it.
+void add_scope(CompareOutcome& out, const std::string& scope, const ScopeSamples& s, double mask, int dim) {
+  for (std::size_t k = 0; k < std::size(kFields); ++k) {
+    if (!kFields[k].in(dim)) continue;
+    const Samples& v = s[k];
+    const std::string name = scope + "." + kFields[k].name;
     const auto e = relative_errors(v.agent, v.reference);
     const auto r = relative_errors(v.estimate, v.reference);
     const auto st = v.staircase.empty() ? Errors{NAN, NAN} : relative_errors(v.staircase, v.reference);
-    out.metrics.push_back(
-        {scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2, st.rel_l2});
-    out.metrics.push_back(
-        {scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max, st.rel_max});
+    out.metrics.push_back({name + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2, st.rel_l2});
+    out.metrics.push_back({name + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max, st.rel_max});
   }
-  for (int f = 0; f < 2; ++f) {
-    const auto r = ratios(fields[f]->agent, fields[f]->reference, mask);
-    out.metrics.push_back({scope + "." + kFields[f] + ".ratio_median_dev", std::abs(r.median - 1.0),
-                           "|median(agent / FEM) - 1|"});
-    out.metrics.push_back({scope + "." + kFields[f] + ".masked_fraction",
-                           double(r.masked_count) / double(std::max<std::size_t>(1, r.ratio.size())),
+  for (std::size_t k = 0; k < std::size(kFields); ++k) {
+    if (!kFields[k].ratios) continue;
+    const std::string name = scope + "." + kFields[k].name;
+    const auto r = ratios(s[k].agent, s[k].reference, mask);
+    out.metrics.push_back({name + ".ratio_median_dev", std::abs(r.median - 1.0), "|median(agent / FEM) - 1|"});
+    out.metrics.push_back({name + ".masked_fraction", double(r.masked_count) / double(std::max<std::size_t>(1, r.ratio.size())),
                            "share of entries where |FEM| < mask * max |FEM|"});
   }
 }
@@ -231,12 +257,16 @@ void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const So
     for (const auto& [from, to] : kSources) {
       const GridFields* f = sources.*from;
       if (!f) continue;
-      const auto sigma = select(f->sigma, 2, cell_ids, *cells);
-      s.sigma_x.*to = component(sigma, 2, 0);
-      s.sigma_y.*to = component(sigma, 2, 1);
-      s.u.*to = select(f->u, grid.dim, node_ids, *nodes);
+      const auto stress = select(f->stress, kStressSlots, cell_ids, *cells);
+      const auto u = select(f->u, grid.dim, node_ids, *nodes);
+      for (std::size_t k = 0; k < std::size(kFields); ++k) {
+        const auto& field = kFields[k];
+        if (!field.in(grid.dim)) continue;
+        s[k].*to = !field.per_node ? component(stress, kStressSlots, field.slot)
+                   : field.slot >= 0 ? component(u, grid.dim, field.slot) : u;
+      }
     }
-    add_scope(out, scope, s, mask);
+    add_scope(out, scope, s, mask, grid.dim);
   }
 }
 
@@ -260,17 +290,20 @@ void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::v
                      const std::vector<ScopeSamples>& samples) {
   const int dim = grid.dim;
   auto csv = open_csv(file);
-  csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
+  csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "");
+  for (const auto& field : kFields)  // each component once: the displacement vector is u_x, u_y (, u_z)
+    if (field.in(dim) && field.slot >= 0) csv << ',' << field.name << " [" << field.unit << ']';
+  csv << '\n';
   for (std::size_t li = 0; li < lines.size(); ++li)
     for (int m = 0; m < 2; ++m)
       for (std::size_t i = 0; i < lines[li].body_samples.size(); ++i) {  // the samples in the body only
         const Eigen::Vector3d p = lines[li].point(lines[li].body_samples[i]);
-        const auto& s = samples[li];
         csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
         for (int a = 0; a < dim; ++a) csv << ',' << p[a];
         const auto& to = kSources[m].second;  // the agent (m = 0) or the reference
-        csv << ',' << (s.sigma_x.*to)[i] << ',' << (s.sigma_y.*to)[i] << ',' << (s.u.*to)[2 * i] << ','
-            << (s.u.*to)[2 * i + 1] << '\n';
+        for (std::size_t k = 0; k < std::size(kFields); ++k)
+          if (kFields[k].in(dim) && kFields[k].slot >= 0) csv << ',' << (samples[li][k].*to)[i];
+        csv << '\n';
       }
   csv.close();  // complete on disk before figures.py reads it
 }
@@ -281,23 +314,32 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
   const auto& grid = study.mesh.grid;
   const int dim = grid.dim;
   const auto mesh = agent_study::output_mesh(study);
-  const auto rx = ratios(component(agent.sigma, 2, 0), component(fem.sigma, 2, 0), mask);
-  const auto ry = ratios(component(agent.sigma, 2, 1), component(fem.sigma, 2, 1), mask);
+  const auto rx = ratios(component(agent.stress, kStressSlots, kSigmaX), component(fem.stress, kStressSlots, kSigmaX), mask);
+  const auto ry = ratios(component(agent.stress, kStressSlots, kSigmaY), component(fem.stress, kStressSlots, kSigmaY), mask);
+  // The stress fields compared in this dimension (kFields): agent, FEM and their difference per cell.
+  std::vector<int> slots;
+  for (const auto& f : kFields)
+    if (f.in(dim) && !f.per_node) slots.push_back(f.slot);
   std::vector<workbench::Field> cells;
-  for (const char* n : {"agent_sigma_x [Pa]", "agent_sigma_y [Pa]", "fem_sigma_x [Pa]", "fem_sigma_y [Pa]",
-                        "diff_sigma_x [Pa]", "diff_sigma_y [Pa]", "ratio_sigma_x [-]", "ratio_sigma_y [-]",
-                        "ratio_masked_x [-]", "ratio_masked_y [-]", "generation [-]", "far [-]"})
+  for (const char* model : {"agent_", "fem_", "diff_"})
+    for (int slot : slots) cells.push_back({std::string(model) + stress_name(slot) + " [Pa]", 1, {}, {}, {}});
+  const std::size_t ratio_at = cells.size();
+  for (const char* n : {"ratio_sigma_x [-]", "ratio_sigma_y [-]", "ratio_masked_x [-]", "ratio_masked_y [-]",
+                        "generation [-]", "far [-]"})
     cells.push_back({n, 1, {}, {}, {}});
   for (std::size_t cell : study.mesh.cell_of_element) {
-    const double v[] = {agent.sigma[2 * cell], agent.sigma[2 * cell + 1], fem.sigma[2 * cell], fem.sigma[2 * cell + 1],
-                        agent.sigma[2 * cell] - fem.sigma[2 * cell], agent.sigma[2 * cell + 1] - fem.sigma[2 * cell + 1],
-                        rx.ratio[cell], ry.ratio[cell], double(rx.masked[cell]), double(ry.masked[cell]),
-                        double(state.generation[cell]), double(!in.near.cells[cell])};
-    for (std::size_t f = 0; f < cells.size(); ++f) cells[f].values.push_back(v[f]);
+    std::size_t f = 0;
+    for (const GridFields* model : {&agent, &fem})
+      for (int slot : slots) cells[f++].values.push_back(model->stress[kStressSlots * cell + slot]);
+    for (int slot : slots)
+      cells[f++].values.push_back(agent.stress[kStressSlots * cell + slot] - fem.stress[kStressSlots * cell + slot]);
+    for (double v : {rx.ratio[cell], ry.ratio[cell], double(rx.masked[cell]), double(ry.masked[cell]),
+                     double(state.generation[cell]), double(!in.near.cells[cell])})
+      cells[f++].values.push_back(v);
   }
   for (std::size_t cell : study.mesh.cell_of_element) {  // masked ratios: NaN, blanked by ParaView
-    cells[6].undefined.push_back(rx.masked[cell]);
-    cells[7].undefined.push_back(ry.masked[cell]);
+    cells[ratio_at].undefined.push_back(rx.masked[cell]);
+    cells[ratio_at + 1].undefined.push_back(ry.masked[cell]);
   }
   const std::vector<std::string> xyz{"x", "y", "z"};
   std::vector<workbench::Field> points{
@@ -318,15 +360,24 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
   auto cells_csv = open_csv(dir / "cells.csv");
   cells_csv << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
             << ",generation,agent_sigma_x [Pa],agent_sigma_y [Pa],fem_sigma_x [Pa],fem_sigma_y [Pa],ratio_sigma_x [-],"
-               "ratio_sigma_y [-],masked_x,masked_y,far\n";
+               "ratio_sigma_y [-],masked_x,masked_y,far";
+  for (int slot : slots)  // the other stress fields after the seed's
+    if (slot != kSigmaX && slot != kSigmaY)
+      cells_csv << ",agent_" << stress_name(slot) << " [Pa],fem_" << stress_name(slot) << " [Pa]";
+  cells_csv << '\n';
   for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
     const std::size_t cell = study.mesh.cell_of_element[e];
     const Eigen::Vector3d c = grid.centre(cell);
     cells_csv << e;
     for (int a = 0; a < dim; ++a) cells_csv << ',' << c[a];
-    cells_csv << ',' << state.generation[cell] << ',' << agent.sigma[2 * cell] << ',' << agent.sigma[2 * cell + 1] << ','
-              << fem.sigma[2 * cell] << ',' << fem.sigma[2 * cell + 1] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell)
-              << ',' << int(rx.masked[cell]) << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]) << '\n';
+    const double* a = &agent.stress[kStressSlots * cell];
+    const double* f = &fem.stress[kStressSlots * cell];
+    cells_csv << ',' << state.generation[cell] << ',' << a[kSigmaX] << ',' << a[kSigmaY] << ',' << f[kSigmaX] << ','
+              << f[kSigmaY] << ',' << ratio_field(rx, cell) << ',' << ratio_field(ry, cell) << ',' << int(rx.masked[cell])
+              << ',' << int(ry.masked[cell]) << ',' << int(!in.near.cells[cell]);
+    for (int slot : slots)
+      if (slot != kSigmaX && slot != kSigmaY) cells_csv << ',' << a[slot] << ',' << f[slot];
+    cells_csv << '\n';
   }
   auto nodes_csv = open_csv(dir / "nodes.csv");
   nodes_csv << "i,j" << (dim == 3 ? ",k" : "") << ",x [m],y [m]" << (dim == 3 ? ",z [m]" : "")
@@ -476,7 +527,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     sample_line(grid, in.lines[li], {nullptr, nullptr, &reference.estimate_fields, staircase}, samples[li]);
   CompareOutcome outcome;
   add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
-  for (std::size_t li = 0; li < in.lines.size(); ++li) add_scope(outcome, in.lines[li].name, samples[li], options.mask);
+  for (std::size_t li = 0; li < in.lines.size(); ++li)
+    add_scope(outcome, in.lines[li].name, samples[li], options.mask, grid.dim);
   add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
   outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
                              "|reactions + applied| / |applied| (FEM)"});
@@ -506,7 +558,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
                     "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
                     std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
                     "nearest element's stress / nearest node's displacement");
-  report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log);
+  report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero);
   return outcome;
 }
 

@@ -17,10 +17,11 @@ using workbench::Error;
 
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state) {
   GridFields out;
-  out.sigma.resize(grid.count() * 2);
+  out.stress.assign(grid.count() * kStressSlots, 0.0);
   for (std::size_t cell = 0; cell < grid.count(); ++cell) {
-    out.sigma[2 * cell] = state.stress[cell * grid.dim];
-    out.sigma[2 * cell + 1] = state.stress[cell * grid.dim + 1];
+    double* s = &out.stress[kStressSlots * cell];
+    for (int a = 0; a < grid.dim; ++a) s[a] = state.stress[cell * grid.dim + a];  // normal stresses; no shear
+    s[kVonMises] = von_mises(s);
   }
   out.u = state.displacement;
   return out;

@@ -51,6 +51,16 @@ void check_gate_names(const CompareOptions& options, const std::vector<std::stri
     if (std::find(names.begin(), names.end(), name) == names.end())
       root.table("compare").fail("gate." + name, "unknown metric for model \"" + options.model +
                                                      "\" (docs/compare.md lists them)");
+  for (const auto& field : options.better_than_zero)
+    if (std::find(names.begin(), names.end(), field + ".rel_l2") == names.end())
+      root.table("compare").fail("better_than_zero", "\"" + field + "\" is no compared field (a scope and a field, "
+                                                     "e.g. \"far.sigma_x\"; docs/compare.md lists them)");
+}
+
+bool worse_than_zero(const Metric& m) {
+  const std::string suffix = ".rel_l2";
+  return m.name.size() > suffix.size() && m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+         !(m.value < kZeroModelRelL2);
 }
 
 fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const std::filesystem::path& dir,
@@ -77,7 +87,7 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
 
 void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
-            std::ostream& log) {
+            std::ostream& log, const std::vector<std::string>& better_than_zero) {
   const std::string case_name = case_file.stem().string();
   // Nothing non-finite is written with exit 0: a metric that is not a number is an error (a zero
   // reference norm, a non-finite field), named with the metric, before any summary is written.
@@ -94,12 +104,30 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     ++outcome.gated;
     if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second});
   }
+  for (const auto& field : better_than_zero) {
+    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
+                                [&](const Metric& x) { return x.name == field + ".rel_l2"; });
+    if (m == outcome.metrics.end()) throw Error("compare: field " + field + " was not compared");
+    ++outcome.gated;
+    if (worse_than_zero(*m)) outcome.failures.push_back({m->name, m->value, kZeroModelRelL2, true});
+  }
+  // A field the model predicts no better than zero is said so, in the body and the far field.
+  std::string worse;
+  for (const auto& m : outcome.metrics)
+    if (worse_than_zero(m) && (m.name.rfind("body.", 0) == 0 || m.name.rfind("far.", 0) == 0))
+      worse += (worse.empty() ? "" : ", ") + m.name.substr(0, m.name.size() - 7);
+  if (!worse.empty())
+    outcome.warnings.push_back("worse than predicting zero (relative L2 error >= 1, the zero model's): " + worse);
 
   // Summary: JSON for programs, a table for people, JUnit XML for CI systems.
   for (const auto& m : outcome.metrics) {
     nlohmann::json entry{{"value", m.value}, {"meaning", m.meaning}};
     if (std::isfinite(m.reference_error)) entry["reference_error"] = m.reference_error;
     if (std::isfinite(m.staircase_error)) entry["staircase_error"] = m.staircase_error;
+    if (m.name.size() > 7 && m.name.compare(m.name.size() - 7, 7, ".rel_l2") == 0) {
+      entry["zero_model"] = kZeroModelRelL2;
+      entry["worse_than_zero"] = worse_than_zero(m);
+    }
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;
       entry["passed"] = m.value <= it->second;
@@ -126,6 +154,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (auto it = gate.find(m.name); it != gate.end())
       table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
     if (std::isfinite(m.staircase_error)) table << "  staircase_error " << m.staircase_error;
+    if (worse_than_zero(m)) table << "  WORSE THAN ZERO";
     table << "\n";
   }
   write_text(dir / "summary.txt", table.str());
@@ -143,6 +172,15 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (!(m->value <= limit))
       junit << "<failure message=\"" << xml_escape(name) << " = " << m->value << " exceeds " << limit << " by "
             << m->value - limit << "\"/>";
+    junit << "</testcase>\n";
+  }
+  for (const auto& field : better_than_zero) {
+    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
+                                [&](const Metric& x) { return x.name == field + ".rel_l2"; });
+    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(field) << ".better_than_zero\">";
+    if (worse_than_zero(*m))
+      junit << "<failure message=\"" << xml_escape(m->name) << " = " << m->value
+            << " is not below the zero model's " << kZeroModelRelL2 << ": worse than predicting zero\"/>";
     junit << "</testcase>\n";
   }
   junit << "  </testsuite>\n</testsuites>\n";

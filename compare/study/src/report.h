@@ -41,14 +41,20 @@ fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const
 /// |sum of reactions + applied| / |applied| of a FEM solution.
 double fem_equilibrium_dev(const fem_reference::FemResult& fem);
 
-/// Applies the gate to `outcome.metrics` (fills failures and gated) and writes summary.json
+/// Applies the gate (limits, and the fields `better_than_zero` must name whose relative L2 error
+/// must be below the zero model's) to `outcome.metrics` (fills failures and gated; a warning names
+/// every body and far-field error that is worse than zero) and writes summary.json
 /// (`header` plus every metric with meaning, limit and verdict, and the gate's counts),
 /// summary.txt (`notes`, then the metric table, also on `log`) and junit.xml (one test case per
 /// gated metric, a <failure> for each one over its limit) into `dir`. A metric that is not finite
 /// is a workbench::Error naming it and `case_file`, before anything is written.
 void finish(const std::filesystem::path& dir, const std::filesystem::path& case_file, nlohmann::json header,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
-            std::ostream& log);
+            std::ostream& log, const std::vector<std::string>& better_than_zero = {});
+
+/// Whether `m` is a relative L2 error not below the zero model's (kZeroModelRelL2): the model
+/// does no better than predicting zero there.
+bool worse_than_zero(const Metric& m);
 
 /// Runs `python <script> <dir> --title <title> --formats <png,pdf>` (`script` relative to share/workbench/, e.g.
 /// "compare/figures.py"; workbench/child_process.h), output into dir/figures.log; throws

@@ -1,7 +1,8 @@
 #pragma once
 // Fields of both models on the agent grid, in the same layout, so that any two can be compared:
-// sigma_x, sigma_y per agent (grid order) and the displacement per grid node. FEM results are
-// sampled onto the agents by point location (no case files, no I/O).
+// every stress component and von Mises per agent (grid order) and the displacement per grid node;
+// and the one table of the fields a comparison compares (kFields). FEM results are sampled onto
+// the agents by point location (no case files, no I/O).
 #include <agent/mesh_import.h>
 #include <fem_reference/fem.h>
 
@@ -11,10 +12,44 @@
 
 namespace compare {
 
+/// The stress slots of an agent in GridFields::stress: the six components and von Mises.
+enum StressSlot : int { kSigmaX, kSigmaY, kSigmaZ, kTauXY, kTauYZ, kTauXZ, kVonMises, kStressSlots };
+
 struct GridFields {
-  std::vector<double> sigma;  ///< 2 per agent: sigma_x, sigma_y [Pa], grid order
-  std::vector<double> u;      ///< dim per grid node [m], Grid::node_index order
+  std::vector<double> stress;  ///< kStressSlots per agent [Pa], grid order (2D: zz, yz, xz as the model gives them)
+  std::vector<double> u;       ///< dim per grid node [m], Grid::node_index order
 };
+
+/// The von Mises stress of the six components xx, yy, zz, xy, yz, xz.
+double von_mises(const double* s);
+
+/// A field a comparison compares: a stress slot per agent, or one displacement component per node
+/// (`component` -1: every component, the displacement as a vector).
+struct FieldSpec {
+  const char* name;
+  bool per_node;
+  int slot;           ///< StressSlot (per agent) or displacement component (per node, -1 all)
+  int dims;           ///< bit 2: compared in 2D, bit 3: in 3D
+  bool ratios;        ///< also the median ratio and the masked share (the seed's normal stresses)
+  const char* unit;
+  bool in(int dim) const { return dims & (1 << dim); }
+};
+
+/// Every field compared, in the order of the summary: the seed's Figures 8-11 fields first
+/// (sigma_x, sigma_y, displacement), then the others. The names, per scope, are the metric names'
+/// middle part ("far.tau_xy.rel_l2").
+inline constexpr FieldSpec kFields[] = {
+    {"sigma_x", false, kSigmaX, 0b1100, true, "Pa"},     {"sigma_y", false, kSigmaY, 0b1100, true, "Pa"},
+    {"displacement", true, -1, 0b1100, false, "m"},     {"sigma_z", false, kSigmaZ, 0b1000, false, "Pa"},
+    {"tau_xy", false, kTauXY, 0b1100, false, "Pa"},      {"tau_yz", false, kTauYZ, 0b1000, false, "Pa"},
+    {"tau_xz", false, kTauXZ, 0b1000, false, "Pa"},      {"von_mises", false, kVonMises, 0b1100, false, "Pa"},
+    {"u_x", true, 0, 0b1100, false, "m"},                {"u_y", true, 1, 0b1100, false, "m"},
+    {"u_z", true, 2, 0b1000, false, "m"},
+};
+
+/// The relative L2 error of predicting zero everywhere (the zero model), beside which every
+/// relative L2 error is read: a model whose error is not below it is worse than predicting nothing.
+constexpr double kZeroModelRelL2 = 1.0;
 
 /// The FEM result on the agent grid, found by point location (not by element order): an agent's
 /// stress is the mean of the FEM cells whose centre lies in it, a grid node's displacement is

@@ -30,6 +30,9 @@ struct CompareOptions {
   double min_reaction_share = 0.9;
   std::vector<std::array<Eigen::Vector3d, 2>> lines;  ///< agent: [[compare.line]] from, to [m]
   std::map<std::string, double> gate;           ///< metric name -> largest value allowed
+  /// agent: fields ("far.sigma_x") whose relative L2 error must be below the zero model's (1): the
+  /// gate fails, naming the field, where the model does not beat predicting nothing
+  std::vector<std::string> better_than_zero;
   bool figures = true;                          ///< Figures 8-11 and the animation (Python)
   /// The figures' files: "png" (quick to draw and view), "pdf" (vector, for print; about 1 s more
   /// CPU on the seed plate, docs/performance.md).
@@ -54,13 +57,17 @@ struct Metric {
 };
 
 /// The names of the metrics a study with these options produces (for checking the gate's keys):
-/// the agent model's for its scopes (body, far and the names of its sample lines), or the PBD
-/// comparison's.
-std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names);
+/// the agent model's for its scopes (body, far and the names of its sample lines) and the fields
+/// of compare::kFields compared in `dim` dimensions, or the PBD comparison's.
+std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names, int dim);
 
 struct GateFailure {
   std::string metric;
   double value, limit;
+  bool zero_model = false;  ///< the limit is the zero model's error (compare.better_than_zero)
+  /// One line: "far.sigma_x.rel_l2 = 1.6 exceeds 0.5 by 1.1", or "... is not below the zero model's 1:
+  /// worse than predicting zero".
+  std::string describe() const;
 };
 
 struct CompareOutcome {

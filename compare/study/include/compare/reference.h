@@ -17,7 +17,9 @@ struct AgentState;  // agent_study.h; the reference itself needs no study glue
 
 namespace compare {
 
-/// An agent state in the same layout.
+/// An agent state in the same layout: its normal stresses (in 2D sigma_z = 0, plane stress, as the
+/// agents' strains), no shear (the agents carry none: their tau is 0, the zero model's), and the
+/// von Mises stress of those.
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state);
 
 /// [compare.reference]: FEM on the agents' geometry (or on `mesh`, the true geometry) with `refine`

@@ -17,10 +17,14 @@ import base64
 import json
 import math
 import os
+import re
 import sys
 
-import jinja2
-from markupsafe import Markup, escape
+try:
+    import jinja2
+    from markupsafe import Markup, escape
+except ImportError as e:
+    raise SystemExit(f"report_html.py: {e.name} is missing: install Debian's python3-jinja2 (scripts/setup.sh)")
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 IMAGES = {".png": "image/png", ".gif": "image/gif"}  # embedded; other figure files (PDF) are linked
@@ -77,7 +81,10 @@ def figures(out):
     """The figures to embed: (file name, data URI), in the order the study draws them."""
     folder = os.path.join(out, "figures")
     found = []
-    for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+    def order(name):  # fig8, fig9, fig10, ..., then the animation
+        return name.endswith(".gif"), [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", name)]
+
+    for name in sorted(os.listdir(folder) if os.path.isdir(folder) else [], key=order):
         mime = IMAGES.get(os.path.splitext(name)[1])
         if mime:
             with open(os.path.join(folder, name), "rb") as f:

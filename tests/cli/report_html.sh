@@ -19,6 +19,13 @@ sed -e 's|^mesh = "\(.*\)"|mesh = "'"$src"'/cases/\1"|' -e 's|^file = "\(.*\)"|f
   "$src/cases/pbd_strip_fem.toml" >"$work/strip.toml"
 "$bin" compare "$work/strip.toml" -o "$work/strip" >"$work/strip.log" 2>&1
 check compare_pbd $? "$(tail -2 "$work/strip.log")"
+# The same strip with one limit tightened: exit 1, and the page says which metric failed.
+sed 's/^"centreline.deflection.rel_l2" = .*/"centreline.deflection.rel_l2" = 1.0e-9/' "$work/strip.toml" >"$work/tight.toml"
+"$bin" compare "$work/tight.toml" -o "$work/tight" >"$work/tight.log" 2>&1
+check compare_pbd_gate_fails $(( $? != 1 )) "exit status not 1: $(tail -2 "$work/tight.log")"
+grep -q 'Gate FAILED: <span data-key="/gate/failed" data-format="num">1</span>' "$work/tight/report.html" &&
+  grep -q 'data-key="/metrics/centreline.deflection.rel_l2/passed" data-format="pass">EXCEEDED<' "$work/tight/report.html"
+check page_says_gate_failed $? "no 'Gate FAILED' with the exceeded metric on the page"
 # A calibration of two cases (so that it cross-validates), a few evaluations.
 cp "$work/plate.toml" "$work/plate_b.toml"
 printf '%s\n' 'title = "Report test calibration"' '[calibrate]' 'starts = 1' 'max_evaluations = 8' \
@@ -26,7 +33,7 @@ printf '%s\n' 'title = "Report test calibration"' '[calibrate]' 'starts = 1' 'ma
 "$bin" calibrate "$work/cal.toml" -o "$work/cal" >"$work/cal.log" 2>&1
 check calibrate $? "$(tail -2 "$work/cal.log")"
 
-$checker "$work/plate" "$work/strip" "$work/cal"
+$checker "$work/plate" "$work/strip" "$work/tight" "$work/cal"
 check pages_in_chromium $? "see above"
 ls "$work/plate/figures/"*.png >/dev/null 2>&1 && [ "$(grep -c '<img src="data:image/png;base64,' "$work/plate/report.html")" -ge 5 ]
 check figures_embedded $? "fewer than five embedded PNG figures on the plate's page"

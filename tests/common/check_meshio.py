@@ -90,8 +90,8 @@ def check_fem(folder, problems):
     same(centres[:, :dim], np.column_stack([cells[a] for a in "xyz"[:dim]]), "cell centres", problems)
     for name in ("sigma_x", "sigma_y", "von_mises") if children == 1 else ("sigma_x", "sigma_y"):
         mean = cell_array(mesh, f"{name} [Pa]")[:, 0].reshape(-1, children).mean(axis=1)
-        if children == 1:
-            same(mean, cells[name], name, problems)
+        if children == 1:  # the FEM file holds its stresses in single precision (6e-8)
+            same(mean, cells[name], name, problems, rtol=2e-7)
         elif np.abs(mean - cells[name]).max() > 1e-6 * np.abs(cells[name]).max():  # measured: 9e-9 (gate plate)
             problems.append(f"{path}: {name}: the children's mean is not fem_cells.csv's value")
     # fem_nodes.csv: the mesh's nodes (of the unrefined mesh), each a vertex of the file.

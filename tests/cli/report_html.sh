@@ -50,6 +50,15 @@ $checker "$work/tampered" >"$work/tampered.log" 2>&1
 [ $? -eq 1 ] && grep -q "/metrics/body.sigma_y.rel_l2/value: shows" "$work/tampered.log"
 check check_catches_a_wrong_number $? "$(cat "$work/tampered.log")"
 
+# ... and on a page with a console error (an inline script, refused by the page's policy) and an
+# image that does not decode.
+cp -r "$work/cal" "$work/broken_page"
+sed -i 's|</body>|<script>console.error("x")</script><img src="data:image/png;base64,AAAA"></body>|' "$work/broken_page/report.html"
+$checker "$work/broken_page" >"$work/broken_page.log" 2>&1
+[ $? -eq 1 ] && grep -q "log error: .*Content Security Policy" "$work/broken_page.log" &&
+  grep -q "not an embedded image that loaded" "$work/broken_page.log"
+check check_catches_console_errors_and_broken_images $? "$(cat "$work/broken_page.log")"
+
 # A boolean beside an error (e.g. worse than a zero model) shows as a flag, and the check requires it.
 cp -r "$work/plate" "$work/flagged"
 $py - "$work/flagged/summary.json" <<'PY'

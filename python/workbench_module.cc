@@ -1,5 +1,7 @@
 // The `workbench` Python module (pybind11, docs/python.md): case files in, numpy arrays and dicts out.
 // A thin layer over the public study entry points; no model code lives here.
+#include "arrays.h"
+
 #include <agent_study.h>
 #include <compare/calibration.h>
 #include <compare/calibration_study.h>
@@ -151,15 +153,8 @@ auto with_progress(const py::object& progress, Body body) {
   return std::move(*result);
 }
 
-/// A numpy array owning the vector's storage (moved, not copied).
-template <class T>
-py::array_t<T> take(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
-  auto* owner = new std::vector<T>(std::move(values));
-  py::capsule free_owner(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>(shape, owner->data(), free_owner);
-}
-
-py::ssize_t ssize(std::size_t n) { return static_cast<py::ssize_t>(n); }
+using workbench_python::ssize;
+using workbench_python::take;
 
 /// A list of dicts, one per item, each filled by `fill(dict, item)`.
 template <class Items, class Fill>
@@ -339,6 +334,7 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
   r["warnings"] = warning_list;
   r["gate_failures"] = failures;
   r["gated"] = outcome.gated;
+  r["fields"] = workbench_python::compared_fields_dict(std::move(outcome.fields));
   return r;
 }
 

@@ -11,6 +11,7 @@ packages=(
   pybind11-dev python3-pybind11 python3-dev python3-scipy python3-vtk9
   python3-matplotlib python3-numpy python3-pil jupyter-core jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
   ffmpeg
+  python3-jinja2 chromium python3-meshio
 )
 
 missing=()

@@ -8,7 +8,9 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <fstream>
+#include <vector>
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -37,12 +39,18 @@ fs::path find_script(const std::string& relative) {
     if (!fs::is_regular_file(p)) throw Error(p.string() + ": script not found (WORKBENCH_SCRIPT_DIR is set)");
     return p;
   }
+  // Beside the program, else beside the shared object that holds this code: the Python module
+  // (build/python/workbench.*.so -> build/share/workbench/), whose program is python3.
+  std::vector<fs::path> starts;
   std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (int up = 0; up < 3 && !ec && !dir.empty(); ++up, dir = dir.parent_path()) {
-    const fs::path p = dir / "share" / "workbench" / relative;
-    if (fs::is_regular_file(p)) return p;
-  }
+  if (auto exe = fs::read_symlink("/proc/self/exe", ec); !ec) starts.push_back(exe.parent_path());
+  static const char anchor = 0;
+  if (Dl_info info{}; ::dladdr(&anchor, &info) && info.dli_fname) starts.push_back(fs::absolute(info.dli_fname).parent_path());
+  for (fs::path dir : starts)
+    for (int up = 0; up < 3 && !dir.empty(); ++up, dir = dir.parent_path()) {
+      const fs::path p = dir / "share" / "workbench" / relative;
+      if (fs::is_regular_file(p)) return p;
+    }
   throw Error(relative + ": script not found in share/workbench/ beside the program (set WORKBENCH_SCRIPT_DIR)");
 }
 

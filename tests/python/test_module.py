@@ -112,11 +112,27 @@ class Fem(unittest.TestCase):
         np.testing.assert_allclose(np.array(r["reactions"][0]["force_N"]), -np.array(r["applied_N"]), atol=1e-9)
 
 
+def read_csv(path):
+    """A CSV file's columns by bare name ("sigma_y [Pa]" -> "sigma_y"); text columns as text, empty fields NaN."""
+    with open(path) as f:
+        header = [h.split(" [")[0] for h in f.readline().strip().split(",")]
+        rows = [line.rstrip("\n").split(",") for line in f]
+    columns = {}
+    for i, k in enumerate(header):
+        try:
+            columns[k] = np.array([float(r[i]) if r[i] != "" else np.nan for r in rows])
+        except ValueError:
+            columns[k] = np.array([r[i] for r in rows])
+    return columns
+
+
 class Compare(unittest.TestCase):
     def test_gate_plate_passes_its_gate(self):
         with tempfile.TemporaryDirectory() as tmp:
             r = workbench.compare(workbench.Case(os.path.join(SRC, "cases", "gate_plate.toml")), os.path.join(tmp, "c"))
             self.assertTrue(os.path.isfile(os.path.join(tmp, "c", "summary.json")))
+            self.assertTrue(os.path.isfile(os.path.join(tmp, "c", "report.html")))
+            self.check_fields_against_csv(r, os.path.join(tmp, "c"))
         self.assertEqual(r["gate_failures"], [])
         with open(os.path.join(SRC, "cases", "gate_plate.toml"), "rb") as f:
             self.assertEqual(r["gated"], len(tomllib.load(f)["compare"]["gate"]))  # every limit was checked
@@ -125,6 +141,70 @@ class Compare(unittest.TestCase):
         self.assertLess(m["agent.equilibrium_dev"], 0.02)
         self.assertLess(m["line_x100y197p5_x100y2p5.sigma_y.rel_l2"], 0.7)  # the line under the load
         self.assertGreater(r["reference_errors"]["body.sigma_y.rel_l2"], 0)  # the reference says how converged it is
+
+    def check_fields_against_csv(self, r, out):
+        """The fields workbench.compare returns are, row for row, what the same run wrote to its CSVs
+        (which hold every double to its shortest round trip: equal, not close); and the metrics
+        follow from them."""
+        f = r["fields"]
+        cells, nodes = f["cells"], f["nodes"]
+        csv = read_csv(os.path.join(out, "cells.csv"))
+        self.assertEqual(len(cells["point"]), len(csv["cell"]))
+        np.testing.assert_array_equal(cells["point"], np.column_stack([csv["x"], csv["y"]]))
+        for k, c in enumerate("xy"):
+            np.testing.assert_array_equal(cells["agent_sigma"][:, k], csv[f"agent_sigma_{c}"])
+            np.testing.assert_array_equal(cells["fem_sigma"][:, k], csv[f"fem_sigma_{c}"])
+            np.testing.assert_array_equal(cells["diff_sigma"][:, k], csv[f"agent_sigma_{c}"] - csv[f"fem_sigma_{c}"])
+            np.testing.assert_array_equal(cells["ratio_sigma"][:, k], csv[f"ratio_sigma_{c}"])  # NaN where masked
+            np.testing.assert_array_equal(cells["masked"][:, k], csv[f"masked_{c}"] == 1)
+        np.testing.assert_array_equal(cells["far"], csv["far"] == 1)
+        np.testing.assert_array_equal(cells["generation"], csv["generation"])
+        self.assertEqual(cells["masked"].dtype, np.bool_)
+        self.assertEqual(cells["generation"].dtype, np.int64)
+        csv = read_csv(os.path.join(out, "nodes.csv"))
+        np.testing.assert_array_equal(nodes["box_coords"], np.column_stack([csv["i"], csv["j"]]))
+        np.testing.assert_array_equal(nodes["point"], np.column_stack([csv["x"], csv["y"]]))
+        for model in ("agent", "fem"):
+            np.testing.assert_array_equal(nodes[f"{model}_u"], np.column_stack([csv[f"{model}_u_x"], csv[f"{model}_u_y"]]))
+        np.testing.assert_array_equal(nodes["diff_u"], nodes["agent_u"] - nodes["fem_u"])
+        csv = read_csv(os.path.join(out, "lines.csv"))
+        self.assertEqual(list(f["lines"]), list(dict.fromkeys(csv["line"])))  # every line, in the file's order
+        for name, line in f["lines"].items():
+            for model in ("agent", "fem"):
+                rows = (csv["line"] == name) & (csv["model"] == model)
+                np.testing.assert_array_equal(line["arc_length"], csv["arc_length"][rows])
+                np.testing.assert_array_equal(line["point"], np.column_stack([csv["x"][rows], csv["y"][rows]]))
+                np.testing.assert_array_equal(line[f"{model}_sigma"], np.column_stack([csv["sigma_x"][rows], csv["sigma_y"][rows]]))
+                np.testing.assert_array_equal(line[f"{model}_u"], np.column_stack([csv["u_x"][rows], csv["u_y"][rows]]))
+        # The metrics from the arrays: the summary's norms (summed in another order: to rounding).
+        def rel_l2(a, b):
+            return np.linalg.norm(a - b) / np.linalg.norm(b)
+        m, far = r["metrics"], cells["far"]
+        self.assertAlmostEqual(rel_l2(cells["agent_sigma"][:, 1], cells["fem_sigma"][:, 1]) / m["body.sigma_y.rel_l2"], 1, 12)
+        self.assertAlmostEqual(rel_l2(cells["agent_sigma"][far, 0], cells["fem_sigma"][far, 0]) / m["far.sigma_x.rel_l2"], 1, 12)
+        self.assertAlmostEqual(rel_l2(nodes["agent_u"], nodes["fem_u"]) / m["body.displacement.rel_l2"], 1, 12)
+        nf = nodes["far"]
+        self.assertLess(nf.sum(), len(nf))  # the far field leaves out the nodes near the load
+        self.assertAlmostEqual(rel_l2(nodes["agent_u"][nf], nodes["fem_u"][nf]) / m["far.displacement.rel_l2"], 1, 12)
+        under = f["lines"]["line_x100y197p5_x100y2p5"]
+        self.assertEqual(rel_l2(under["agent_sigma"][:, 1], under["fem_sigma"][:, 1]), m["line_x100y197p5_x100y2p5.sigma_y.rel_l2"])
+
+    def test_pbd_comparison_returns_its_centreline(self):
+        with open(os.path.join(SRC, "cases", "pbd_strip_fem.toml"), "rb") as f:
+            case = tomllib.load(f)
+        case["compare"]["figures"] = False
+        with tempfile.TemporaryDirectory() as tmp:
+            r = workbench.compare(workbench.Case.from_dict(case, name=os.path.join(SRC, "cases", "pbd_strip_fem.toml")),
+                                  os.path.join(tmp, "c"))
+            csv = read_csv(os.path.join(tmp, "c", "centreline.csv"))
+        self.assertNotIn("cells", r["fields"])
+        c = r["fields"]["lines"]["centreline"]
+        np.testing.assert_array_equal(c["arc_length"], csv["s"])
+        np.testing.assert_array_equal(c["point"], np.column_stack([csv["x0"], csv["y0"]]))
+        np.testing.assert_array_equal(c["pbd_u"], np.column_stack([csv["pbd_u_x"], csv["pbd_u_y"]]))
+        np.testing.assert_array_equal(c["fem_u"], np.column_stack([csv["fem_u_x"], csv["fem_u_y"]]))
+        np.testing.assert_array_equal(c["eb_u_y"], csv["eb_u_y"])
+        self.assertAlmostEqual(abs(c["pbd_u"][-1, 1] / c["fem_u"][-1, 1] - 1) / r["metrics"]["tip.deflection.rel_error"], 1, 12)
 
 
 class Pbd(unittest.TestCase):

@@ -15,7 +15,8 @@ std::string python_interpreter();
 /// A script shipped with the program, `relative` to share/workbench/ (e.g. "compare/figures.py"):
 /// $WORKBENCH_SCRIPT_DIR when set, else the first share/workbench/ found beside the running program
 /// or up to two folders above it (the install tree: bin/../share; the build tree: the build
-/// copies the scripts into <build>/share/workbench). Throws Error when it is not there.
+/// copies the scripts into <build>/share/workbench), then the same beside the shared object that
+/// holds this code (the Python module in <build>/python). Throws Error when it is not there.
 std::filesystem::path find_script(const std::string& relative);
 
 /// A program running beside the workbench (figures.py drawing while the FEM reference solves):

@@ -270,6 +270,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     return j;
   };
   j["calibration"] = file.path().string();
+  j["title"] = file.root().text("title", "");
   j["rule_set"] = agent::rule_set_name(o.rules);
   if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
   j["start"] = coeffs(result.start);
@@ -299,6 +300,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
                           for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
                           plan.readings, "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
                               std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
+  report::render_html(dir, log);
   return result;
 }
 

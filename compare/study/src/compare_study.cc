@@ -1,6 +1,7 @@
 // The agent comparison (docs/compare.md): the agent method against the converged FEM reference
 // on the same body, in named steps: read, run the agent model, solve the reference, sample,
 // score, write, draw, summarise.
+#include <compare/calibration.h>
 #include <compare/compare_study.h>
 #include <compare/pbd_compare.h>
 #include <compare/reference.h>
@@ -121,6 +122,14 @@ std::string GateFailure::describe() const {
   else
     s << " exceeds " << limit << " by " << value - limit;
   return s.str();
+}
+
+void FieldTable::add(const std::string& name, int components, std::vector<double> values, Kind kind) {
+  if (columns.empty()) rows = values.size() / std::size_t(components);
+  if (values.size() != rows * std::size_t(components))
+    throw Error("compare: field " + name + " has " + std::to_string(values.size()) + " values, not " +
+                std::to_string(rows) + " x " + std::to_string(components));
+  columns.push_back({name, components, std::move(values), kind});
 }
 
 std::vector<std::string> metric_names(const CompareOptions& options, const std::vector<std::string>& line_names, int dim) {
@@ -396,6 +405,69 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
   nodes_csv.close();
 }
 
+/// The fields of cells.csv, nodes.csv and lines.csv, in their rows' order, in memory (ComparedFields).
+ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& agent, const GridFields& fem,
+                               const agent_study::AgentState& state, double mask, const std::vector<LineSamples>& samples) {
+  using Kind = FieldTable::Kind;
+  const auto& grid = in.study.mesh.grid;
+  const int dim = grid.dim;
+  const Ratios r[2] = {ratios(component(agent.sigma, 2, 0), component(fem.sigma, 2, 0), mask),
+                       ratios(component(agent.sigma, 2, 1), component(fem.sigma, 2, 1), mask)};
+  std::vector<double> point, a, f, d, ratio, masked, far, generation, box;
+  for (std::size_t cell : in.study.mesh.cell_of_element) {
+    const Eigen::Vector3d c = grid.centre(cell);
+    point.insert(point.end(), c.data(), c.data() + dim);
+    for (int k = 0; k < 2; ++k) {
+      a.push_back(agent.sigma[2 * cell + k]);
+      f.push_back(fem.sigma[2 * cell + k]);
+      d.push_back(a.back() - f.back());
+      ratio.push_back(r[k].masked[cell] ? NAN : r[k].ratio[cell]);
+      masked.push_back(r[k].masked[cell]);
+    }
+    far.push_back(!in.near.cells[cell]);
+    generation.push_back(state.generation[cell]);
+  }
+  ComparedFields out;
+  auto& t = out.cells;
+  t.add("point", dim, std::move(point)), t.add("agent_sigma", 2, std::move(a)), t.add("fem_sigma", 2, std::move(f));
+  t.add("diff_sigma", 2, std::move(d)), t.add("ratio_sigma", 2, std::move(ratio));
+  t.add("masked", 2, std::move(masked), Kind::Flag), t.add("far", 1, std::move(far), Kind::Flag);
+  t.add("generation", 1, std::move(generation), Kind::Integer);
+  for (std::size_t node : compare::body_node_ids(grid)) {
+    const auto c = grid.node_coords(node);
+    const Eigen::Vector3d x = grid.node_position(c[0], c[1], c[2]);
+    box.insert(box.end(), c.begin(), c.begin() + dim);
+    point.insert(point.end(), x.data(), x.data() + dim);
+    for (int k = 0; k < dim; ++k) {
+      a.push_back(agent.u[node * dim + k]);
+      f.push_back(fem.u[node * dim + k]);
+      d.push_back(a.back() - f.back());
+    }
+    far.push_back(!in.near.nodes[node]);
+  }
+  auto& n = out.nodes;  // the moved-from vectors above are empty again (and refilled)
+  n.add("box_coords", dim, std::move(box), Kind::Integer), n.add("point", dim, std::move(point));
+  n.add("agent_u", dim, std::move(a)), n.add("fem_u", dim, std::move(f)), n.add("diff_u", dim, std::move(d));
+  n.add("far", 1, std::move(far), Kind::Flag);
+  for (std::size_t li = 0; li < in.lines.size(); ++li) {
+    const auto& line = in.lines[li];
+    const auto& s = samples[li];
+    std::vector<double> arc, at, sigma[2];
+    for (std::size_t i = 0; i < line.body_samples.size(); ++i) {
+      const Eigen::Vector3d p = line.point(line.body_samples[i]);
+      arc.push_back((p - line.from).norm());
+      at.insert(at.end(), p.data(), p.data() + dim);
+      for (int m = 0; m < 2; ++m) sigma[m].insert(sigma[m].end(), {s.sx[m][i], s.sy[m][i]});
+    }
+    FieldTable l;
+    l.add("arc_length", 1, std::move(arc)), l.add("point", dim, std::move(at));
+    l.add("agent_sigma", 2, std::move(sigma[0])), l.add("fem_sigma", 2, std::move(sigma[1]));
+    l.add("agent_u", 2, s.u[0]), l.add("fem_u", 2, s.u[1]);
+    out.lines.emplace_back(line.name, std::move(l));
+  }
+  return out;
+}
+
 /// The agent's sigma per cell at every load step, with the cell's centre (the animation's data,
 /// drawn before the other files exist).
 void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
@@ -431,21 +503,29 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
                               const CompareOptions& options, const Reference& reference,
                               const agent::Diagnostics& d) {
   const auto& study = in.study;
-  const auto& k = study.coefficients;
   const auto& fem = reference.fem;
   nlohmann::json json;
   json["case"] = file.path().string();
   json["title"] = study.setup.title;
   json["model"] = "agent";
+  const auto& setup = study.setup;
+  json["geometry"] = {{"mesh", setup.mesh_file.string()}, {"mesh_parameters", setup.mesh_parameters},
+                      {"dim", study.mesh.grid.dim}, {"young", setup.young}, {"poisson", setup.poisson},
+                      {"thickness", setup.thickness}, {"rigid", setup.rigid_groups}, {"rollers", setup.roller_groups}};
+  json["loads"] = nlohmann::json::array();
+  for (const auto& l : setup.loads)
+    json["loads"].push_back({{"group", l.group}, {"direction", l.direction_name()}, {"force", l.force}});
   json["agent"] = {{"rule_set", agent::rule_set_name(study.rules)},
-                   {"readings", agent_study::names_of(study.readings)},
+                   {"readings", agent_study::names_of(study.readings)}, {"coefficients_used", nlohmann::json::array()},
                    {"agents", study.mesh.cell_of_element.size()}, {"agent_size", study.mesh.grid.size[0]},
                    {"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                    {"dropped", d.dropped}, {"lost", d.applied - d.rigid_reaction - d.passed_out - d.dropped},
                    {"agents_generated", d.agents_generated}, {"agent_updates", d.agent_updates},
                    {"packet_moves", d.packet_moves}};
-  for (const auto& [name, value] : agent_study::coefficient_values(study.coefficients))
-    json["agent"]["coefficients"][name] = value;
+  for (const auto& c : agent::kCoefficients) {  // every coefficient in effect; those the rule set reads, named
+    json["agent"]["coefficients"][c.name] = c.get(study.coefficients);
+    if (c.used_by(study.rules)) json["agent"]["coefficients_used"].push_back(c.name);
+  }
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
@@ -545,6 +625,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
 
   // 9. The gate, summary.json / summary.txt / junit.xml.
+  outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
   auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
   std::vector<std::string> notes{
       "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +

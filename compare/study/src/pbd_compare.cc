@@ -217,7 +217,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
 
   // Sample both along the centreline (s >= 0; the ghost node inside the clamp is left out).
   const RowSampler sampler(fem, 1e-6 * D);
-  std::vector<double> s_used, pbd_uy, fem_uy, eb_uy;
+  std::vector<double> s_used, pbd_uy, fem_uy, eb_uy, rest, pbd_u, fem_u;  // rest, pbd_u, fem_u: (x, y) per node
   auto csv = open_csv(dir / "centreline.csv");
   csv << "s [m],x0 [m],y0 [m],pbd_x [m],pbd_y [m],pbd_u_x [m],pbd_u_y [m],fem_u_x [m],fem_u_y [m],eb_u_y [m]\n";
   for (std::size_t k = 0; k < n_line; ++k) {
@@ -234,12 +234,20 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
     pbd_uy.push_back(p[1] - p0[1]);
     fem_uy.push_back(uf[1]);
     eb_uy.push_back(eb(line.s[k]));
+    rest.insert(rest.end(), {p0[0], p0[1]});
+    pbd_u.insert(pbd_u.end(), {p[0] - p0[0], p[1] - p0[1]});
+    fem_u.insert(fem_u.end(), {uf[0], uf[1]});
     csv << line.s[k] << ',' << p0[0] << ',' << p0[1] << ',' << p[0] << ',' << p[1] << ',' << p[0] - p0[0] << ','
         << p[1] - p0[1] << ',' << uf[0] << ',' << uf[1] << ',' << eb_uy.back() << '\n';
   }
   csv.close();
 
   CompareOutcome outcome;
+  FieldTable centreline;  // centreline.csv's columns, in memory
+  centreline.add("arc_length", 1, s_used), centreline.add("point", 2, std::move(rest));
+  centreline.add("pbd_u", 2, std::move(pbd_u)), centreline.add("fem_u", 2, std::move(fem_u));
+  centreline.add("eb_u_y", 1, eb_uy);
+  outcome.fields.lines.emplace_back("centreline", std::move(centreline));
   auto add = [&](const std::string& name, double value) {
     const auto it = std::find_if(std::begin(kMetrics), std::end(kMetrics), [&](const auto& m) { return name == m.first; });
     outcome.metrics.push_back({name, value, it->second});

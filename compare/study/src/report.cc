@@ -185,6 +185,12 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   }
   junit << "  </testsuite>\n</testsuites>\n";
   write_text(dir / "junit.xml", junit.str());
+  render_html(dir, log);
+}
+
+void render_html(const fs::path& dir, std::ostream& log) {
+  log << "report: writing report.html\n" << std::flush;
+  workbench::run_python_script("compare/report_html.py", {dir.string()}, dir / "report.log", "report_html.py");
 }
 
 namespace {

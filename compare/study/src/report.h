@@ -46,7 +46,7 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem);
 /// every body and far-field error that is worse than zero) and writes summary.json
 /// (`header` plus every metric with meaning, limit and verdict, and the gate's counts),
 /// summary.txt (`notes`, then the metric table, also on `log`) and junit.xml (one test case per
-/// gated metric, a <failure> for each one over its limit) into `dir`. A metric that is not finite
+/// gated metric, a <failure> for each one over its limit) into `dir`, then report.html (render_html). A metric that is not finite
 /// is a workbench::Error naming it and `case_file`, before anything is written.
 void finish(const std::filesystem::path& dir, const std::filesystem::path& case_file, nlohmann::json header,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
@@ -55,6 +55,12 @@ void finish(const std::filesystem::path& dir, const std::filesystem::path& case_
 /// Whether `m` is a relative L2 error not below the zero model's (kZeroModelRelL2): the model
 /// does no better than predicting zero there.
 bool worse_than_zero(const Metric& m);
+
+/// Renders dir/report.html from summary.json (a comparison) or report.json (a calibration) and the
+/// figures beside it with compare/report_html.py (Jinja2; its output into dir/report.log), once
+/// everything else is written; throws workbench::Error with the script's last line when it fails,
+/// so that a study without its page is a failed study.
+void render_html(const std::filesystem::path& dir, std::ostream& log);
 
 /// Runs `python <script> <dir> --title <title> --formats <png,pdf>` (`script` relative to share/workbench/, e.g.
 /// "compare/figures.py"; workbench/child_process.h), output into dir/figures.log; throws

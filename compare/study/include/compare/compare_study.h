@@ -13,6 +13,7 @@
 #include <array>
 #include <limits>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -70,8 +71,33 @@ struct GateFailure {
   std::string describe() const;
 };
 
+/// Columns of one table of compared fields, rows in the order of the CSV file the study wrote
+/// beside them (cells.csv, nodes.csv, lines.csv, centreline.csv), for callers that want them in
+/// memory (the Python module) rather than read back from the files.
+struct FieldTable {
+  enum class Kind { Real, Flag, Integer };
+  struct Column {
+    std::string name;
+    int components = 1;
+    std::vector<double> values;  ///< rows x components, row-major; a flag is 0 or 1
+    Kind kind = Kind::Real;
+  };
+  std::size_t rows = 0;
+  std::vector<Column> columns;
+  /// Appends a column of rows x components values.
+  void add(const std::string& name, int components, std::vector<double> values, Kind kind = Kind::Real);
+};
+
+/// The fields a comparison compared. Agent: cells (per agent, cells.csv's order), nodes (the
+/// body's nodes, nodes.csv's order), one table per sample line (lines.csv); PBD: the centreline.
+struct ComparedFields {
+  FieldTable cells, nodes;
+  std::vector<std::pair<std::string, FieldTable>> lines;  ///< line name, its samples
+};
+
 struct CompareOutcome {
   std::vector<Metric> metrics;
+  ComparedFields fields;
   std::vector<GateFailure> failures;  ///< gated metrics over their limit
   std::size_t gated = 0;              ///< metrics the gate checks
   std::vector<std::string> warnings;  ///< said on the log and in the summary (e.g. load lost)

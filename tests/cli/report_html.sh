@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# One page per study: report.html of an agent comparison (with figures), a PBD comparison and a
+# calibration, each opened in headless Chromium and checked against its summary.json / report.json
+# (tests/common/check_report.py: no console error, every image and link resolves, every number
+# shown is the JSON's). The check itself fails on a page whose number differs from the JSON; a
+# "worse than zero" flag in summary.json shows on the page; a report that cannot be rendered fails
+# the study (exit 2, one error line) and leaves the previous result whole.
+# Usage: report_html.sh WORKBENCH_BINARY SOURCE_DIR
+. "$(dirname "$0")/common.sh"
+py=/usr/bin/python3
+checker="$py $src/tests/common/check_report.py"
+render="$py $src/compare/report_html.py"
+
+# The gated plate with its figures (the page embeds them), and the PBD strip.
+sed -e "s#^file = \"\.\./#file = \"$src/#" -e 's/^figures = false/figures = true/' "$src/cases/gate_plate.toml" >"$work/plate.toml"
+"$bin" compare "$work/plate.toml" -o "$work/plate" >"$work/plate.log" 2>&1
+check compare_plate $? "$(tail -2 "$work/plate.log")"
+sed -e 's|^mesh = "\(.*\)"|mesh = "'"$src"'/cases/\1"|' -e 's|^file = "\(.*\)"|file = "'"$src"'/cases/\1"|' \
+  "$src/cases/pbd_strip_fem.toml" >"$work/strip.toml"
+"$bin" compare "$work/strip.toml" -o "$work/strip" >"$work/strip.log" 2>&1
+check compare_pbd $? "$(tail -2 "$work/strip.log")"
+# The same strip with one limit tightened: exit 1, and the page says which metric failed.
+sed 's/^"centreline.deflection.rel_l2" = .*/"centreline.deflection.rel_l2" = 1.0e-9/' "$work/strip.toml" >"$work/tight.toml"
+"$bin" compare "$work/tight.toml" -o "$work/tight" >"$work/tight.log" 2>&1
+check compare_pbd_gate_fails $(( $? != 1 )) "exit status not 1: $(tail -2 "$work/tight.log")"
+grep -q 'Gate FAILED: <span data-key="/gate/failed" data-format="num">1</span>' "$work/tight/report.html" &&
+  grep -q 'data-key="/metrics/centreline.deflection.rel_l2/passed" data-format="pass">EXCEEDED<' "$work/tight/report.html"
+check page_says_gate_failed $? "no 'Gate FAILED' with the exceeded metric on the page"
+# A calibration of two cases (so that it cross-validates), a few evaluations.
+cp "$work/plate.toml" "$work/plate_b.toml"
+printf '%s\n' 'title = "Report test calibration"' '[calibrate]' 'starts = 1' 'max_evaluations = 8' \
+  '[[calibrate.case]]' 'file = "plate.toml"' '[[calibrate.case]]' 'file = "plate_b.toml"' >"$work/cal.toml"
+"$bin" calibrate "$work/cal.toml" -o "$work/cal" >"$work/cal.log" 2>&1
+check calibrate $? "$(tail -2 "$work/cal.log")"
+
+$checker "$work/plate" "$work/strip" "$work/tight" "$work/cal"
+check pages_in_chromium $? "see above"
+ls "$work/plate/figures/"*.png >/dev/null 2>&1 && [ "$(grep -c '<img src="data:image/png;base64,' "$work/plate/report.html")" -ge 5 ]
+check figures_embedded $? "fewer than five embedded PNG figures on the plate's page"
+
+# The check fails on a page that shows a number the JSON does not hold.
+cp -r "$work/plate" "$work/tampered"
+$py - "$work/tampered/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["metrics"]["body.sigma_y.rel_l2"]["value"] *= 1.01
+json.dump(s, open(sys.argv[1], "w"))
+PY
+$checker "$work/tampered" >"$work/tampered.log" 2>&1
+[ $? -eq 1 ] && grep -q "/metrics/body.sigma_y.rel_l2/value: shows" "$work/tampered.log"
+check check_catches_a_wrong_number $? "$(cat "$work/tampered.log")"
+
+# ... and on a page with a console error (an inline script, refused by the page's policy) and an
+# image that does not decode.
+cp -r "$work/cal" "$work/broken_page"
+sed -i 's|</body>|<script>console.error("x")</script><img src="data:image/png;base64,AAAA"></body>|' "$work/broken_page/report.html"
+$checker "$work/broken_page" >"$work/broken_page.log" 2>&1
+[ $? -eq 1 ] && grep -q "log error: .*Content Security Policy" "$work/broken_page.log" &&
+  grep -q "not an embedded image that loaded" "$work/broken_page.log"
+check check_catches_console_errors_and_broken_images $? "$(cat "$work/broken_page.log")"
+
+# A boolean beside an error (e.g. worse than a zero model) shows as a flag, and the check requires it.
+cp -r "$work/plate" "$work/flagged"
+$py - "$work/flagged/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["metrics"]["far.sigma_y.rel_l2"]["worse_than_zero"] = True
+s["metrics"]["body.sigma_y.rel_l2"]["worse_than_zero"] = False
+json.dump(s, open(sys.argv[1], "w"))
+PY
+$render "$work/flagged" >/dev/null && $checker "$work/flagged" >/dev/null &&
+  grep -q 'data-key="/metrics/far.sigma_y.rel_l2/worse_than_zero" data-format="flag">worse than zero<' "$work/flagged/report.html" &&
+  ! grep -q 'data-key="/metrics/body.sigma_y.rel_l2/worse_than_zero"' "$work/flagged/report.html"
+check worse_than_zero_flag $? "the flag is not shown (or shown when false)"
+
+# A template that does not render: the study fails (exit 2, the error as its last line), the
+# previous result stays whole and no page is left half written.
+scripts=$(dirname "$bin")/../share/workbench
+cp -r "$scripts" "$work/scripts"
+echo '{{ d.no_such_key }}' >>"$work/scripts/compare/report.html.j2"
+before=$(snapshot "$work/strip")
+WORKBENCH_SCRIPT_DIR="$work/scripts" "$bin" compare "$work/strip.toml" -o "$work/strip" >"$work/broken.log" 2>&1
+rc=$?
+[ $rc -eq 2 ] && tail -1 "$work/broken.log" | grep -q "^workbench: error: report_html.py failed: .*no_such_key" &&
+  [ "$(grep -c '^workbench: error' "$work/broken.log")" -eq 1 ] && [ "$before" = "$(snapshot "$work/strip")" ]
+check broken_report_fails_the_study $? "exit $rc: $(tail -1 "$work/broken.log")"
+rm "$work/flagged/report.html"
+$py "$work/scripts/compare/report_html.py" "$work/flagged" 2>"$work/render.err"
+[ $? -eq 1 ] && [ ! -e "$work/flagged/report.html" ] && [ ! -e "$work/flagged/report.html.part" ] && [ "$(wc -l <"$work/render.err")" -eq 1 ]
+check no_half_page $? "$(cat "$work/render.err")"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -407,19 +407,28 @@ void write_field_files(const fs::path& dir, const AgentCompareInput& in, const G
 
 /// The fields of cells.csv, nodes.csv and lines.csv, in their rows' order, in memory (ComparedFields).
 ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& agent, const GridFields& fem,
-                               const agent_study::AgentState& state, double mask, const std::vector<LineSamples>& samples) {
+                               const agent_study::AgentState& state, double mask, const std::vector<ScopeSamples>& samples) {
   using Kind = FieldTable::Kind;
   const auto& grid = in.study.mesh.grid;
   const int dim = grid.dim;
-  const Ratios r[2] = {ratios(component(agent.sigma, 2, 0), component(fem.sigma, 2, 0), mask),
-                       ratios(component(agent.sigma, 2, 1), component(fem.sigma, 2, 1), mask)};
+  const Ratios r[2] = {ratios(component(agent.stress, kStressSlots, kSigmaX), component(fem.stress, kStressSlots, kSigmaX), mask),
+                       ratios(component(agent.stress, kStressSlots, kSigmaY), component(fem.stress, kStressSlots, kSigmaY), mask)};
+  // The other stress fields of this dimension (kFields): agent_<name>, fem_<name> columns as in cells.csv.
+  std::vector<const FieldSpec*> others;
+  for (const auto& field : kFields)
+    if (field.in(dim) && !field.per_node && field.slot != kSigmaX && field.slot != kSigmaY) others.push_back(&field);
+  std::vector<std::vector<double>> other_values(2 * others.size());
   std::vector<double> point, a, f, d, ratio, masked, far, generation, box;
   for (std::size_t cell : in.study.mesh.cell_of_element) {
     const Eigen::Vector3d c = grid.centre(cell);
     point.insert(point.end(), c.data(), c.data() + dim);
+    for (std::size_t o = 0; o < others.size(); ++o) {
+      other_values[2 * o].push_back(agent.stress[kStressSlots * cell + others[o]->slot]);
+      other_values[2 * o + 1].push_back(fem.stress[kStressSlots * cell + others[o]->slot]);
+    }
     for (int k = 0; k < 2; ++k) {
-      a.push_back(agent.sigma[2 * cell + k]);
-      f.push_back(fem.sigma[2 * cell + k]);
+      a.push_back(agent.stress[kStressSlots * cell + kSigmaX + k]);
+      f.push_back(fem.stress[kStressSlots * cell + kSigmaX + k]);
       d.push_back(a.back() - f.back());
       ratio.push_back(r[k].masked[cell] ? NAN : r[k].ratio[cell]);
       masked.push_back(r[k].masked[cell]);
@@ -433,6 +442,10 @@ ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& ag
   t.add("diff_sigma", 2, std::move(d)), t.add("ratio_sigma", 2, std::move(ratio));
   t.add("masked", 2, std::move(masked), Kind::Flag), t.add("far", 1, std::move(far), Kind::Flag);
   t.add("generation", 1, std::move(generation), Kind::Integer);
+  for (std::size_t o = 0; o < others.size(); ++o) {
+    t.add(std::string("agent_") + others[o]->name, 1, std::move(other_values[2 * o]));
+    t.add(std::string("fem_") + others[o]->name, 1, std::move(other_values[2 * o + 1]));
+  }
   for (std::size_t node : compare::body_node_ids(grid)) {
     const auto c = grid.node_coords(node);
     const Eigen::Vector3d x = grid.node_position(c[0], c[1], c[2]);
@@ -452,17 +465,29 @@ ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& ag
   for (std::size_t li = 0; li < in.lines.size(); ++li) {
     const auto& line = in.lines[li];
     const auto& s = samples[li];
-    std::vector<double> arc, at, sigma[2];
+    std::vector<double> arc, at, sigma[2], u[2];
+    const std::size_t sx = 0, sy = 1, ux = 8, uy = 9, uz = 10;  // kFields' sigma_x, sigma_y, u_x, u_y, u_z
+    static_assert(std::size(kFields) == 11, "compared_fields picks fields of kFields by place");
     for (std::size_t i = 0; i < line.body_samples.size(); ++i) {
       const Eigen::Vector3d p = line.point(line.body_samples[i]);
       arc.push_back((p - line.from).norm());
       at.insert(at.end(), p.data(), p.data() + dim);
-      for (int m = 0; m < 2; ++m) sigma[m].insert(sigma[m].end(), {s.sx[m][i], s.sy[m][i]});
+      for (int m = 0; m < 2; ++m) {
+        const auto& to = kSources[m].second;  // the agent, then the reference
+        sigma[m].insert(sigma[m].end(), {(s[sx].*to)[i], (s[sy].*to)[i]});
+        for (std::size_t c : {ux, uy, uz})
+          if (kFields[c].in(dim)) u[m].push_back((s[c].*to)[i]);
+      }
     }
     FieldTable l;
     l.add("arc_length", 1, std::move(arc)), l.add("point", dim, std::move(at));
     l.add("agent_sigma", 2, std::move(sigma[0])), l.add("fem_sigma", 2, std::move(sigma[1]));
-    l.add("agent_u", 2, s.u[0]), l.add("fem_u", 2, s.u[1]);
+    l.add("agent_u", dim, std::move(u[0])), l.add("fem_u", dim, std::move(u[1]));
+    for (const FieldSpec* field : others) {
+      const std::size_t k = std::size_t(field - kFields);
+      l.add(std::string("agent_") + field->name, 1, s[k].agent);
+      l.add(std::string("fem_") + field->name, 1, s[k].reference);
+    }
     out.lines.emplace_back(line.name, std::move(l));
   }
   return out;

@@ -171,22 +171,17 @@ void ElasticProblem<dim>::compute_reactions() {
   std::vector<types::global_dof_index> face_dofs;
   for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
     const auto comps = constrained_components(problem_.supports[s]);
-    for (const auto& cell : dof_handler_.active_cell_iterators()) {
-      if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
-      for (unsigned f = 0; f < cell->n_faces(); ++f) {
-        if (!cell->face(f)->at_boundary()) continue;
-        const auto id = cell->face(f)->boundary_id();
-        if (!carries(id, support_group_[s])) continue;
-        face_dofs.resize(fe_->n_dofs_per_face(f));
-        cell->face(f)->get_dof_indices(face_dofs);
-        for (unsigned i = 0; i < face_dofs.size(); ++i) {
-          const int c = fe_->face_system_to_component_index(i, f).first;
-          if (std::find(comps.begin(), comps.end(), c) == comps.end()) continue;
-          if (!owned_.is_element(face_dofs[i]) || !claimed.insert(face_dofs[i]).second) continue;
-          forces[3 * s + c] += residual(face_dofs[i]);
-        }
+    for_each_boundary_face([&](const auto& cell, unsigned f, types::boundary_id id) {
+      if (!carries(id, support_group_[s])) return;
+      face_dofs.resize(fe_->n_dofs_per_face(f));
+      cell->face(f)->get_dof_indices(face_dofs);
+      for (unsigned i = 0; i < face_dofs.size(); ++i) {
+        const int c = fe_->face_system_to_component_index(i, f).first;
+        if (std::find(comps.begin(), comps.end(), c) == comps.end()) continue;
+        if (!owned_.is_element(face_dofs[i]) || !claimed.insert(face_dofs[i]).second) continue;
+        forces[3 * s + c] += residual(face_dofs[i]);
       }
-    }
+    });
   }
   Utilities::MPI::sum(forces, comm_, forces);
   result_.reactions.clear();

@@ -134,6 +134,16 @@ class ElasticProblem {
     return id > 0 && id < groups_of_id_.size() &&
            std::count(groups_of_id_[id].begin(), groups_of_id_[id].end(), unsigned(g)) > 0;
   }
+  /// Calls visit(cell, f, id) for each boundary face f, of boundary id `id`, of the locally owned
+  /// active cells, in cell order (DoFs distributed).
+  template <typename Visit>
+  void for_each_boundary_face(const Visit& visit) const {
+    for (const auto& cell : dof_handler_.active_cell_iterators()) {
+      if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
+      for (unsigned f = 0; f < cell->n_faces(); ++f)
+        if (cell->face(f)->at_boundary()) visit(cell, f, cell->face(f)->boundary_id());
+    }
+  }
   bool has_body_force() const {
     return problem_.body_force_function || problem_.body_force != std::array<double, 3>{};
   }

@@ -191,26 +191,21 @@ template <int dim>
 void ElasticProblem<dim>::check_rigid_motion() const {
   const int n_modes = dim == 2 ? 3 : 6;
   std::vector<double> gram(n_modes * n_modes, 0.0);
-  for (const auto& cell : tria_->active_cell_iterators()) {
-    if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
-    for (unsigned f = 0; f < cell->n_faces(); ++f) {
-      if (!cell->face(f)->at_boundary()) continue;
-      const auto id = cell->face(f)->boundary_id();
-      for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
-        if (!carries(id, support_group_[s])) continue;
-        for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) {
-          double x[3];
-          mode_frame_.coordinates(cell->face(f)->vertex(v), x);
-          for (int c : constrained_components(problem_.supports[s])) {
-            std::vector<double> row(n_modes, 0.0);
-            set_rigid_body_modes(dim, x, unsigned(c), 0, 1, row);
-            for (int i = 0; i < n_modes; ++i)
-              for (int j = 0; j < n_modes; ++j) gram[i * n_modes + j] += row[i] * row[j];
-          }
+  for_each_boundary_face([&](const auto& cell, unsigned f, types::boundary_id id) {
+    for (std::size_t s = 0; s < problem_.supports.size(); ++s) {
+      if (!carries(id, support_group_[s])) continue;
+      for (unsigned v = 0; v < cell->face(f)->n_vertices(); ++v) {
+        double x[3];
+        mode_frame_.coordinates(cell->face(f)->vertex(v), x);
+        for (int c : constrained_components(problem_.supports[s])) {
+          std::vector<double> row(n_modes, 0.0);
+          set_rigid_body_modes(dim, x, unsigned(c), 0, 1, row);
+          for (int i = 0; i < n_modes; ++i)
+            for (int j = 0; j < n_modes; ++j) gram[i * n_modes + j] += row[i] * row[j];
         }
       }
     }
-  }
+  });
   Utilities::MPI::sum(gram, comm_, gram);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Eigen::Map<const Eigen::MatrixXd>(gram.data(), n_modes, n_modes));
   const Eigen::VectorXd& values = eigen.eigenvalues();
@@ -301,20 +296,15 @@ void ElasticProblem<dim>::assemble_system() {
 
   // Uniform tractions: total force over the group's area (times the thickness in 2D).
   std::vector<double> area(traction_group_.size(), 0.0);
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    if (!cell->is_locally_owned() || !cell->at_boundary()) continue;
-    for (unsigned f = 0; f < cell->n_faces(); ++f) {
-      if (!cell->face(f)->at_boundary()) continue;
-      const auto id = cell->face(f)->boundary_id();
-      bool reinit = false;
-      for (std::size_t t = 0; t < traction_group_.size(); ++t)
-        if (carries(id, traction_group_[t])) {
-          if (!reinit) fe_face_values.reinit(cell, f);
-          reinit = true;
-          for (unsigned q = 0; q < fe_face_values.n_quadrature_points; ++q) area[t] += fe_face_values.JxW(q);
-        }
-    }
-  }
+  for_each_boundary_face([&](const auto& cell, unsigned f, types::boundary_id id) {
+    bool reinit = false;
+    for (std::size_t t = 0; t < traction_group_.size(); ++t)
+      if (carries(id, traction_group_[t])) {
+        if (!reinit) fe_face_values.reinit(cell, f);
+        reinit = true;
+        for (unsigned q = 0; q < fe_face_values.n_quadrature_points; ++q) area[t] += fe_face_values.JxW(q);
+      }
+  });
   Utilities::MPI::sum(area, comm_, area);
   uniform_traction_.assign(traction_group_.size(), Tensor<1, dim>());
   for (std::size_t t = 0; t < traction_group_.size(); ++t)

@@ -2,6 +2,7 @@
 #include "commands.h"
 
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
 

@@ -12,7 +12,7 @@
 // not write; SIGINT/SIGTERM end the run cleanly with 130/143 (docs/reliability.md).
 #include "commands.h"
 
-#include <fem_reference/fem.h>
+#include <fem_reference/mpi.h>
 #include <workbench/error.h>
 #include <workbench/interruption.h>
 

@@ -3,6 +3,7 @@
 #include "plain_mesh.h"
 
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/study_setup.h>

@@ -32,7 +32,7 @@ PlainMesh box_mesh(const Box& box);
 /// The axis a group's faces are perpendicular to (all must lie in planes x_a = const); -1 if none.
 int normal_axis(const PlainMesh& mesh, const std::string& group);
 
-/// Solves on a plain mesh (elastic_problem.cc).
+/// Solves on a plain mesh (problem/elastic_problem.cc).
 FemResult solve_on_mesh(const FemProblem& problem, const PlainMesh& mesh, const std::filesystem::path& output_dir,
                         std::ostream* log, double mesh_seconds);
 

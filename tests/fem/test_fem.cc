@@ -2,6 +2,7 @@
 // convergence rates, Cook's membrane, the Timoshenko-Goodier cantilever, equilibrium of reactions,
 // and bad input. Only the plain-data API is used (no deal.II here).
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <workbench/error.h>
 
 #include <gtest/gtest.h>

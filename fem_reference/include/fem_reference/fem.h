@@ -2,8 +2,9 @@
 // The deal.II linear-elastic FEM reference (docs/fem-reference.md), seen through plain data only:
 // this header includes no deal.II and no case-file reader, so the comparison module, the tests and
 // programs that build a FemProblem themselves compile against it cheaply. The deal.II code lives in
-// fem_reference/src/elastic_problem.cc and mg_solver.cc; reading a case file into a FemProblem is
-// fem_reference/fem_case.h.
+// fem_reference/src/ (problem/, mg/, amg/); reading a case file into a FemProblem is
+// fem_reference/fem_case.h, the MPI runtime (start-up settings, ranks, collective steps)
+// fem_reference/mpi.h.
 //
 //   fem_reference::FemProblem problem;
 //   problem.box = fem_reference::Box{{0, 0, 0}, {1, 0.1, 0}, {40, 4, 0}};
@@ -168,25 +169,5 @@ FemResult solve_fem(const FemProblem& problem, const std::filesystem::path& outp
 
 /// Writes fem_cells.csv, fem_nodes.csv, fem_reactions.csv and fem_summary.csv into `dir`.
 void write_fem_csv(const FemResult& result, const std::filesystem::path& dir);
-
-/// For a run that mpirun or srun did not start (one process): sets OpenMPI's environment so that
-/// MPI starts up in 0.02 s instead of 0.27 s: the ob1 point-to-point layer instead of probing UCX,
-/// no UCX one-sided component (both serve networks one process does not use) and no orted helper
-/// for the singleton. A variable already set is kept; under mpirun or srun nothing changes. Call it
-/// first in main(), before any thread starts (setenv is not safe beside another thread's getenv).
-void configure_singleton_mpi();
-
-/// MPI rank of this process and the number of ranks (1 without mpirun); these initialise MPI
-/// (finalised at exit) if the program has not.
-int mpi_rank();
-int mpi_size();
-/// Waits for every rank.
-void mpi_barrier();
-/// Broadcasts a string from rank 0.
-std::string mpi_broadcast(const std::string& text);
-/// Runs `step` on every rank (collective: every rank calls it); if it throws on any rank, every rank
-/// throws the same workbench::Error (the message of the lowest failing rank), so no rank is left
-/// waiting in a later collective. For steps that may fail on one rank only (files, folders).
-void mpi_collective(const std::function<void()>& step);
 
 }  // namespace fem_reference

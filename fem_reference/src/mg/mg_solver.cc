@@ -1,7 +1,10 @@
-// Matrix-free geometric multigrid for the FEM reference (see mg_solver.h). Separate translation unit
-// from elastic_problem.cc so the two (each about 20-30 s) compile in parallel; instantiated for
-// dim 2, 3 and degree 1, 2.
-#include "mg_solver.h"
+// Matrix-free geometric multigrid for the FEM reference (see mg_solver.h). Its own translation unit
+// (about 20-30 s to compile, as each of the problem's two) so that they compile in parallel;
+// instantiated for dim 2, 3 and degree 1, 2.
+#include "mg/mg_solver.h"
+
+#include "amg/amg.h"
+#include "elasticity.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -29,8 +32,6 @@
 #include <deal.II/multigrid/mg_tools.h>
 #include <deal.II/multigrid/mg_transfer_matrix_free.h>
 #include <deal.II/multigrid/multigrid.h>
-
-#include <Teuchos_ParameterList.hpp>
 
 #include <cstdlib>
 #include <algorithm>
@@ -291,7 +292,7 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
             cell->get_mg_dof_indices(dofs);
             return true;
           },
-          dof.locally_owned_mg_dofs(0), s.mode_centre, s.mode_size);
+          dof.locally_owned_mg_dofs(0), s.mode_frame);
       amg_ = std::make_unique<TrilinosWrappers::PreconditionAMG>();
       initialize_elasticity_ml(*amg_, matrix_, dim, degree, modes_);
       name = "ML AMG cycle";
@@ -436,41 +437,5 @@ template MgOutcome solve_mg<2>(const Mapping<2>&, DoFHandler<2>&, const AffineCo
 template MgOutcome solve_mg<3>(const Mapping<3>&, DoFHandler<3>&, const AffineConstraints<double>&, const MgBoundaries&,
                                const TrilinosWrappers::MPI::Vector&, TrilinosWrappers::MPI::Vector&, const MgSettings&,
                                const std::function<void(const char*)>&);
-
-bool direct_is_fast(double n_dofs, int dim, long direct_limit) {
-  const double limit = double(direct_limit);
-  return dim == 2 ? n_dofs <= limit : n_dofs * n_dofs <= limit * std::sqrt(limit);
-}
-
-void set_rigid_body_modes(int dim, const double* x, unsigned component, std::size_t row, std::size_t n_local,
-                          std::vector<double>& modes) {
-  modes[component * n_local + row] = 1;  // translations
-  if (dim == 2) {
-    modes[2 * n_local + row] = component == 0 ? -x[1] : x[0];
-  } else {
-    const double rx[3] = {0, -x[2], x[1]}, ry[3] = {x[2], 0, -x[0]}, rz[3] = {-x[1], x[0], 0};
-    modes[3 * n_local + row] = rx[component];
-    modes[4 * n_local + row] = ry[component];
-    modes[5 * n_local + row] = rz[component];
-  }
-}
-
-void initialize_elasticity_ml(TrilinosWrappers::PreconditionAMG& amg, const TrilinosWrappers::SparseMatrix& matrix,
-                              int dim, int degree, std::vector<double>& modes) {
-  TrilinosWrappers::PreconditionAMG::AdditionalData data;
-  data.elliptic = true;
-  data.higher_order_elements = degree > 1;
-  data.smoother_sweeps = 2;
-  data.aggregation_threshold = 0.02;
-  Teuchos::ParameterList list;
-  std::unique_ptr<Epetra_MultiVector> constant_modes;
-  data.set_parameters(list, constant_modes, matrix);
-  list.set("PDE equations", dim);
-  list.set("null space: type", "pre-computed");
-  list.set("null space: dimension", dim == 2 ? 3 : 6);
-  list.set("null space: vectors", modes.data());
-  list.set("ML output", 0);
-  amg.initialize(matrix, list);
-}
 
 }  // namespace fem_reference

@@ -1,0 +1,58 @@
+// Matrix-free geometric multigrid for the FEM reference (private header; deal.II types).
+// The solver of fem.solver = "mg" (and of "auto" on refined quadrilateral/hexahedral meshes): CG on
+// the matrix-free elasticity operator, preconditioned by a V-cycle over the global refinement levels
+// (Chebyshev-Jacobi smoothing in single precision, step-37 style) with the coarse mesh solved by KLU
+// when direct_is_fast for it (elasticity.h), else by one ML AMG cycle (amg/amg.h).
+// No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
+#pragma once
+
+#include "amg/amg.h"
+
+#include <fem_reference/fem.h>
+
+#include <deal.II/base/types.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <functional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace fem_reference {
+
+struct MgSettings {
+  double lambda = 0, mu = 0;  ///< Lame coefficients of the bilinear form (lambda* in plane stress)
+  double tolerance = 1e-10;   ///< relative to ||rhs||
+  int max_iterations = 2000;
+  long direct_limit = FemOptions{}.direct_limit;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
+  int smoother_degree = 4;    ///< Chebyshev degree of pre- and post-smoothing
+  ModeFrame mode_frame;       ///< of the rigid body modes of the coarse ML cycle
+};
+
+struct MgOutcome {
+  int iterations = 0;
+  double residual = 0;  ///< ||K u - f|| / ||f|| of the condensed system
+  std::string solver;
+  std::vector<std::size_t> matrices_per_level;  ///< element matrices stored per level (the profile)
+};
+
+/// Zero boundary conditions of the multigrid levels: boundary ids and the components they hold.
+using MgBoundaries = std::vector<std::pair<std::set<dealii::types::boundary_id>, dealii::ComponentMask>>;
+
+/// Degrees 1 and 2 on quadrilaterals/hexahedra. `dof_handler` must have its DoFs distributed;
+/// its level DoFs are distributed here. `constraints` are the (possibly inhomogeneous) Dirichlet
+/// constraints `rhs` was condensed with; `solution` gets the homogeneous part (constrained entries
+/// zero; distribute the constraints afterwards). `profile(name)` starts the profiled phase `name`
+/// (ending the one before; nullptr ends the last). Throws SolverControl::NoConvergence.
+template <int dim>
+MgOutcome solve_mg(const dealii::Mapping<dim>& mapping, dealii::DoFHandler<dim>& dof_handler,
+                   const dealii::AffineConstraints<double>& constraints, const MgBoundaries& boundaries,
+                   const dealii::TrilinosWrappers::MPI::Vector& rhs, dealii::TrilinosWrappers::MPI::Vector& solution,
+                   const MgSettings& settings, const std::function<void(const char*)>& profile);
+
+}  // namespace fem_reference

@@ -28,7 +28,7 @@ for command in agent compare; do
       t=$(now)
       if [ "$mode" = off ]; then export WORKBENCH_SYNC=off; else unset WORKBENCH_SYNC; fi
       "$bin" "$command" "$work/seed_plate.toml" -o "$work/out" >/dev/null 2>&1 || { echo "$command failed"; exit 1; }
-      awk -v a="$(now)" -v b="$t" 'BEGIN {print a - b}' >>"$work/$mode"
+      awk -v a="$(now)" -v b="$t" 'BEGIN {print a - b}' | tee -a "$work/$mode" | sed "s/^/$command $mode: /" >&2
     done
   done
   unset WORKBENCH_SYNC

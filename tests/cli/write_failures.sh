@@ -123,12 +123,11 @@ inject() {
 
 limits() {
   local name=$1 args=$2 target="$out/$1"
-  # shellcheck disable=SC2086
-  "$bin" $args -o "$target" >"$logs/stdout" 2>"$logs/stderr" || { check "${name}_first" 1 "$(cat "$logs/stderr")"; return; }
   local blocks
-  for blocks in 1 16 200 100000; do
-    local before rc
-    before=$(digest "$target")
+  # 100000 blocks first: the whole output fits, and is the earlier output the others must keep.
+  for blocks in 100000 1 16 200; do
+    local before="" rc
+    [ -d "$target" ] && before=$(digest "$target")
     # shellcheck disable=SC2086
     (ulimit -f "$blocks" && exec "$bin" $args -o "$target" >"$logs/stdout" 2>"$logs/stderr")
     rc=$?
@@ -162,7 +161,10 @@ case "$mode" in
     done ;;
   ulimit)
     room
-    for entry in "${runs[@]}"; do limits "${entry%%|*}" "${entry#*|}"; done ;;
+    for entry in "${runs[@]}"; do
+      [ -n "${ONLY:-}" ] && [ "${entry%%|*}" != "$ONLY" ] && continue
+      limits "${entry%%|*}" "${entry#*|}"
+    done ;;
   tmpfs)
     if [ "$(id -u)" -ne 0 ]; then echo "tmpfs: skipped (not root)"; exit 0; fi
     mkdir -p "$work/small"

@@ -3,10 +3,13 @@
 
 #include <compare/compare_study.h>
 #include <workbench/case_file.h>
+#include <workbench/output_file.h>
 #include <workbench/staged_directory.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <memory>
 
 namespace cli {
@@ -38,9 +41,13 @@ void add_compare_command(CLI::App& app, Action& action) {
         const auto parent = std::filesystem::path(*junit).parent_path();
         std::error_code ec;
         if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        std::filesystem::copy_file(staged.target() / "junit.xml", *junit,
-                                   std::filesystem::copy_options::overwrite_existing, ec);
-        if (ec) throw workbench::Error(*junit + ": --junit: cannot write the report (" + ec.message() + ")");
+        std::ifstream report(staged.target() / "junit.xml", std::ios::binary);
+        const std::string text{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
+        try {
+          workbench::replace_file(*junit, text);  // a failed write leaves an earlier report whole
+        } catch (const workbench::Error& e) {
+          throw workbench::Error(std::string(e.what()) + " (--junit; the output folder is complete)");
+        }
       }
       std::cerr << "compare: wrote " << staged.target().string() << "\n";
       for (const auto& f : outcome.failures)

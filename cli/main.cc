@@ -16,11 +16,15 @@
 #include <workbench/error.h>
 #include <workbench/interruption.h>
 
+#include <csignal>
 #include <iostream>
 
 int main(int argc, char** argv) {
   fem_reference::configure_singleton_mpi();      // first: it sets the environment
   workbench::handle_interruptions("workbench");  // before any thread starts
+  // A file-size limit (`ulimit -f`) makes a write fail with EFBIG, reported as a failed write
+  // (workbench/output_file.h), instead of killing the process; the scripts inherit it.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"Fast deformation models (agent load transfer, PBD angle bending) against a deal.II FEM reference"};
   app.require_subcommand(1);
   cli::Action action;

@@ -28,6 +28,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402  (matplotlib's own dependency)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from child_report import DISK_ERRORS, WRITE_FAILED, guarded, write_failed  # noqa: E402
+
 
 def column_name(header):
     """A CSV column's name without its unit ("sigma_y [Pa]" -> "sigma_y")."""
@@ -73,9 +76,19 @@ def progress(text):
         print("figures: " + text, file=sys.stderr, flush=True)
 
 
+def saving(path, write):
+    """Runs write(path); a full disk or a file-size limit ends the script with the one report."""
+    try:
+        write(path)
+    except OSError as err:
+        if err.errno not in DISK_ERRORS:
+            raise
+        write_failed(path, err)
+
+
 def save(fig, out, name, formats):
     for ext in formats:
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=150)  # constrained layout: no "tight" redraw
+        saving(os.path.join(out, f"{name}.{ext}"), lambda p: fig.savefig(p, dpi=150))  # constrained layout: no "tight" redraw
         fig.set_layout_engine("none")  # the layout is done: the second format keeps it (9 % less CPU)
     plt.close(fig)
     progress(f"{name} drawn")
@@ -197,7 +210,8 @@ def animation_gif(steps, agent_nodes, out, name="agent_steps.gif"):
                                        "raw", "RGBA", 0, 1))
     plt.close(fig)
     # As matplotlib's PillowWriter saves them, at 4 frames per second, looping.
-    frames[0].save(os.path.join(out, name), save_all=True, append_images=frames[1:], duration=250, loop=0)
+    saving(os.path.join(out, name),
+           lambda p: frames[0].save(p, save_all=True, append_images=frames[1:], duration=250, loop=0))
     progress(f"{name} drawn")
 
 
@@ -396,6 +410,8 @@ def main():
             proc.start()
         for proc in procs:
             proc.join()
+        if any(proc.exitcode == WRITE_FAILED for proc in procs):
+            os._exit(WRITE_FAILED)  # the drawing process has sent the report
         if any(proc.exitcode != 0 for proc in procs):
             sys.exit("figures: a drawing process failed")
     else:
@@ -413,4 +429,4 @@ def run_all(figures, names=None):
 
 
 if __name__ == "__main__":
-    main()
+    guarded(main)

@@ -14,7 +14,8 @@ import os
 import matplotlib.pyplot as plt
 import numpy as np
 
-from figures import read_csv  # compare/figures.py: the same CSV reader (and the Agg backend)
+from figures import read_csv, saving  # compare/figures.py: the same CSV reader, the checked save (and the Agg backend)
+from child_report import guarded  # scripts/child_report.py, on the path figures.py sets
 
 
 def main():
@@ -47,9 +48,9 @@ def main():
     bx.legend()
     fig.tight_layout()
     for ext in args.formats.split(","):
-        fig.savefig(os.path.join(out, f"centreline.{ext}"), dpi=150, bbox_inches="tight")
+        saving(os.path.join(out, f"centreline.{ext}"), lambda p: fig.savefig(p, dpi=150, bbox_inches="tight"))
     plt.close(fig)
 
 
 if __name__ == "__main__":
-    main()
+    guarded(main)

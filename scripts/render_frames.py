@@ -19,13 +19,16 @@ Usage
 
   --view auto: xy when every z is equal in the first frame, else a 3D view (equal axes). Axis
   limits and the colour range are fixed over all frames. Progress on stderr when it is a terminal.
-  Exit status 0 on success, 1 with a one-line message.
+  Exit status 0 on success, 1 with a one-line message, 74 when a write failed (a full disk, a
+  file-size limit: scripts/child_report.py).
 """
 import argparse
 import csv
+import errno
 import glob
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -37,6 +40,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
+
+from child_report import DISK_ERRORS, disk_error_text, guarded, write_failed  # noqa: E402  (beside this script)
 
 
 def fail(msg):
@@ -218,7 +223,13 @@ def main():
                 fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, label=field, shrink=0.8)
             label = (a.title + "  " if a.title else "") + (f"t = {time:.4g} s" if time is not None else f"frame {k}")
             ax.set_title(label)
-            fig.savefig(os.path.join(tmp, f"img_{k:05d}.png"))
+            image = os.path.join(tmp, f"img_{k:05d}.png")
+            try:
+                fig.savefig(image)
+            except OSError as err:
+                if err.errno not in DISK_ERRORS:
+                    raise
+                write_failed(image, err)
             plt.close(fig)
         drawing.done()
         if PROGRESS is not None:
@@ -231,7 +242,12 @@ def main():
             cmd = ["ffmpeg", "-y", "-loglevel", "error", *src, "-vf",
                    "split[s0][s1];[s0]palettegen[p];[s1][p]paletteuse", a.output]
         r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode == -signal.SIGXFSZ:  # a file-size limit (subprocess restores its default action)
+            write_failed(a.output, OSError(errno.EFBIG, os.strerror(errno.EFBIG)))
         if r.returncode != 0:
+            reason = disk_error_text(r.stderr)
+            if reason:  # ffmpeg could not write the animation (or read the frames back)
+                write_failed(a.output, OSError(0, reason))
             fail("ffmpeg failed: " + (r.stderr.strip().splitlines() or ["?"])[-1])
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -239,4 +255,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    guarded(main)

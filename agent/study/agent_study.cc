@@ -3,6 +3,7 @@
 
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
+#include <workbench/output_file.h>
 #include <workbench/vtk_output.h>
 
 #include <nlohmann/json.hpp>
@@ -324,10 +325,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   j["agent_updates"] = d.agent_updates;
   j["packet_moves"] = d.packet_moves;
   j["warnings"] = warnings;
-  std::ofstream out(file);
-  out << j.dump(2) << '\n';
-  out.close();
-  if (!out) throw Error(file.string() + ": write failed");
+  workbench::write_file(file, j.dump(2) + "\n");
 }
 
 }  // namespace
@@ -350,7 +348,8 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
     check_finite(state.displacement, "displacement");
     char name[64];
     std::snprintf(name, sizeof name, "agent_step_%03d.vtu", k);
-    workbench::write_vtu(dir / name, mesh, point_fields(study, state), cell_fields(study, state));
+    workbench::write_vtu(dir / name, mesh, point_fields(study, state), cell_fields(study, state),
+                         k == 1 ? std::size_t(steps) : 1);  // the first step: the whole series must fit
     series.emplace_back(factor, name);
     const auto& d = state.diagnostics;
     diagnostics << k << ',' << factor << ',' << d.agents_generated << ',' << d.agent_updates << ',' << d.applied << ','

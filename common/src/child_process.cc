@@ -3,6 +3,7 @@
 #include <workbench/child_process.h>
 #include <workbench/error.h>
 #include <workbench/interruption.h>
+#include <workbench/staged_directory.h>
 
 #include <cerrno>
 #include <csignal>
@@ -127,11 +128,20 @@ bool ChildProcess::send(const std::string& line) {
 }
 
 int ChildProcess::wait() {
-  if (input_ >= 0) ::close(input_);
-  input_ = -1;
+  if (input_ >= 0) ::shutdown(input_, SHUT_WR);  // the child sees the end of its input
   int status = 0;
   while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
   }
+  // What it wrote back (a failed write's message); not waiting for a grandchild that holds the
+  // socket open too.
+  char text[4096];
+  for (ssize_t n; input_ >= 0 && (n = ::recv(input_, text, sizeof text, MSG_DONTWAIT)) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) break;
+    report_.append(text, std::size_t(n));
+  }
+  if (input_ >= 0) ::close(input_);
+  input_ = -1;
   pid_ = 0;
   set_child_group(0);
   while (interruption_under_way()) ::pause();  // the watcher ends the process (its signals are blocked here)
@@ -151,7 +161,12 @@ ChildProcess::~ChildProcess() {
   set_child_group(0);
 }
 
-int run_child(const std::vector<std::string>& argv, const fs::path& log) { return ChildProcess(argv, log).wait(); }
+int run_child(const std::vector<std::string>& argv, const fs::path& log, std::string* report) {
+  ChildProcess child(argv, log);
+  const int status = child.wait();
+  if (report) *report = child.report();
+  return status;
+}
 
 std::vector<std::string> python_script_command(const std::string& script, const std::vector<std::string>& args) {
   std::vector<std::string> argv{python_interpreter(), find_script(script).string()};
@@ -159,18 +174,31 @@ std::vector<std::string> python_script_command(const std::string& script, const 
   return argv;
 }
 
-void check_script_status(int status, const fs::path& log, const std::string& what) {
+namespace {
+std::string last_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text.substr(text.find_last_of('\n') + 1);
+}
+}  // namespace
+
+void check_script_status(int status, const fs::path& log, const std::string& what, const std::string& report) {
   if (status == 0) return;
   std::ifstream in(log);
   std::string line, last;
   while (std::getline(in, line))
     if (!line.empty()) last = line;
-  throw Error(what + " failed: " + (last.empty() ? "see " + log.string() : last));
+  if (status == kWriteFailedStatus) {
+    const std::string message = last_line(report).empty() ? last : last_line(report);
+    throw Error(shown_text(message.empty() ? what + ": a write failed (exit " + std::to_string(status) + ")" : message));
+  }
+  throw Error(shown_text(what + " failed: " + (last.empty() ? "see " + log.string() : last)));
 }
 
 void run_python_script(const std::string& script, const std::vector<std::string>& args, const fs::path& log,
                        const std::string& what) {
-  check_script_status(run_child(python_script_command(script, args), log), log, what);
+  std::string report;
+  const int status = run_child(python_script_command(script, args), log, &report);
+  check_script_status(status, log, what, report);
 }
 
 }  // namespace workbench

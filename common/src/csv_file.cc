@@ -13,13 +13,7 @@ std::string shortest_decimal(double v) {
   return std::string(buf, r.ptr);
 }
 
-CsvFile::CsvFile(std::filesystem::path file) : file_(std::move(file)), out_(file_) {
-  if (!out_) throw Error(file_.string() + ": cannot open for writing");
-}
-
-void CsvFile::check() const {
-  if (!out_) throw Error(file_.string() + ": write failed");
-}
+CsvFile::CsvFile(std::filesystem::path file) : file_(file), out_(std::move(file)) {}
 
 CsvFile& CsvFile::text(const std::string& s) {
   for (char c : s) {
@@ -41,8 +35,7 @@ CsvFile& CsvFile::text(const std::string& s) {
       if (field_ == 0) line_head_ += c;
     }
   }
-  out_ << s;
-  check();
+  out_.write(s);
   return *this;
 }
 
@@ -57,9 +50,6 @@ CsvFile& CsvFile::operator<<(double v) {
   return text(shortest_decimal(v));
 }
 
-void CsvFile::close() {
-  out_.close();
-  check();
-}
+void CsvFile::close() { out_.close(); }
 
 }  // namespace workbench

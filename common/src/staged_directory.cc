@@ -1,12 +1,18 @@
 // Output folders written whole into a staging folder and swapped in; user folders never touched.
 #include <workbench/error.h>
 #include <workbench/interruption.h>
+#include <workbench/output_file.h>
 #include <workbench/staged_directory.h>
 
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <system_error>
+#include <utility>
+#include <vector>
 #include <unistd.h>
 
 namespace workbench {
@@ -49,7 +55,43 @@ void remove_stale_siblings(const fs::path& target) {
   }
 }
 
+// Live staging folders and their targets, for messages (shown_path).
+std::mutex shown_mutex;
+std::vector<std::pair<fs::path, fs::path>> live_stagings;
+
+void show_as(const fs::path& staging, const fs::path& target) {
+  std::lock_guard<std::mutex> lock(shown_mutex);
+  live_stagings.emplace_back(staging, target);
+}
+
+void forget_shown(const fs::path& staging) {
+  std::lock_guard<std::mutex> lock(shown_mutex);
+  for (auto it = live_stagings.begin(); it != live_stagings.end(); ++it)
+    if (it->first == staging) {
+      live_stagings.erase(it);
+      break;
+    }
+}
+
 }  // namespace
+
+std::string shown_path(const fs::path& path) {
+  std::lock_guard<std::mutex> lock(shown_mutex);
+  for (const auto& [staging, target] : live_stagings) {
+    const fs::path relative = path.lexically_relative(staging);
+    if (relative == ".") return target.string();
+    if (!relative.empty() && *relative.begin() != "..") return (target / relative).lexically_normal().string();
+  }
+  return path.string();
+}
+
+std::string shown_text(std::string text) {
+  std::lock_guard<std::mutex> lock(shown_mutex);
+  for (const auto& [staging, target] : live_stagings)
+    for (std::size_t at; (at = text.find(staging.string())) != std::string::npos;)
+      text.replace(at, staging.string().size(), target.string());
+  return text;
+}
 
 bool carries_stamp(const fs::path& dir) {
   std::error_code ec;
@@ -81,10 +123,17 @@ StagedDirectory::StagedDirectory(fs::path target, const fs::path& case_file)
     throw Error(target_.string() + ": cannot create the staging folder " + staging_.filename().string() + " (" +
                 (ec ? ec.message() : "it exists") + ")");
   remove_on_interruption(staging_);
-  std::ofstream stamp(staging_ / kStampFile);
-  stamp << "program = \"workbench\"\nversion = \"" << WORKBENCH_VERSION << "\"\ncase = \""
-        << fs::absolute(case_file).lexically_normal().string() << "\"\n";
-  if (!stamp.flush()) throw Error((staging_ / kStampFile).string() + ": write failed");
+  show_as(staging_, target_);
+  try {
+    write_file(staging_ / kStampFile, std::string("program = \"workbench\"\nversion = \"") + WORKBENCH_VERSION +
+                                          "\"\ncase = \"" + fs::absolute(case_file).lexically_normal().string() + "\"\n");
+  } catch (...) {
+    // No destructor runs for an object whose constructor throws: the folder created above goes here.
+    fs::remove_all(staging_, ec);
+    forget_on_interruption(staging_);
+    forget_shown(staging_);
+    throw;
+  }
 }
 
 StagedDirectory::~StagedDirectory() {
@@ -93,9 +142,16 @@ StagedDirectory::~StagedDirectory() {
   std::error_code ec;
   fs::remove_all(staging_, ec);  // created by this object (create_directory above succeeded)
   forget_on_interruption(staging_);
+  forget_shown(staging_);
 }
 
 void StagedDirectory::commit() {
+  // Outside the lock: a slow disk's sync must not hold off an interruption (which removes the
+  // folder); what the rename below moves is already on the disk. WORKBENCH_SYNC=off skips the
+  // syncs (a scratch disk; the before/after measurement in docs/performance.md).
+  const char* sync_setting = std::getenv("WORKBENCH_SYNC");
+  const bool durable = !(sync_setting && std::string(sync_setting) == "off");
+  if (durable) sync_tree(staging_);
   auto lock = hold_interruptions();
   check_replaceable(target_);  // again: the folder may have changed while the study ran
   std::error_code ec;
@@ -113,6 +169,16 @@ void StagedDirectory::commit() {
   }
   committed_ = true;
   forget_on_interruption(staging_);
+  forget_shown(staging_);
+  // The renames become durable once the parent folder is synced (before the old output is
+  // deleted: a power cut in between leaves it as a stale sibling, removed by the next run). The new
+  // output is in place and whole either way, so a failure here is a warning, not an error.
+  try {
+    if (durable) sync_folder(target_.parent_path());
+  } catch (const Error& e) {
+    std::fprintf(stderr, "workbench: warning: %s (the output is in place; a power cut now could undo the move)\n",
+                 e.what());
+  }
   if (had_old) fs::remove_all(aside, ec);  // empty or stamped: checked above
 }
 

@@ -279,7 +279,9 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
       bend.values[a.i] += std::abs(g.C);
     }
     const std::string name = frame_name(frame);
-    workbench::write_vtu(dir / "frames" / (name + ".vtu"), out_mesh, {u, v, pin, bend}, {});
+    // Frame 0 first checks that all frames fit: 0, every output_every-th and the last.
+    const std::size_t frames_out = 1 + setup.frames / setup.output_every + (setup.frames % setup.output_every != 0);
+    workbench::write_vtu(dir / "frames" / (name + ".vtu"), out_mesh, {u, v, pin, bend}, {}, frame == 0 ? frames_out : 1);
     series.emplace_back(time, "frames/" + name + ".vtu");
     if (animate) {
       if (frame == 0) write_render_cells(render_dir, out_mesh);
@@ -313,7 +315,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
       out << "warning: " << warning.str() << "\n";
       log << "pbd: warning: " << warning.str() << "\n";
     }
-    if (!out) throw Error((dir / "summary.txt").string() + ": write failed");
+    out.close();
   }
   {
     auto out = open_csv(dir / "nodes.csv");

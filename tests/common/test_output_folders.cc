@@ -273,7 +273,8 @@ TEST(CsvFile, AFailedWriteIsAnError) {
               for (int i = 0; i < 100000; ++i) out << "a,b\n";
               out.close();
             }),
-            "/dev/full: write failed");
+            "/dev/full: write failed (No space left on device)");
   EXPECT_EQ(error_of([&] { open_csv(test_support::scratch_folder() / "no" / "such" / "folder.csv"); }),
-            (test_support::scratch_folder() / "no" / "such" / "folder.csv").string() + ": cannot open for writing");
+            (test_support::scratch_folder() / "no" / "such" / "folder.csv").string() +
+                ": cannot open for writing (No such file or directory)");
 }

@@ -9,7 +9,12 @@ cut short) and runs `workbench agent|fem|pbd|compare` on each. Every run must en
 "workbench: error:" line when it fails, and an exit 0 must not have written a non-finite number
 in a CSV, JSON or text file. The runs are the same for the same seed.
 
-Usage: fuzz_readers.py WORKBENCH_BINARY SOURCE_DIR [--runs N] [--seed S] [--jobs J]
+Usage: fuzz_readers.py WORKBENCH_BINARY SOURCE_DIR [--runs N] [--seed S] [--jobs J] [--long]
+
+--long (outside CI: hours): 10,000 runs unless --runs says otherwise, the 3D cases added (the
+3D bracket, the directional block), and a fifth of the runs mutate the .geo file a case reads
+(a number, a line dropped or repeated, the text cut short) instead of the case file. Progress every
+500 runs on stderr, so that a run stopped early still tells its count.
 """
 import argparse
 import concurrent.futures
@@ -46,11 +51,17 @@ SHRINK = {
                             (r"^nx = .*", "nx = 16")], ["pbd", "compare"]),
 }
 MSH_FILES = ["tests/fuzz/plate41.msh", "tests/fuzz/plate22.msh"]
+# --long adds these (3D, slower): (pattern, replacement) per case file and the subcommands.
+LONG_SHRINK = {
+    "bracket3d.toml": ([(r"^count = .*", "count = 1")], ["agent", "fem", "compare"]),
+    "directional_block.toml": ([(r"^h = .*", "h = 0.008"), (r"^lw = .*", "lw = 0.016")], ["agent", "fem"]),
+}
+GEO_FILE = re.compile(r'^file = "([^"]+\.geo)"', re.MULTILINE)
 
 
-def shrunk_cases(src):
+def shrunk_cases(src, shrink=SHRINK):
     cases = []
-    for name, (rules, commands) in sorted(SHRINK.items()):
+    for name, (rules, commands) in sorted(shrink.items()):
         with open(os.path.join(src, "cases", name)) as f:
             text = f.read()
         text = text.replace('"../', '"' + src + "/")
@@ -78,6 +89,26 @@ def mutate_case(rng, text):
     elif op == "retype" and key_lines:
         i = rng.choice(key_lines)
         lines[i] = lines[i].split("=")[0] + "= " + rng.choice(RETYPED)
+    elif op == "truncate":
+        return op, text[:rng.randrange(len(text) + 1)]
+    return op, "\n".join(lines)
+
+
+def mutate_geo(rng, text):
+    """A .geo file mutated: a number, a line dropped or repeated, the text cut short."""
+    lines = text.split("\n")
+    code = [i for i, l in enumerate(lines) if l.strip() and not l.lstrip().startswith("//")]
+    op = rng.choice(["number", "number", "number", "drop", "duplicate", "truncate"])
+    if op == "number":
+        spots = [(i, m) for i in code for m in NUMBER.finditer(lines[i].split("//")[0])]
+        if spots:
+            i, m = rng.choice(spots)
+            lines[i] = lines[i][:m.start()] + rng.choice(SPECIAL_NUMBERS) + lines[i][m.end():]
+    elif op == "drop" and code:
+        del lines[rng.choice(code)]
+    elif op == "duplicate" and code:
+        i = rng.choice(code)
+        lines.insert(i, lines[i])
     elif op == "truncate":
         return op, text[:rng.randrange(len(text) + 1)]
     return op, "\n".join(lines)
@@ -165,10 +196,13 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=int, default=60)
     ap.add_argument("--keep", action="store_true", help="keep the folders of failing runs")
+    ap.add_argument("--long", action="store_true", help="10,000 runs, 3D cases and .geo mutations (hours)")
     a = ap.parse_args()
+    if a.long and a.runs == 200:
+        a.runs = 10000
     src = os.path.abspath(a.src)
     rng = random.Random(a.seed)
-    cases = shrunk_cases(src)
+    cases = shrunk_cases(src, dict(SHRINK, **LONG_SHRINK) if a.long else SHRINK)
     meshes = []
     for m in MSH_FILES:
         with open(os.path.join(src, m)) as f:
@@ -178,7 +212,17 @@ def main():
 
     plan = []  # (description, command, case text, extra file)
     for index in range(a.runs):
-        if index % 3 == 2:  # a third of the runs: a corrupted mesh under the agent or FEM reader
+        geo_cases = [(n, t, c) for n, t, c in cases if GEO_FILE.search(t)]
+        if a.long and index % 5 == 4 and geo_cases:  # --long: a fifth of the runs mutate a case's .geo
+            name, text, commands = rng.choice(geo_cases)
+            geo_path = GEO_FILE.search(text).group(1)
+            with open(geo_path) as f:
+                op, mutated = mutate_geo(rng, f.read())
+            geo_name = os.path.basename(geo_path)
+            case_text = GEO_FILE.sub('file = "%s"' % geo_name, text, count=1)
+            command = rng.choice(commands)
+            plan.append(("%s %s %s %s" % (command, name, geo_name, op), command, case_text, (geo_name, mutated)))
+        elif index % 3 == 2:  # a third of the runs: a corrupted mesh under the agent or FEM reader
             name, text = rng.choice(meshes)
             op, mutated = mutate_msh(rng, text)
             command = rng.choice(["agent", "fem"])
@@ -203,10 +247,15 @@ def main():
                 problem = fut.result()
                 if problem:
                     findings.append("run %d (%s): %s" % (i, plan[i][0], problem))
+                    if a.long:
+                        print("FINDING " + findings[-1], file=sys.stderr, flush=True)
+                if a.long and (i + 1) % 500 == 0:
+                    print("fuzz: %d of %d runs, %d findings" % (i + 1, len(plan), len(findings)),
+                          file=sys.stderr, flush=True)
     finally:
         if not (a.keep and findings):
             shutil.rmtree(work, ignore_errors=True)
-    print("fuzz: seed %d, %d runs (%d of them corrupted meshes), %d findings" %
+    print("fuzz: seed %d, %d runs (%d of them corrupted mesh or .geo files), %d findings" %
           (a.seed, len(plan), sum(1 for p in plan if p[3]), len(findings)))
     for f in findings:
         print("FINDING " + f)

@@ -8,6 +8,11 @@
 
 namespace workbench {
 
+/// The exit status of a script whose write failed (sysexits' EX_IOERR; scripts/child_report.py
+/// uses the same number). Its message ("<file>: write failed (<reason>)") comes back on the
+/// child's standard input, a socket, since its log may sit on the very disk that is full.
+inline constexpr int kWriteFailedStatus = 74;
+
 /// The Python the scripts run under: $WORKBENCH_PYTHON, else /usr/bin/python3 (which has numpy
 /// and matplotlib on Debian; the first python3 on PATH may not).
 std::string python_interpreter();
@@ -45,24 +50,30 @@ class ChildProcess {
   int wait();
   /// The child's process id, also its process group's (0 once waited for).
   int pid() const { return pid_; }
+  /// What the child wrote back on its standard input before it ended (read by wait()).
+  const std::string& report() const { return report_; }
 
  private:
   int pid_ = 0;
   int input_ = -1;  // this end of the child's standard input
+  std::string report_;
 };
 
 /// Runs `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log` and
 /// waits; when this program's stderr is a terminal, the child also gets it as descriptor
 /// $WORKBENCH_PROGRESS_FD for its progress lines (quiet otherwise); its standard input is empty.
-/// Returns its exit status (128 + signal when a signal ended it). Throws Error when it cannot be
-/// started.
-int run_child(const std::vector<std::string>& argv, const std::filesystem::path& log);
+/// Returns its exit status (128 + signal when a signal ended it) and, when `report` is given, what
+/// it wrote back on its standard input (ChildProcess::report). Throws Error when it cannot be started.
+int run_child(const std::vector<std::string>& argv, const std::filesystem::path& log, std::string* report = nullptr);
 
 /// The argument vector that runs a shipped script: python_interpreter(), find_script(script), `args`.
 std::vector<std::string> python_script_command(const std::string& script, const std::vector<std::string>& args);
 
-/// Throws Error "<what> failed: <last line of log>" when a script's exit `status` is not 0.
-void check_script_status(int status, const std::filesystem::path& log, const std::string& what);
+/// Throws Error "<what> failed: <last line of log>" when a script's exit `status` is not 0; for
+/// kWriteFailedStatus, Error "<file>: write failed (<reason>)" from its `report` (else its log).
+/// Paths in the staging folder are shown below the target (workbench::shown_text).
+void check_script_status(int status, const std::filesystem::path& log, const std::string& what,
+                         const std::string& report = "");
 
 /// Runs python_interpreter() on find_script(script) with `args`; throws Error "<what> failed: <last
 /// line of the log>" when it exits non-zero.

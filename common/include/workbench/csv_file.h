@@ -6,14 +6,15 @@
 //   auto out = workbench::open_csv(dir / "nodes.csv");
 //   out << "node,x,y\n";                      // the first line that is not a comment: the header
 //   out << 0 << ',' << 0.1 << ',' << 2.5 << '\n';
-//   out.close();                              // throws "nodes.csv: write failed" on a failed write
+//   out.close();                              // throws "<dir>/nodes.csv: write failed (No space left on device)"
 //
 // Lines starting with '#' are comments. A row may have more fields than the header (the last
 // column then holds a list, e.g. a cell's nodes). A value that is undefined on purpose (a ratio
 // whose denominator is masked) is written as std::nullopt: an empty field, the one marker of "no
 // number here" (pandas and numpy.genfromtxt read it as NaN); a non-finite number is never written.
+#include <workbench/output_file.h>
+
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -26,7 +27,7 @@ std::string shortest_decimal(double v);
 
 class CsvFile {
  public:
-  /// Throws workbench::Error "<file>: cannot open for writing".
+  /// Throws workbench::Error "<file>: cannot open for writing (<reason>)".
   explicit CsvFile(std::filesystem::path file);
   CsvFile(CsvFile&&) = default;
 
@@ -44,15 +45,14 @@ class CsvFile {
   CsvFile& operator<<(const char* s) { return text(s); }
   CsvFile& operator<<(const std::string& s) { return text(s); }
 
-  /// Flushes and closes; throws "<file>: write failed" if any write failed.
+  /// Flushes and closes; throws "<file>: write failed (<reason>)" (workbench/output_file.h) as
+  /// every write does.
   void close();
-  explicit operator bool() const { return static_cast<bool>(out_); }
 
  private:
   CsvFile& text(const std::string& s);
-  void check() const;
   std::filesystem::path file_;
-  std::ofstream out_;
+  OutputFile out_;
   std::vector<std::string> columns_;  // from the header
   bool header_done_ = false, at_line_start_ = true, comment_line_ = false;
   std::string line_head_;  // the current line's first field (names the row in messages)

@@ -29,7 +29,9 @@ class StagedDirectory {
   const std::filesystem::path& path() const { return staging_; }
   /// The folder the files will end up in.
   const std::filesystem::path& target() const { return target_; }
-  /// Replaces `target` by the staged folder.
+  /// Replaces `target` by the staged folder, durably: every file and folder in it is synced
+  /// (fsync) before the rename and the parent folder after it, so that a power cut leaves the old
+  /// output or the whole new one. A failed sync is a failed write (the old output stays).
   void commit();
 
  private:
@@ -39,5 +41,11 @@ class StagedDirectory {
 
 /// True when `dir` is a folder the workbench wrote (it carries the stamp file).
 bool carries_stamp(const std::filesystem::path& dir);
+
+/// `path` as the user will know it: below a live staging folder, the same path below its target
+/// (the hidden `.NAME.partial-PID` means nothing to a user); any other path unchanged.
+std::string shown_path(const std::filesystem::path& path);
+/// `text` with every live staging folder's path replaced by its target's (a child's message).
+std::string shown_text(std::string text);
 
 }  // namespace workbench

@@ -31,11 +31,14 @@ struct Field {
                                              ///< NaN so that ParaView blanks it (a masked ratio)
 };
 
-/// Writes one VTU file (binary, compressed). Throws workbench::Error if a field's size does not
-/// match the mesh or holds a NaN or infinity outside its `undefined` tuples, so that no
-/// non-finite value is written silently. Negative zeros are written as zeros.
+/// Writes one VTU file (binary, compressed; made in memory, written by workbench::write_file).
+/// Throws workbench::Error if a field's size does not match the mesh or holds a NaN or infinity
+/// outside its `undefined` tuples, so that no non-finite value is written silently, and when a
+/// write fails. Negative zeros are written as zeros. For the first file of a series of
+/// `series_frames` alike files (a load step, a frame), the whole series must fit in the free space
+/// first (workbench::require_room with this file's size times `series_frames`).
 void write_vtu(const std::filesystem::path& file, const OutputMesh& mesh, const std::vector<Field>& point_fields,
-               const std::vector<Field>& cell_fields);
+               const std::vector<Field>& cell_fields, std::size_t series_frames = 1);
 
 /// Writes a parallel VTU record naming `pieces` (file names relative to the PVTU's folder) that
 /// hold the given fields (their names, components and component names; the values are ignored).

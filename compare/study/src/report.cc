@@ -3,6 +3,7 @@
 
 #include <workbench/child_process.h>
 #include <workbench/error.h>
+#include <workbench/output_file.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,13 +22,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream out(file);
-  if (!out) throw Error(file.string() + ": cannot open for writing");
-  out << text;
-  out.close();
-  if (!out) throw Error(file.string() + ": write failed");
-}
+void write_text(const fs::path& file, const std::string& text) { workbench::write_file(file, text); }
 
 namespace {
 
@@ -227,6 +222,9 @@ void BackgroundFigures::data_ready() {
   child_.send("draw");  // a script that already ended says why in finish()
 }
 
-void BackgroundFigures::finish() { workbench::check_script_status(child_.wait(), log_file_, "figures.py"); }
+void BackgroundFigures::finish() {
+  const int status = child_.wait();
+  workbench::check_script_status(status, log_file_, "figures.py", child_.report());
+}
 
 }  // namespace compare::report

@@ -20,6 +20,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from child_report import DISK_ERRORS, write_failed  # noqa: E402  (scripts/child_report.py)
+
 try:
     import jinja2
     from markupsafe import Markup, escape
@@ -131,6 +134,8 @@ def render(out):
     except OSError as e:
         if os.path.exists(temporary):
             os.remove(temporary)
+        if e.errno in DISK_ERRORS:  # a full disk, a file-size limit: reported as every failed write is
+            write_failed(target, e)
         raise SystemExit(f"report_html.py: {target}: cannot write it ({e.strerror})")
     print(f"report_html.py: wrote {target} ({len(html)} bytes)")
 

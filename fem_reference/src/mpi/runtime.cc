@@ -1,14 +1,14 @@
 // The FEM reference's MPI runtime (fem_reference/mpi.h): start-up, the singleton's settings and the
-// collectives by which the ranks agree. Apart from the problem's translation units: it includes
-// only deal.II's base headers.
+// collectives by which the ranks agree. Plain MPI calls rather than deal.II's Utilities::MPI, so
+// that this translation unit stays light (of deal.II only the exception and thread settings).
 #include "runtime.h"
 
 #include <workbench/error.h>
 
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 
+#include <mpi.h>
 #include <p4est_base.h>
 #include <sc.h>
 
@@ -54,6 +54,19 @@ void ensure_mpi() {
   std::atexit(finalize_mpi);
 }
 
+namespace {
+
+/// `text` of rank `root` on every rank.
+std::string broadcast(std::string text, int root) {
+  unsigned long long size = text.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD);
+  text.resize(size);
+  MPI_Bcast(text.data(), int(size), MPI_CHAR, root, MPI_COMM_WORLD);
+  return text;
+}
+
+}  // namespace
+
 void configure_singleton_mpi() {
   for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
     if (std::getenv(launcher)) return;  // started by mpirun or srun: their settings stand
@@ -66,11 +79,15 @@ void configure_singleton_mpi() {
 
 int mpi_rank() {
   ensure_mpi();
-  return mpi_running() ? int(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) : 0;
+  int rank = 0;
+  if (mpi_running()) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
 }
 int mpi_size() {
   ensure_mpi();
-  return mpi_running() ? int(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) : 1;
+  int size = 1;
+  if (mpi_running()) MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
 }
 void mpi_barrier() {
   ensure_mpi();
@@ -78,7 +95,7 @@ void mpi_barrier() {
 }
 std::string mpi_broadcast(const std::string& text) {
   if (mpi_size() == 1) return text;
-  return Utilities::MPI::broadcast(MPI_COMM_WORLD, text, 0);
+  return broadcast(text, 0);
 }
 void mpi_collective(const std::function<void()>& step) {
   std::string message;
@@ -91,10 +108,12 @@ void mpi_collective(const std::function<void()>& step) {
   }
   if (mpi_size() > 1) {
     // The lowest failing rank (size if none) tells every rank its message.
-    const unsigned size = unsigned(mpi_size());
-    const unsigned first = Utilities::MPI::min(failed ? unsigned(mpi_rank()) : size, MPI_COMM_WORLD);
+    const int size = mpi_size();
+    const int mine = failed ? mpi_rank() : size;
+    int first = size;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
     if (first == size) return;
-    message = Utilities::MPI::broadcast(MPI_COMM_WORLD, message, first);
+    message = broadcast(message, first);
     failed = true;
   }
   if (failed) throw Error(message);

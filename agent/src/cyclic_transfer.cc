@@ -235,13 +235,14 @@ void cyclic_transfer(const Grid& g, const Material& material, const Coefficients
   }
 }
 
-Cyclic::Cyclic(const Grid& grid, const Material& material, const Coefficients& k, const TransferReadings& readings)
+CyclicTransfer::CyclicTransfer(const Grid& grid, const Material& material, const Coefficients& k,
+                               const TransferReadings& readings)
     : material_(material), k_(k), readings_(readings) {
   check_coefficients(k, RuleSet::Patent);
   check_cyclic(grid, material, k);
 }
 
-void Cyclic::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+void CyclicTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   out.clear_all();
   cyclic_transfer(grid, material_, k_, readings_, loads, out.faces, out.generation, out.diagnostics);
 }

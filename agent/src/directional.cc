@@ -301,9 +301,9 @@ void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, do
   with_slots(grid, [&](const auto& slots) { march(grid, slots, k, gamma, loads, faces, generation, diagnostics); });
 }
 
-Directional::Directional(const Coefficients& k) : k_(k) { check_coefficients(k, RuleSet::Directional); }
+DirectionalTransfer::DirectionalTransfer(const Coefficients& k) : k_(k) { check_coefficients(k, RuleSet::Directional); }
 
-void Directional::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+void DirectionalTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   out.clear_all();
   directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics);
 }

@@ -14,8 +14,9 @@ void check(bool ok, const std::string& what) {
 }
 
 // The rule type of (rule set, readings), each checking its own coefficients.
-std::variant<Sweep, Directional, Cyclic> make_transfer(const Grid& grid, const Material& material, const Coefficients& k,
-                                                       RuleSet rules, const TransferReadings& readings) {
+std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(const Grid& grid, const Material& material,
+                                                                           const Coefficients& k, RuleSet rules,
+                                                                           const TransferReadings& readings) {
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
   check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
   check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
@@ -26,9 +27,9 @@ std::variant<Sweep, Directional, Cyclic> make_transfer(const Grid& grid, const M
                               "patent rule set");
     check(false, "reading non_compounding_entry is a reading of the patent rule set");
   }
-  if (rules == RuleSet::Directional) return Directional(k);
-  if (readings.cyclic()) return Cyclic(grid, material, k, readings);
-  return Sweep(grid, material, k, rules, readings);
+  if (rules == RuleSet::Directional) return DirectionalTransfer(k);
+  if (readings.cyclic()) return CyclicTransfer(grid, material, k, readings);
+  return LayerSweep(grid, material, k, rules, readings);
 }
 }  // namespace
 

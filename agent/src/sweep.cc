@@ -59,7 +59,7 @@ struct ConservingRule {
 
 }  // namespace
 
-Sweep::Sweep(const Grid& grid, const Material& material, const Coefficients& k, RuleSet rules,
+LayerSweep::LayerSweep(const Grid& grid, const Material& material, const Coefficients& k, RuleSet rules,
              const TransferReadings& readings)
     : material_(material), k_(k) {
   check_coefficients(k, rules);
@@ -80,13 +80,13 @@ Sweep::Sweep(const Grid& grid, const Material& material, const Coefficients& k, 
   line_.assign(std::size_t(*std::max_element(grid.cells.begin(), grid.cells.end())), 0.0);
 }
 
-std::size_t Sweep::memory_bytes() const {
+std::size_t LayerSweep::memory_bytes() const {
   return (fresh_.capacity() + down_.capacity() + next_down_.capacity() + line_.capacity()) * sizeof(double) +
          (touched_.capacity() + pending_.capacity()) * sizeof(Touched);
 }
 
 template <class Slots>
-void Sweep::clear(const Slots& slots, int nd, const Touched& t, TransferResults& out) {
+void LayerSweep::clear(const Slots& slots, int nd, const Touched& t, TransferResults& out) {
   const auto layer = slots.layer(t.axis, t.layer);
   for (int v = t.box.v_lo; v <= t.box.v_hi; ++v)
     layer.row(v).runs(t.box.u_lo, t.box.u_hi, [&](std::size_t first, std::size_t count) {
@@ -96,7 +96,7 @@ void Sweep::clear(const Slots& slots, int nd, const Touched& t, TransferResults&
 }
 
 template <class Slots>
-void Sweep::clear_pending(const Slots& slots, int nd, int layer, TransferResults& out) {
+void LayerSweep::clear_pending(const Slots& slots, int nd, int layer, TransferResults& out) {
   const auto at = std::equal_range(pending_.begin(), pending_.end(), Touched{0, layer, {}},
                                    [](const Touched& x, const Touched& y) { return x.layer < y.layer; });
   for (auto t = at.first; t != at.second; ++t) {
@@ -106,13 +106,13 @@ void Sweep::clear_pending(const Slots& slots, int nd, int layer, TransferResults
 }
 
 template <class Slots>
-void Sweep::clear_all_pending(const Slots& slots, int nd, TransferResults& out) {
+void LayerSweep::clear_all_pending(const Slots& slots, int nd, TransferResults& out) {
   for (const auto& t : pending_)
     if (!t.box.empty()) clear(slots, nd, t, out);
   std::vector<Touched>().swap(pending_);  // held only while a solve clears it
 }
 
-void Sweep::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+void LayerSweep::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   // What the previous solve wrote is cleared. When it was all swept along the first load's axis,
   // the first sweep clears each layer just before it writes there (the layer is then in cache
   // for the sweep instead of passing through memory twice); the rest is cleared after that sweep.
@@ -135,7 +135,7 @@ void Sweep::solve(const Grid& grid, const std::vector<EntryLoad>& loads, Transfe
 }
 
 template <class Slots>
-void Sweep::run(const Grid& grid, const Slots& slots, const EntryLoad& load, TransferResults& out) {
+void LayerSweep::run(const Grid& grid, const Slots& slots, const EntryLoad& load, TransferResults& out) {
   const bool two_d = grid.dim == 2;
   switch (rule_) {
     case RuleKind::Patent:
@@ -150,7 +150,7 @@ void Sweep::run(const Grid& grid, const Slots& slots, const EntryLoad& load, Tra
 }
 
 template <int Dim, class Slots, class Rule>
-void Sweep::layers(const Grid& g, const Slots& slots, const EntryLoad& load, TransferResults& results) {
+void LayerSweep::layers(const Grid& g, const Slots& slots, const EntryLoad& load, TransferResults& results) {
   // The dimension is a template parameter so that face offsets are compile-time constants.
   constexpr int nd = 2 * Dim;
   const int a = axis_of(load.dir);

@@ -3,7 +3,8 @@
 // every transfer operation (friction to every side, back included; agents reached by friction or
 // a push pass friction, the step along their load and pushes on), and boundary faces return the
 // load into the body. The transfer graph then has cycles; this is the work-list iteration that
-// solves it (the rule type agent::Cyclic, which LoadTransfer chooses when either reading is on).
+// solves it (the rule type agent::CyclicTransfer, which LoadTransfer chooses when either reading
+// is on).
 #include <agent/coefficients.h>
 #include <agent/grid.h>
 #include <agent/transfer.h>
@@ -60,11 +61,11 @@ void cyclic_transfer(const Grid& grid, const Material& material, const Coefficie
                      std::size_t update_cap = kCyclicUpdateCap);
 
 /// Readings 2 and/or 6 of the patent rule set as a LoadTransfer rule type.
-class Cyclic {
+class CyclicTransfer {
  public:
   /// Throws std::invalid_argument for coefficients outside their ranges (agent::check_coefficients)
   /// and when the iteration would not end (agent::check_cyclic).
-  Cyclic(const Grid& grid, const Material& material, const Coefficients& k, const TransferReadings& readings);
+  CyclicTransfer(const Grid& grid, const Material& material, const Coefficients& k, const TransferReadings& readings);
   /// Clears the whole result (loads move in every direction), then runs cyclic_transfer; throws
   /// CyclicCapReached at the cap.
   void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);

@@ -31,10 +31,10 @@ void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, do
 
 /// The directional rule set as a LoadTransfer rule type: it reads gamma and the directional
 /// coefficients only, and takes no reading.
-class Directional {
+class DirectionalTransfer {
  public:
   /// Throws std::invalid_argument for coefficients outside their ranges (agent::check_coefficients).
-  explicit Directional(const Coefficients& k);
+  explicit DirectionalTransfer(const Coefficients& k);
   /// Clears the whole result (a row's moment balance reaches every agent of the row), then marches.
   void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
   /// Nothing is held between solves (the rows are allocated per solve).

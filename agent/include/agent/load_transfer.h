@@ -10,9 +10,9 @@
 //
 // LoadTransfer is a facade: it validates the grid, the material and the loads, and runs one of
 // three rule types, chosen at construction from the rule set and the transfer readings:
-//   agent::Sweep        patent (readings 2 and 6 off) and conserving: the layer sweep (agent/sweep.h);
-//   agent::Directional  the directional rule set's packet fan (agent/directional.h);
-//   agent::Cyclic       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h).
+//   agent::LayerSweep           patent (readings 2 and 6 off) and conserving: the layer sweep (agent/sweep.h);
+//   agent::DirectionalTransfer  the directional rule set: the packet fan (agent/directional.h);
+//   agent::CyclicTransfer       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h).
 // Each rule type checks its own coefficients. The stress readings (4, 5) are not the transfer's:
 // agent_stresses (agent/fields.h) takes them.
 #include <agent/coefficients.h>
@@ -65,7 +65,7 @@ class LoadTransfer {
   RuleSet rules_;
   TransferReadings readings_;
   TransferResults out_;
-  std::variant<Sweep, Directional, Cyclic> transfer_;
+  std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> transfer_;
 };
 
 }  // namespace agent

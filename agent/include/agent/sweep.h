@@ -11,11 +11,11 @@
 
 namespace agent {
 
-class Sweep {
+class LayerSweep {
  public:
   /// Throws std::invalid_argument for coefficients outside their ranges (agent::check_coefficients)
   /// and for reading 1 with the conserving rule set (it has its own normalised splits).
-  Sweep(const Grid& grid, const Material& material, const Coefficients& k, RuleSet rules,
+  LayerSweep(const Grid& grid, const Material& material, const Coefficients& k, RuleSet rules,
         const TransferReadings& readings);
 
   /// Clears what the previous solve wrote (and only that: cost follows reach, not the body), then

@@ -19,7 +19,7 @@ struct TransferReadings {
   bool non_compounding_entry = false;
   /// 2: every agent performs every transfer operation: friction to every side (back included),
   /// and agents reached by friction or a push pass friction, the step along and pushes on. The
-  /// transfer graph has cycles: solved by agent::Cyclic (agent/cyclic_transfer.h).
+  /// transfer graph has cycles: solved by agent::CyclicTransfer (agent/cyclic_transfer.h).
   bool every_agent_all_operations = false;
   /// 6: a load reaching a boundary face is returned into the body (a free face reflects it, a
   /// rigid one returns its reaction), and the agent performs its operations on it (agent::Cyclic).

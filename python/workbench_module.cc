@@ -216,6 +216,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     std::array<int, 3> cells;
     bool tiled = false;
     std::vector<std::int32_t> cell_coords, node_coords;  ///< box coordinates per slot id, per node id
+    agent::Coefficients coefficients;
   };
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
@@ -226,7 +227,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     const auto& grid = study.mesh.grid;
     agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules, study.readings);
     Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
-          {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}, grid.tiled(), {}, {}};
+          {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}, grid.tiled(), {}, {}, study.coefficients};
     for (std::size_t cell = 0; cell < grid.count(); ++cell) {
       const Eigen::Vector3d x = grid.centre(cell);
       o.centres.insert(o.centres.end(), {x[0], x[1], x[2]});
@@ -258,6 +259,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   r["displacement"] = take(std::move(out.state.displacement), {ssize(nodes), ssize(dim)});
   r["cell_of_element"] = take(std::move(out.cell_of_element), {ssize(n)});
   r["diagnostics"] = diagnostics_dict(out.state.diagnostics);
+  r["coefficients"] = coefficients_dict(out.coefficients);
   return r;
 }
 
@@ -379,21 +381,11 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
     for (const auto& p : study.mesh.mesh.points) o.rest.insert(o.rest.end(), {p[0], p[1], p[2]});
     o.pinned = study.pinned;
     pbd::Solver solver(study.model);
-    auto record = [&](int frame) {
-      for (const auto& x : study.model.particles.x) {
-        if (!x.allFinite()) throw workbench::Error("pbd: non-finite position at frame " + std::to_string(frame));
-        o.frames.insert(o.frames.end(), {x[0], x[1], x[2]});
-      }
+    pbd_study::step_frames(study, solver, [&](int frame) {  // the frames `workbench pbd` writes
+      for (const auto& x : study.model.particles.x) o.frames.insert(o.frames.end(), {x[0], x[1], x[2]});
       o.times.push_back(frame * setup.step.dt);
       ++o.written;
-    };
-    record(0);
-    const int report = std::max(1, setup.frames / 10);
-    for (int f = 1; f <= setup.frames; ++f) {
-      solver.step(setup.step);  // the same stepping as `workbench pbd` (pbd_study.cc)
-      if (f % setup.output_every == 0 || f == setup.frames) record(f);
-      if (f % report == 0 || f == setup.frames) log << "pbd: frame " << f << "/" << setup.frames << "\n";
-    }
+    }, log);
     return o;
   });
   py::dict r;
@@ -421,16 +413,7 @@ class Objective {
       std::vector<compare::CalibrationCase> out;
       for (const auto& c : cases) {
         auto file = c.open();
-        compare::CalibrationCase cc;
-        cc.name = c.path.stem().string();
-        cc.study = agent_study::load_agent_study(*file);
-        auto problem = fem_reference::problem_from_case(*file);
-        compare::check_every_section(*file);
-        // The case's own reference, as `workbench calibrate` solves it ([compare.reference]).
-        const auto reference = compare::read_compare_options(file->root()).reference.resolved(cc.study.mesh.grid.dim);
-        const auto fem = fem_reference::solve_fem(compare::reference_problem(problem, reference, cc.study.mesh.grid), {}, &log);
-        std::array<std::size_t, 2> outside{};
-        cc.reference = compare::reference_on_grid(reference, cc.study.mesh, fem, file->path().string(), outside);
+        auto cc = compare::load_calibration_case(*file, nullptr, nullptr, log);  // as `workbench calibrate` does
         out.push_back(std::move(cc));
       }
       return out;

@@ -12,8 +12,11 @@ output folder is compared:
 - a JSON file key by key: every number bit for bit; timings (keys starting with "time") aside;
   keys only the new output has are listed as added (they are not differences), keys it lost are
   differences;
-- summary.txt / report.txt line by line, timing lines ("time", " s)") aside.
-Anything else that differs, and any file present on one side only, is a difference. Prints one
+- any other text file (CSV, TOML, the output stamp) line by line, timing lines ("time",
+  "seconds", "memory", " s)") aside.
+Paths into OLD_TREE read as the same paths into NEW_TREE. A binary file that differs (PNG, GIF,
+compressed VTU) and a file present in the old output only are differences; a file only the new
+output has is listed as added. Prints one
 line per case and exits 1 when any output differs.
 """
 import argparse
@@ -26,7 +29,8 @@ import sys
 import tempfile
 import time
 
-TIMING = re.compile(r"(^|\b)time|\bseconds?\b|\d s\)|wall|cpu", re.IGNORECASE)
+# Lines and JSON keys that measure the run, not its result.
+TIMING = re.compile(r"time|seconds|waited|\d s\)|wall|cpu|memory", re.IGNORECASE)
 
 
 def subcommands(case_path):
@@ -51,7 +55,7 @@ def json_diff(a, b, path=""):
     diffs, added = [], []
     if isinstance(a, dict) and isinstance(b, dict):
         for k in a:
-            if k.startswith("time"):
+            if TIMING.search(k):
                 continue
             if k not in b:
                 diffs.append(f"{path}/{k}: gone")
@@ -79,7 +83,7 @@ def text_diff(a, b):
     return [] if la == lb else [f"first differing line: {x!r} -> {y!r}" for x, y in zip(la + [""], lb + [""]) if x != y][:1]
 
 
-def compare_dirs(old, new):
+def compare_dirs(old, new, old_tree, new_tree):
     diffs, added = [], []
     files = lambda d: {os.path.relpath(os.path.join(r, f), d) for r, _, fs in os.walk(d) for f in fs}
     fo, fn = files(old), files(new)
@@ -89,14 +93,17 @@ def compare_dirs(old, new):
         a, b = open(os.path.join(old, f), "rb").read(), open(os.path.join(new, f), "rb").read()
         if a == b:
             continue
+        try:  # text: the old tree's paths read as the new tree's
+            ta, tb = a.decode().replace(old_tree, new_tree), b.decode()
+        except UnicodeDecodeError:
+            diffs.append(f"{f}: bytes differ")
+            continue
         if f.endswith(".json"):
-            d, ad = json_diff(json.loads(a), json.loads(b))
+            d, ad = json_diff(json.loads(ta), json.loads(tb))
             diffs += [f"{f}{x}" for x in d]
             added += [f"{f}{x}" for x in ad]
-        elif f.endswith(".txt") or f.endswith(".log"):
-            diffs += [f"{f}: {x}" for x in text_diff(a.decode(), b.decode())]
         else:
-            diffs.append(f"{f}: bytes differ")
+            diffs += [f"{f}: {x}" for x in text_diff(ta, tb)]
     return diffs, added
 
 
@@ -128,7 +135,7 @@ def main():
                 failed += 1
                 print(f"{case} {sub}: exit {codes[0]} -> {codes[1]} {' '.join(errors)}", flush=True)
                 continue
-            diffs, added = compare_dirs(*outs) if os.path.isdir(outs[0]) else ([], [])
+            diffs, added = compare_dirs(*outs, old, new) if os.path.isdir(outs[0]) else ([], [])
             failed += bool(diffs)
             verdict = "identical" if not diffs else f"{len(diffs)} differences"
             print(f"{case} {sub}: {verdict} ({time.time() - start:.0f} s)"

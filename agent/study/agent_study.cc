@@ -285,11 +285,11 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
 
 }  // namespace
 
-std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d) {
-  if (!(d.applied > 0) || d.rigid_reaction >= kWarnBelowReactionShare * d.applied) return {};
+std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d, double min_share) {
+  if (!(d.applied > 0) || d.rigid_reaction >= min_share * d.applied) return {};
   std::ostringstream s;
   s << "only " << 100 * d.rigid_reaction / d.applied << " % of the applied load " << d.applied
-    << " N reaches a rigid face (warning below " << 100 * kWarnBelowReactionShare << " %): passed out " << d.passed_out
+    << " N reaches a rigid face (warning below " << 100 * min_share << " %): passed out " << d.passed_out
     << " N, dropped under gamma " << d.dropped << " N, lost through the transfer coefficients " << d.lost << " N";
   if (d.returned_rigid + d.returned_free > 0)  // reading 6: nothing leaves the body
     s << " (boundaries_return: rigid faces returned " << d.returned_rigid << " N into the body, free faces "

@@ -77,9 +77,9 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
 /// in agent_summary.json): the method's answer stands, but a model that loses load says so.
 constexpr double kWarnBelowReactionShare = 0.9;
 
-/// The load-balance warnings of one solve: empty when at least kWarnBelowReactionShare of the
-/// applied load reaches a rigid face; otherwise one sentence saying where the rest went.
-std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d);
+/// The load-balance warnings of one solve: empty when at least `min_share` of the applied load
+/// reaches a rigid face; otherwise one sentence saying where the rest went.
+std::vector<std::string> load_balance_warnings(const agent::Diagnostics& d, double min_share = kWarnBelowReactionShare);
 
 /// The resultant of the entry loads scaled by `factor`, per axis [N] (loads in different
 /// directions do not add up to their sum of magnitudes, Diagnostics::applied).

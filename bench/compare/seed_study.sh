@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The seed study's wall time, figures included (issue 14: under 3 s per case), against the same work
+# The seed study's wall time, figures included, against the same work
 # done one step after the other in the same run: the comparison without figures, then figures.py on
 # its output (how the study ran before the figures were drawn beside the FEM reference). Prints the
 # median of RUNS runs of each, the ratio, and the same with PDF files too (figure_formats).

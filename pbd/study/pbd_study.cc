@@ -208,6 +208,28 @@ void render_animation(const fs::path& frames_dir, const fs::path& output, int fp
                                output.string() + ": rendering the animation");
 }
 
+void step_frames(PbdStudy& study, pbd::Solver& solver, const std::function<void(int)>& frame, std::ostream& log) {
+  const auto& setup = study.setup;
+  auto checked_frame = [&](int f) {
+    for (const auto& p : study.model.particles.x)
+      if (!p.allFinite())
+        throw Error(setup.case_file.string() + ": pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged "
+                    "(a non-finite position at frame " + std::to_string(f) + " of " + std::to_string(setup.frames) +
+                    "): the loads or the time step are too large for " + std::to_string(setup.step.substeps) +
+                    " substeps per frame");
+    frame(f);
+  };
+  checked_frame(0);
+  const int report = std::max(1, setup.frames / 10);
+  for (int f = 1; f <= setup.frames; ++f) {
+    solver.step(setup.step);  // seed steps 3-5: predict, project, corrected positions start the next step
+    if (f % setup.output_every == 0 || f == setup.frames) checked_frame(f);
+    if (f % report == 0 || f == setup.frames)
+      log << "pbd: frame " << f << "/" << setup.frames << ", t = " << f * setup.step.dt
+          << " s, kinetic energy " << study.model.particles.kinetic_energy() << " J\n";
+  }
+}
+
 void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostream& log) {
   auto& model = study.model;
   const auto& mesh = study.mesh.mesh;
@@ -236,12 +258,6 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
   auto write_frame = [&](int frame) {
     const double time = frame * setup.step.dt;
     const auto& x = model.particles.x;
-    for (const auto& p : x)
-      if (!p.allFinite())
-        throw Error(setup.case_file.string() + ": pbd.gravity, pbd.node_force, pbd.time_step: the simulation diverged "
-                    "(a non-finite position at frame " + std::to_string(frame) + " of " + std::to_string(setup.frames) +
-                    "): the loads or the time step are too large for " + std::to_string(setup.step.substeps) +
-                    " substeps per frame");
     const auto out_mesh = output_mesh(mesh, x);
     workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
     workbench::Field v{"velocity [m/s]", 3, {}, {"x", "y", "z"}, {}};
@@ -274,15 +290,7 @@ void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostr
                 << r.distance << ',' << umax << '\n';
   };
 
-  write_frame(0);
-  const int report = std::max(1, setup.frames / 10);
-  for (int f = 1; f <= setup.frames; ++f) {
-    solver.step(setup.step);  // seed steps 3-5: predict, project, corrected positions start the next step
-    if (f % setup.output_every == 0 || f == setup.frames) write_frame(f);
-    if (f % report == 0 || f == setup.frames)
-      log << "pbd: frame " << f << "/" << setup.frames << ", t = " << f * setup.step.dt
-          << " s, kinetic energy " << model.particles.kinetic_energy() << " J\n";
-  }
+  step_frames(study, solver, write_frame, log);
   workbench::write_pvd(dir / "pbd.pvd", series);
   diagnostics.close();
 

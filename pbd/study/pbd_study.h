@@ -9,6 +9,7 @@
 #include <workbench/vtk_output.h>
 
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -46,6 +47,12 @@ struct PbdStudy {
 /// `setup` (read_pbd_case's): check the whole case file (reject_unknown_keys) before, so that no
 /// mesh is built from a case that is refused anyway.
 PbdStudy load_pbd_study(const workbench::CaseFile& file, PbdCase setup);
+
+/// Steps the model through the case's frames (seed steps 3-5 per frame, pbd::Solver::step) and
+/// calls `frame(f)` at frame 0, every output_every-th frame and the last, after checking that
+/// every position is finite (else a workbench::Error naming the case's keys); reports progress
+/// on `log`. The one frame loop of `workbench pbd` and the Python module.
+void step_frames(PbdStudy& study, pbd::Solver& solver, const std::function<void(int)>& frame, std::ostream& log);
 
 /// Runs the frames and writes into `dir`: frames/frame_NNNNN.vtu and pbd.pvd, diagnostics.csv (per
 /// written frame), nodes.csv (final state), summary.txt (substeps, final residuals against their

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad values and bad meshes (issue 10, input validation): non-finite or huge numbers, meshes gmsh
+# Bad values and bad meshes (input validation): non-finite or huge numbers, meshes gmsh
 # would crash on, problems too large for the memory limit, a load on a rigid group, a diverging
 # PBD run. Each must give exit code 2, exactly one line on stderr naming the file and the key
 # (besides the progress a PBD run logged before it failed),

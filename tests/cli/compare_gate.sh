@@ -48,7 +48,7 @@ check unknown_no_output $? "output written"
 # A 3D study (cube agents, hexahedral FEM) goes through the same comparison; figures are drawn in a slice.
 sed -e "s#\.\./meshes#$src/meshes#" -e 's/^h = 0.002 .*/h = 0.004/' -e 's/^lw = 0.004 .*/lw = 0.008/' \
   "$src/cases/block3d.toml" >"$work/block.toml"
-# (CG + AMG for the reference: `auto` still picks a slow 3D direct solve at these sizes, issue 14)
+# (CG + AMG for the reference: `auto` still picks a slow 3D direct solve at these sizes)
 printf 'solver = "amg"\n' >>"$work/block.toml"
 "$bin" compare "$work/block.toml" -o "$work/block" 2>"$work/log"
 rc=$?

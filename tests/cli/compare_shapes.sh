@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13: the comparison on shapes with air. On the L-bracket the body metrics equal the same norms
+# The comparison on shapes with air. On the L-bracket the body metrics equal the same norms
 # computed here from cells.csv / nodes.csv (which hold the agents and their nodes only: counted by
 # hand); a line across the plate's hole stops at its rim; the shapes run through `workbench
 # calibrate` (cases/calibrate_shapes.toml, shortened) and its starting scores are compare's body

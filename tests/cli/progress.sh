@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Drawing the figures shows progress on a terminal and nothing when stderr is not one (issue 16):
+# Drawing the figures shows progress on a terminal and nothing when stderr is not one:
 # the same comparison run under a pseudo-terminal (`script`, util-linux) and with stderr to a file.
 # Usage: progress.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"

@@ -42,7 +42,7 @@ CalibrationOptions options() {
   CalibrationOptions o;
   o.rules = agent::RuleSet::Conserving;
   const std::array<double, 5> start{0.5, 0.5, 0.25, 0.5, 1e-9};
-  for (int i = 0; i < 5; ++i) o.parameters[i] = {kCoefficientNames[i], i >= 1 && i <= 3, start[i], 0.0, 1.0};
+  for (int i = 0; i < 5; ++i) o.parameters[i] = {agent::kCoefficients[i].name, i >= 1 && i <= 3, start[i], 0.0, 1.0};
   o.parameters[1].lo = 0.05;
   o.parameters[4].hi = 1e-8;
   o.weights.sigma_x = 1.0;
@@ -85,15 +85,15 @@ TEST(Calibration, RecoversKnownCoefficientsFromAgentGeneratedTargets) {
 }
 
 TEST(Calibration, FitsTheDirectionalCoefficients) {
-  // The directional rule set's coefficients are fitted like the seed's (kCoefficientNames 5-8).
+  // The directional rule set's coefficients are fitted like the seed's (agent::kCoefficients 5-8).
   // fan_power only changes the packets' shares, so the objective is smooth in it and the fit
-  // recovers it; fan_angle and diffusion move packets across agent boundaries (a piecewise
+  // recovers it; fan_angle and diffusion_length move packets across agent boundaries (a piecewise
   // objective), so with all three free the fit must improve and come near, not hit the truth.
   agent::Coefficients truth;
   truth.gamma = 1e-9;
   truth.directional.fan_angle = 50;
   truth.directional.fan_power = 1.5;
-  truth.directional.diffusion = 4;
+  truth.directional.diffusion_length = 0.004;
   const auto rules = agent::RuleSet::Directional;
   const std::vector<CalibrationCase> cases{agent_target("0.1", truth, rules), agent_target("0.05", truth, rules)};
   CalibrationOptions o = options();
@@ -102,13 +102,13 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   o.weights.keep_load = true;  // the directional rule set loses nothing
   const agent::Coefficients defaults;
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
-    o.parameters[i].start = coefficient(defaults, i);
+    o.parameters[i].start = agent::kCoefficients[i].get(defaults);
     o.parameters[i].free = false;
   }
   o.parameters[4].start = 1e-9;
   o.parameters[5] = {"fan_angle", false, 50, 20, 89};
   o.parameters[6] = {"fan_power", true, 3, 0, 8};
-  o.parameters[8] = {"diffusion", false, 4, 0, 20};
+  o.parameters[8] = {"diffusion_length", false, 0.004, 0, 0.02};
   const auto one = calibrate(cases, o);
   EXPECT_GT(one.objective_start, 1e-4);
   EXPECT_LT(one.objective_best, 1e-12);
@@ -117,14 +117,14 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   for (const auto& s : one.after) EXPECT_LT(s.equilibrium_dev, 1e-12);
 
   o.parameters[5] = {"fan_angle", true, 70, 20, 89};
-  o.parameters[8] = {"diffusion", true, 2, 0, 20};
+  o.parameters[8] = {"diffusion_length", true, 0.002, 0, 0.02};
   const auto all = calibrate(cases, o);
   EXPECT_EQ(all.sensitivity.size(), 3u);
   // Measured: J 0.035 -> 0.018 at (56.6, 2.94, 3.2) on these 10 mm agents: the piecewise
   // objective stalls BOBYQA short of the truth (docs/calibration.md).
   EXPECT_LT(all.objective_best, 0.6 * all.objective_start);
   EXPECT_NEAR(all.best.directional.fan_angle, 50, 10);
-  EXPECT_NEAR(all.best.directional.diffusion, 4, 1);
+  EXPECT_NEAR(all.best.directional.diffusion_length, 0.004, 0.001);
 }
 
 TEST(Calibration, RespectsBoundsAndNeverEndsWorseThanItStarted) {

@@ -136,7 +136,7 @@ TEST(CompareNorms, RelativeErrorsAndMaskedRatios) {
   EXPECT_TRUE(std::isinf(relative_errors({1, 0}, {0, 0}).rel_l2));
 }
 
-// Issue 13: air slots hold no value. A cell field sampled next to air is the bilinear weights of the
+// Air slots hold no value. A cell field sampled next to air is the bilinear weights of the
 // agents only, renormalised; a line stops at air.
 TEST(CompareAir, SamplingNextToAirUsesTheAgentsOnlyWithRenormalisedWeights) {
   auto g = grid2d();  // 8 x 5 agents of 0.5 x 0.25; the slots i >= 5, j >= 3 are air (a notch)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A bounded, seeded mutation fuzzer over the case-file and mesh readers (issue 10).
+"""A bounded, seeded mutation fuzzer over the case-file and mesh readers.
 
 Takes the shipped cases/*.toml (shrunk to small meshes and few steps, so a run is cheap) and small
 MSH 2.2 / 4.1 meshes, mutates them (numbers to nan/inf/huge/negative/zero, keys dropped,

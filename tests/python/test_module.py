@@ -163,10 +163,55 @@ class Calibration(unittest.TestCase):
         base = objective({})
         self.assertEqual(objective({"alpha2": 0.9}), base)  # not a coefficient of this rule set
         self.assertNotEqual(objective({"fan_angle": 40.0}), base)
-        s = objective.scores({"diffusion": 0.004})[0]
-        self.assertAlmostEqual(objective({"diffusion": 0.004}), s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12)
+        s = objective.scores({"diffusion_length": 0.004})[0]
+        self.assertAlmostEqual(objective({"diffusion_length": 0.004}), s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12)
         with self.assertRaisesRegex(workbench.Error, 'rule_set: must be "patent", "conserving" or "directional"'):
             workbench.Objective([workbench.Case.from_dict(plate())], rule_set="flamant")
+
+
+class CoefficientTable(unittest.TestCase):
+    """workbench.coefficients() is agent::kCoefficients: every row reaches run_agent's result and the
+    Objective, and docs/case-file.md's [agent] table says what the table says."""
+
+    @staticmethod
+    def other_value(c):
+        d = c["default"]
+        if c["integer"]:
+            return d + 2
+        return d + 0.25 * (c["fit_max"] - d) if c["fit_max"] > d else d - 0.25 * (d - c["fit_min"])
+
+    def test_every_row_reaches_run_agent_and_the_objective(self):
+        table = workbench.coefficients()
+        self.assertEqual(len({c["name"] for c in table}), len(table))
+        for c in table:
+            v = self.other_value(c)
+            value = int(v) if c["integer"] else v
+            case = plate(**{"rule_set": c["rule_sets"][0], c["name"]: value})
+            r = workbench.run_agent(workbench.Case.from_dict(case))
+            self.assertEqual(r["coefficients"][c["name"]], v, c["name"])
+            self.assertEqual(set(r["coefficients"]), {c["name"] for c in table})
+            if c["fitted"]:
+                objective = workbench.Objective([workbench.Case.from_dict(plate())], rule_set=c["rule_sets"][0])
+                self.assertTrue(np.isfinite(objective({c["name"]: v})), c["name"])
+
+    def test_case_file_doc_lists_every_row(self):
+        rows = {}
+        for line in open(os.path.join(SRC, "docs/case-file.md")):
+            cells = [x.strip() for x in line.split("|")[1:-1]]
+            if len(cells) == 5 and cells[0].startswith("`agent.") and cells[0] not in ("`agent.rule_set`", "`agent.readings`"):
+                rows[cells[0][7:-1]] = cells
+        table = {c["name"]: c for c in workbench.coefficients()}
+        self.assertEqual(set(rows), set(table))
+        for name, (_, kind, unit, default, meaning) in rows.items():
+            c = table[name]
+            self.assertEqual(unit, c["unit"], name)
+            if name != "poisson_decay":  # its default is "alpha2" (it follows alpha2 until set)
+                self.assertEqual(float(default), c["default"], name)
+            lo, hi = f"{c['min']:g}", f"{c['max']:g}"
+            expected = f">= {lo}" if c["max"] >= 1e100 else f"{'(' if c['min_open'] else '['}{lo}, {hi}{')' if c['max_open'] else ']'}"
+            self.assertIn(expected, kind, name)
+            for rule_set in ["every rule set"] if len(c["rule_sets"]) == 3 else c["rule_sets"]:
+                self.assertIn(rule_set, meaning, name)
 
 
 if __name__ == "__main__":

@@ -1,16 +1,10 @@
-// The FEM reference on the agent grid: solving it at two refinement levels and sampling FEM
-// results onto the agents by point location.
-#include <compare/reference.h>
+// FEM results sampled onto the agent grid by point location.
+#include <compare/sampling.h>
 
-#include "report.h"
-
-#include <agent_study.h>
 #include <compare/metrics.h>
 #include <workbench/error.h>
 
-#include <chrono>
 #include <cmath>
-#include <ostream>
 
 namespace compare {
 
@@ -162,74 +156,6 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
     ++at;
   }
   return out;
-}
-
-GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state) {
-  GridFields out;
-  out.sigma.resize(grid.count() * 2);
-  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
-    out.sigma[2 * cell] = state.stress[cell * grid.dim];
-    out.sigma[2 * cell + 1] = state.stress[cell * grid.dim + 1];
-  }
-  out.u = state.displacement;
-  return out;
-}
-
-std::string ReferenceOptions::describe() const {
-  const std::string on = mesh.empty() ? "the agents' mesh" : "the true geometry " + mesh.filename().string();
-  return "FEM Q" + std::to_string(degree) +
-         (refine == 0 ? " on " + on : ", " + on + " refined " + std::to_string(refine) + (refine == 1 ? " time" : " times"));
-}
-
-fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
-                                            const agent::Grid& grid) {
-  problem.options.degree = options.degree;
-  problem.options.refine = options.refine;
-  if (!options.mesh.empty()) {  // the same body, loads and supports on the true geometry's mesh, evaluated at the agents
-    problem.mesh_file = options.mesh;
-    problem.mesh_parameters.clear();
-    problem.box.reset();
-    problem.probe_points = agent_probe_points(grid);
-  }
-  return problem;
-}
-
-GridFields reference_on_grid(const ReferenceOptions& options, const agent::ImportedMesh& mesh,
-                             const fem_reference::FemResult& fem, const std::string& case_name,
-                             std::array<std::size_t, 2>& outside) {
-  return options.mesh.empty() ? fem_on_grid(mesh, fem, case_name) : fem_at_agents(mesh.grid, fem, outside);
-}
-
-Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
-                          const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
-  Reference r;
-  r.estimate = options.estimate();
-  log << "compare: reference " << options.describe() << "\n";
-  r.fem = report::run_fem(reference_problem(problem, options, mesh.grid), dir, log, r.seconds);
-  r.fields = reference_on_grid(options, mesh, r.fem, problem.name, r.outside);
-  return r;
-}
-
-void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
-                              const agent::ImportedMesh& mesh, std::ostream& log) {
-  const auto start = std::chrono::steady_clock::now();
-  fem_reference::FemProblem estimate_problem = reference_problem(problem, r.estimate, mesh.grid);
-  estimate_problem.options.write_vtu = false;
-  log << "compare: the reference's error estimate: against " << r.estimate.describe() << "\n";
-  const auto estimate = fem_reference::solve_fem(estimate_problem, {}, &log);
-  r.estimate_fields = reference_on_grid(r.estimate, mesh, estimate, problem.name, r.outside);
-  r.estimate_dofs = estimate.n_dofs;
-  r.estimate_seconds = report::seconds_since(start);
-
-  if (!options.mesh.empty()) {  // the true geometry: FEM on the staircase at the reference's level
-    problem.options.degree = options.degree;
-    problem.options.refine = options.refine;
-    problem.options.write_vtu = false;
-    log << "compare: the staircase's own error: FEM on the agents' mesh at the reference's level\n";
-    const auto staircase = fem_reference::solve_fem(problem, {}, &log);
-    r.staircase_fields = fem_on_grid(mesh, staircase, problem.name);
-    r.staircase_dofs = staircase.n_dofs;
-  }
 }
 
 }  // namespace compare

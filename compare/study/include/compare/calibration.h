@@ -1,5 +1,5 @@
 #pragma once
-// Calibration of the agent transfer coefficients against FEM (issue 5, docs/calibration.md):
+// Calibration of the agent transfer coefficients against FEM (docs/calibration.md):
 // bounded derivative-free minimisation (NLopt BOBYQA) from several seeded starts, run in
 // parallel, of a weighted sum of relative errors of the agent fields against a reference.
 #include <compare/reference.h>

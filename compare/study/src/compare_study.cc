@@ -151,44 +151,61 @@ std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& st
   return agent_study::write_agent_outputs(study, dir / "agent", log);
 }
 
-// Steps 5 and 7: both models, the reference and its second level along each line.
-struct LineSamples {
-  /// agent, reference, estimate, staircase (FEM on the agents' mesh beside a true-geometry
-  /// reference; else empty); u: (u_x, u_y) per sample
-  std::vector<double> sx[4], sy[4], u[4];
+// Steps 5 and 7: what a comparison samples, from where.
+/// The fields compared: the agent model, the reference, the reference's second level (for its own
+/// error) and, beside a true-geometry reference, FEM on the agents' staircase mesh (else null).
+struct Sources {
+  const GridFields* agent = nullptr;
+  const GridFields* reference = nullptr;
+  const GridFields* estimate = nullptr;
+  const GridFields* staircase = nullptr;
 };
+/// One field's values in a scope, per source (empty where the source is not sampled).
+struct Samples {
+  std::vector<double> agent, reference, estimate, staircase;
+};
+/// A scope's values of each field of kFields: sigma_x, sigma_y per agent, u per node component.
+struct ScopeSamples {
+  Samples sigma_x, sigma_y, u;
+};
+/// Each source with where its samples go.
+const std::pair<const GridFields* Sources::*, std::vector<double> Samples::*> kSources[] = {
+    {&Sources::agent, &Samples::agent},
+    {&Sources::reference, &Samples::reference},
+    {&Sources::estimate, &Samples::estimate},
+    {&Sources::staircase, &Samples::staircase}};
 
-/// Samples the fields that are given (not null) into `s`: first the agent and the reference, then,
-/// once solved, the estimate (and staircase).
-void sample_line(const agent::Grid& grid, const Line& line, const GridFields* const fields[4], LineSamples& s) {
+/// Samples the sources that are given (not null) along `line` into `s`: first the agent and the
+/// reference, then, once solved, the estimate (and staircase).
+void sample_line(const agent::Grid& grid, const Line& line, const Sources& sources, ScopeSamples& s) {
   for (int i : line.body_samples) {
     const Eigen::Vector3d p = line.point(i);
-    for (int m = 0; m < 4; ++m) {
-      if (!fields[m]) continue;
-      s.sx[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 0, p));
-      s.sy[m].push_back(sample_cells(grid, fields[m]->sigma, 2, 1, p));
-      for (int a = 0; a < 2; ++a) s.u[m].push_back(sample_nodes(grid, fields[m]->u, grid.dim, a, p));
+    for (const auto& [from, to] : kSources) {
+      const GridFields* f = sources.*from;
+      if (!f) continue;
+      (s.sigma_x.*to).push_back(sample_cells(grid, f->sigma, 2, 0, p));
+      (s.sigma_y.*to).push_back(sample_cells(grid, f->sigma, 2, 1, p));
+      for (int a = 0; a < 2; ++a) (s.u.*to).push_back(sample_nodes(grid, f->u, grid.dim, a, p));
     }
   }
 }
 
 // Step 7: the metrics of one scope; each error norm with the reference's own error beside it (and
 // the staircase's own error beside a true-geometry reference).
-void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<double>* sx,
-               const std::vector<double>* sy, const std::vector<double>* u, double mask) {
-  const std::vector<double>* fields[3] = {sx, sy, u};  // each: agent, reference, estimate, staircase
+void add_scope(CompareOutcome& out, const std::string& scope, const ScopeSamples& s, double mask) {
+  const Samples* fields[3] = {&s.sigma_x, &s.sigma_y, &s.u};  // kFields
   for (int f = 0; f < 3; ++f) {
-    const auto e = relative_errors(fields[f][0], fields[f][1]);
-    const auto r = relative_errors(fields[f][2], fields[f][1]);
-    const bool staircase = !fields[f][3].empty();
-    const auto st = staircase ? relative_errors(fields[f][3], fields[f][1]) : Errors{NAN, NAN};
+    const Samples& v = *fields[f];
+    const auto e = relative_errors(v.agent, v.reference);
+    const auto r = relative_errors(v.estimate, v.reference);
+    const auto st = v.staircase.empty() ? Errors{NAN, NAN} : relative_errors(v.staircase, v.reference);
     out.metrics.push_back(
         {scope + "." + kFields[f] + ".rel_l2", e.rel_l2, "||agent - FEM||_2 / ||FEM||_2", r.rel_l2, st.rel_l2});
     out.metrics.push_back(
         {scope + "." + kFields[f] + ".rel_max", e.rel_max, "max |agent - FEM| / max |FEM|", r.rel_max, st.rel_max});
   }
   for (int f = 0; f < 2; ++f) {
-    const auto r = ratios(fields[f][0], fields[f][1], mask);
+    const auto r = ratios(fields[f]->agent, fields[f]->reference, mask);
     out.metrics.push_back({scope + "." + kFields[f] + ".ratio_median_dev", std::abs(r.median - 1.0),
                            "|median(agent / FEM) - 1|"});
     out.metrics.push_back({scope + "." + kFields[f] + ".masked_fraction",
@@ -198,7 +215,7 @@ void add_scope(CompareOutcome& out, const std::string& scope, const std::vector<
 }
 
 /// The body's cells and nodes (box order), and the far field's: air counts in neither.
-void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const GridFields* const fields[4], double mask) {
+void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
   std::vector<char> body_cells(grid.count(), 0);
@@ -210,15 +227,16 @@ void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Gr
   for (std::size_t n = 0; n < far_nodes.size(); ++n) far_nodes[n] = far_nodes[n] && !in.near.nodes[n];
   for (const auto& [scope, cells, nodes] : {std::tuple{"body", &body_cells, &body_nodes},
                                             std::tuple{"far", &far_cells, &far_nodes}}) {
-    std::vector<double> sx[4], sy[4], u[4];
-    for (int m = 0; m < 4; ++m) {
-      if (!fields[m]) continue;
-      const auto sigma = select(fields[m]->sigma, 2, cell_ids, *cells);
-      sx[m] = component(sigma, 2, 0);
-      sy[m] = component(sigma, 2, 1);
-      u[m] = select(fields[m]->u, grid.dim, node_ids, *nodes);
+    ScopeSamples s;
+    for (const auto& [from, to] : kSources) {
+      const GridFields* f = sources.*from;
+      if (!f) continue;
+      const auto sigma = select(f->sigma, 2, cell_ids, *cells);
+      s.sigma_x.*to = component(sigma, 2, 0);
+      s.sigma_y.*to = component(sigma, 2, 1);
+      s.u.*to = select(f->u, grid.dim, node_ids, *nodes);
     }
-    add_scope(out, scope, sx, sy, u, mask);
+    add_scope(out, scope, s, mask);
   }
 }
 
@@ -234,20 +252,12 @@ void add_load_balance(CompareOutcome& out, const agent::Diagnostics& d, double m
                          "coefficients lose"});
   out.metrics.push_back({"agent.reach_fraction", double(d.agents_generated) / double(n_cells),
                          "share of agents the load reaches"});
-  if (d.rigid_reaction < min_share * d.applied) {
-    char text[400];
-    std::snprintf(text, sizeof text,
-                  "agent: only %.3g of %.3g N (%.1f %%) reaches a rigid face (compare.min_reaction_share = %g): "
-                  "passed out %.3g N, dropped below gamma %.3g N, lost by the transfer coefficients %.3g N",
-                  d.rigid_reaction, d.applied, 100 * d.rigid_reaction / d.applied, min_share, d.passed_out, d.dropped,
-                  lost);
-    out.warnings.push_back(text);
-  }
+  for (const auto& w : agent_study::load_balance_warnings(d, min_share)) out.warnings.push_back("agent: " + w);
 }
 
 // Step 5: the files (steps.csv in step 2).
 void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
-                     const std::vector<LineSamples>& samples) {
+                     const std::vector<ScopeSamples>& samples) {
   const int dim = grid.dim;
   auto csv = open_csv(file);
   csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",sigma_x [Pa],sigma_y [Pa],u_x [m],u_y [m]\n";
@@ -258,7 +268,9 @@ void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::v
         const auto& s = samples[li];
         csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
         for (int a = 0; a < dim; ++a) csv << ',' << p[a];
-        csv << ',' << s.sx[m][i] << ',' << s.sy[m][i] << ',' << s.u[m][2 * i] << ',' << s.u[m][2 * i + 1] << '\n';
+        const auto& to = kSources[m].second;  // the agent (m = 0) or the reference
+        csv << ',' << (s.sigma_x.*to)[i] << ',' << (s.sigma_y.*to)[i] << ',' << (s.u.*to)[2 * i] << ','
+            << (s.u.*to)[2 * i + 1] << '\n';
       }
   csv.close();  // complete on disk before figures.py reads it
 }
@@ -443,9 +455,9 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // figures go on while the reference's own error is estimated.
   t = std::chrono::steady_clock::now();
   const auto agent_fields = agent_on_grid(grid, agent_state);
-  const GridFields* const models[4] = {&agent_fields, &reference.fields, nullptr, nullptr};
-  std::vector<LineSamples> samples(in.lines.size());
-  for (std::size_t li = 0; li < in.lines.size(); ++li) sample_line(grid, in.lines[li], models, samples[li]);
+  std::vector<ScopeSamples> samples(in.lines.size());
+  for (std::size_t li = 0; li < in.lines.size(); ++li)
+    sample_line(grid, in.lines[li], {&agent_fields, &reference.fields}, samples[li]);
   write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
   write_field_files(dir, in, agent_fields, reference.fields, agent_state, options.mask);
   animation_data.get();
@@ -459,14 +471,12 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
   // 7. The metrics.
   t = std::chrono::steady_clock::now();
-  const GridFields* const fields[4] = {&agent_fields, &reference.fields, &reference.estimate_fields,
-                                       reference.staircase_fields ? &*reference.staircase_fields : nullptr};
-  const GridFields* const errors[4] = {nullptr, nullptr, fields[2], fields[3]};
-  for (std::size_t li = 0; li < in.lines.size(); ++li) sample_line(grid, in.lines[li], errors, samples[li]);
-  CompareOutcome outcome;
-  add_field_scopes(outcome, in, fields, options.mask);
+  const GridFields* staircase = reference.staircase_fields ? &*reference.staircase_fields : nullptr;
   for (std::size_t li = 0; li < in.lines.size(); ++li)
-    add_scope(outcome, in.lines[li].name, samples[li].sx, samples[li].sy, samples[li].u, options.mask);
+    sample_line(grid, in.lines[li], {nullptr, nullptr, &reference.estimate_fields, staircase}, samples[li]);
+  CompareOutcome outcome;
+  add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
+  for (std::size_t li = 0; li < in.lines.size(); ++li) add_scope(outcome, in.lines[li].name, samples[li], options.mask);
   add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
   outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
                              "|reactions + applied| / |applied| (FEM)"});

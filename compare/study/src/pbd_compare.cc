@@ -1,4 +1,4 @@
-// The PBD angle bending rod against the deal.II FEM strip (issue 6, docs/compare.md "model = pbd"):
+// The PBD angle bending rod against the deal.II FEM strip (docs/compare.md "model = pbd"):
 // PBD relaxed to rest from the case's frames, FEM solved once, the FEM displacement sampled on the
 // strip's mid-height line at the PBD centreline's nodes, both against Euler-Bernoulli.
 #include <compare/pbd_compare.h>

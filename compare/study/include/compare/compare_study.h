@@ -1,9 +1,9 @@
 #pragma once
 // One study, two models: a fast model and the FEM reference from one case file (docs/compare.md).
 // [compare] model = "agent" (default): the agent method and FEM on the identical gmsh mesh,
-// compared cell by cell and along sample lines (issue 4). model = "pbd": the PBD angle bending rod
+// compared cell by cell and along sample lines. model = "pbd": the PBD angle bending rod
 // ([pbd]) against the FEM strip (the shared sections), compared along the centreline and with
-// Euler-Bernoulli (issue 6).
+// Euler-Bernoulli.
 #include <compare/metrics.h>
 #include <compare/reference.h>
 #include <workbench/case_file.h>

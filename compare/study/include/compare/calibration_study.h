@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <vector>
 
 namespace compare {
 
@@ -18,6 +19,27 @@ namespace compare {
 std::string with_coefficients(const std::string& text, const std::filesystem::path& case_dir,
                               const agent::Coefficients& k, agent::RuleSet rules,
                               const std::optional<agent::Readings>& readings = std::nullopt);
+
+/// What a calibration file asks for ([calibrate], docs/calibration.md).
+struct CalibrationPlan {
+  CalibrationOptions options;
+  bool cross_validate = true;
+  std::vector<std::filesystem::path> case_files;
+  std::vector<double> case_weights;
+  std::array<bool, kCoefficientCount> start_given{};  ///< else the start is the first case's own [agent] value
+  std::optional<agent::Readings> readings;  ///< calibrate.readings: every case's, else each case's own
+};
+
+/// Reads [calibrate] (every coefficient's start and bounds from agent::kCoefficients); throws
+/// workbench::Error naming the file and key for anything out of range.
+CalibrationPlan read_calibration_plan(const workbench::CaseFile& file);
+
+/// One load case of a calibration from its case file: the agent study (with `readings`, when
+/// given, in place of the case's own: `readings_key` is where a mismatch with the loads is
+/// reported), every section checked, and the case's FEM reference ([compare.reference]) solved
+/// once and sampled onto the agent grid. Progress on `log`.
+CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, const agent::Readings* readings,
+                                      const workbench::CaseTable* readings_key, std::ostream& log);
 
 /// Reads the calibration file and every case it lists, solves FEM for each, fits, cross-validates,
 /// and writes report.txt, report.json and calibrated/<case>.toml into `dir`.

@@ -1,10 +1,12 @@
 // The calibration as a workbench study: the calibration file, each case's reference, the report and the calibrated case files.
 #include <compare/calibration_study.h>
+#include <compare/case_sections.h>
 #include <compare/compare_study.h>
 
 #include "report.h"
 
 #include <fem_reference/fem_case.h>
+#include <workbench/case_edit.h>
 #include <workbench/error.h>
 
 #include <nlohmann/json.hpp>
@@ -23,22 +25,11 @@ namespace fs = std::filesystem;
 using workbench::Error;
 using workbench::Range;
 
-namespace {
-
-struct Plan {
-  CalibrationOptions options;
-  bool cross_validate = true;
-  std::vector<fs::path> case_files;
-  std::vector<double> case_weights;
-  std::array<bool, kCoefficientCount> start_given{};  ///< else the start is the first case's own [agent] value
-  std::optional<agent::Readings> readings;  ///< calibrate.readings: every case's, else each case's own
-};
-
-Plan read_plan(const workbench::CaseFile& file) {
+CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   const auto root = file.root();
   root.text("title", "");
   const auto t = root.table("calibrate");
-  Plan plan;
+  CalibrationPlan plan;
   auto& o = plan.options;
   o.rules = agent_study::read_rule_set(t, agent::RuleSet::Conserving);
   if (t.has("readings")) plan.readings = agent_study::read_readings(t, o.rules);
@@ -95,133 +86,20 @@ Plan read_plan(const workbench::CaseFile& file) {
   return plan;
 }
 
-/// The shortest decimal text that reads back as exactly `v`.
-std::string shortest(double v) {
-  char text[64];
-  const auto r = std::to_chars(text, text + sizeof text, v);
-  std::string s(text, r.ptr);
-  if (s.find_first_of(".eE") == std::string::npos && s.find("inf") == std::string::npos && s.find("nan") == std::string::npos)
-    s += ".0";  // a TOML float, not an integer
-  return s;
-}
-
-/// A TOML basic string.
-std::string quoted(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
-  return q + "\"";
-}
-
-/// The table a line opens ("agent" for "[agent]  # ..."), or "" if it opens none.
-std::string table_of(const std::string& line) {
-  const auto a = line.find_first_not_of(" \t");
-  if (a == std::string::npos || line[a] != '[') return "";
-  const bool array = line.compare(a, 2, "[[") == 0;
-  const auto b = line.find(array ? "]]" : "]", a);
-  if (b == std::string::npos) return "";
-  std::string name = line.substr(a + (array ? 2 : 1), b - a - (array ? 2 : 1));
-  name.erase(0, name.find_first_not_of(" \t"));
-  name.erase(name.find_last_not_of(" \t") + 1);
-  return name;
-}
-
-/// The key a `key = value` line sets, or "".
-std::string key_of(const std::string& line) {
-  const auto a = line.find_first_not_of(" \t");
-  const auto eq = line.find('=');
-  if (a == std::string::npos || eq == std::string::npos || line[a] == '#' || line[a] == '[') return "";
-  std::string key = line.substr(a, eq - a);
-  key.erase(key.find_last_not_of(" \t") + 1);
-  return key;
-}
-
-/// `line` with its value replaced by `value`, the comment after it kept.
-std::string set_value(const std::string& line, const std::string& value) {
-  const auto eq = line.find('=');
-  auto comment = line.find('#', eq);
-  if (comment != std::string::npos && line.find('"', eq) < comment) comment = line.find('#', line.find('"', line.find('"', eq) + 1));
-  const std::string tail = comment == std::string::npos ? "" : "  " + line.substr(comment);
-  return line.substr(0, eq) + "= " + value + tail;
-}
-
-}  // namespace
-
 std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
                               agent::RuleSet rules, const std::optional<agent::Readings>& readings) {
-  const toml::table original = toml::parse(text);
-  std::vector<std::pair<std::string, std::string>> wanted{{"rule_set", quoted(agent::rule_set_name(rules))}};
-  std::vector<double> values{0};
+  std::vector<std::pair<std::string, std::string>> agent{{"rule_set", workbench::toml_string(agent::rule_set_name(rules))}};
   for (const auto& c : agent::kCoefficients)
-    if (!c.integer) {  // every real coefficient in effect (poisson_decay too); `directions` is the case's own
-      wanted.push_back({c.name, shortest(c.get(k))});
-      values.push_back(c.get(k));
-    }
-  std::vector<std::string> lines;
-  {
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-  }
-  std::vector<bool> done(wanted.size(), false);
-  const auto reading_names = readings ? agent_study::names_of(*readings) : std::vector<std::string>{};
-  std::string readings_value = "[";
-  for (const auto& name : reading_names) readings_value += (readings_value.size() > 1 ? ", " : "") + quoted(name);
-  readings_value += "]";
-  bool readings_done = !readings;
-  std::string table;
-  int agent_end = -1;  // index after the last line of [agent]
-  for (std::size_t n = 0; n < lines.size(); ++n) {
-    if (const auto t = table_of(lines[n]); !t.empty()) {
-      table = t;
-      continue;
-    }
-    const auto key = key_of(lines[n]);
-    if (table == "mesh" && key == "file")
-      if (auto file = original["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
-        lines[n] = set_value(lines[n], quoted(fs::absolute(case_dir / *file).lexically_normal().string()));
-    if (table != "agent") continue;
-    if (lines[n].find_first_not_of(" \t") != std::string::npos) agent_end = int(n) + 1;  // after its last line
-    if (readings && key == "readings") {
-      lines[n] = set_value(lines[n], readings_value);
-      readings_done = true;
-    }
-    for (std::size_t w = 0; w < wanted.size(); ++w) {
-      if (key != wanted[w].first) continue;
-      done[w] = true;
-      const auto old = original["agent"][key];
-      const bool same = w == 0 ? old.value<std::string>() == std::optional<std::string>(agent::rule_set_name(rules))
-                               : old.value<double>() == std::optional<double>(values[w]);
-      if (!same) lines[n] = set_value(lines[n], wanted[w].second);
-    }
-  }
-  std::vector<std::string> missing;
-  for (std::size_t w = 0; w < wanted.size(); ++w)
-    if (!done[w]) missing.push_back(wanted[w].first + " = " + wanted[w].second);
-  if (!readings_done) missing.push_back("readings = " + readings_value);
-  if (agent_end < 0) {
-    if (!missing.empty()) lines.push_back("\n[agent]");
-    agent_end = int(lines.size());
-  }
-  lines.insert(lines.begin() + agent_end, missing.begin(), missing.end());
-  std::string out;
-  for (const auto& l : lines) out += l + "\n";
-  // What was written must read back as exactly the fitted values.
-  toml::table check;
+    if (!c.integer) agent.emplace_back(c.name, workbench::toml_number(c.get(k)));  // poisson_decay too; `directions` is the case's own
+  if (readings) agent.emplace_back("readings", workbench::toml_strings(agent_study::names_of(*readings)));
+  std::string out = text;
+  if (auto file = toml::parse(text)["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
+    out = workbench::set_case_keys(out, "mesh", {{"file", workbench::toml_string(fs::absolute(case_dir / *file).lexically_normal().string())}});
   try {
-    check = toml::parse(out);
-  } catch (const toml::parse_error& e) {  // e.g. the rest of a readings array over several lines
-    throw Error("calibrate: the calibrated case does not parse (" + std::string(e.description()) +
-                "): write [agent] readings on one line");
+    return workbench::set_case_keys(out, "agent", agent);
+  } catch (const Error& e) {
+    throw Error(std::string("calibrate: ") + e.what());
   }
-  for (std::size_t w = 1; w < wanted.size(); ++w)
-    if (check["agent"][wanted[w].first].value<double>() != std::optional<double>(values[w]))
-      throw Error("calibrate: the calibrated case does not read back " + wanted[w].first + " = " + wanted[w].second);
-  if (readings) {  // e.g. a readings array over several lines, which the line edit above cannot replace
-    std::vector<std::string> back;
-    if (const auto* array = check["agent"]["readings"].as_array())
-      for (const auto& name : *array) back.push_back(name.value_or(std::string()));
-    if (back != reading_names) throw Error("calibrate: the calibrated case does not read back readings = " + readings_value);
-  }
-  return out;
 }
 
 namespace {
@@ -246,34 +124,41 @@ std::string coefficient_row(const agent::Coefficients& k) {
 
 }  // namespace
 
+CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, const agent::Readings* readings,
+                                      const workbench::CaseTable* readings_key, std::ostream& log) {
+  CalibrationCase c;
+  c.name = case_file.path().stem().string();
+  c.study = agent_study::load_agent_study(case_file);
+  if (readings) {
+    c.study.readings = *readings;
+    agent_study::check_readings_fit_loads(c.study, *readings_key);
+  }
+  auto problem = fem_reference::problem_from_case(case_file);
+  const auto compare_options = read_compare_options(case_file.root());
+  if (compare_options.model != "agent")
+    case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
+  check_every_section(case_file);
+  // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
+  const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
+  log << c.name << ": solving the reference (" << reference.describe() << ") once\n" << std::flush;
+  const auto fem = fem_reference::solve_fem(reference_problem(problem, reference, c.study.mesh.grid));
+  std::array<std::size_t, 2> outside{};
+  c.reference = reference_on_grid(reference, c.study.mesh, fem, case_file.path().string(), outside);
+  return c;
+}
+
 CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto start_time = std::chrono::steady_clock::now();
-  Plan plan = read_plan(file);
+  CalibrationPlan plan = read_calibration_plan(file);
   file.reject_unknown_keys();
 
   // Every load case: the agent study, and the FEM reference solved once.
   std::vector<CalibrationCase> cases;
+  const auto calibrate_table = file.root().table("calibrate");
   for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
     workbench::CaseFile case_file(plan.case_files[i]);
-    CalibrationCase c;
-    c.name = plan.case_files[i].stem().string();
-    c.study = agent_study::load_agent_study(case_file);
-    if (plan.readings) {
-      c.study.readings = *plan.readings;
-      agent_study::check_readings_fit_loads(c.study, file.root().table("calibrate"));
-    }
-    auto problem = fem_reference::problem_from_case(case_file);
-    const auto compare_options = read_compare_options(case_file.root());
-    if (compare_options.model != "agent")
-      case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
-    case_file.reject_unknown_keys();
-    // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
-    const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
-    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " " << c.name << ": solving the reference ("
-        << reference.describe() << ") once\n" << std::flush;
-    const auto fem = fem_reference::solve_fem(reference_problem(problem, reference, c.study.mesh.grid));
-    std::array<std::size_t, 2> outside{};
-    c.reference = reference_on_grid(reference, c.study.mesh, fem, case_file.path().string(), outside);
+    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
+    auto c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
     c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }

@@ -56,9 +56,10 @@ struct Row {
 namespace {
 
 template <class Slots>
-void march(const Grid& g, const Slots& slots, const DirectionalCoefficients& k, double gamma,
+void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k, double gamma,
            const std::vector<EntryLoad>& loads, std::vector<double>& faces, std::vector<std::int32_t>& generation,
            Diagnostics& d) {
+  const Slots slots = layout;  // a local: its strides and flags stay in registers
   const int dim = g.dim, nd = 2 * dim, n = k.directions;
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
   const Fan fan = entry_fan(k, dim);

@@ -150,8 +150,9 @@ void LayerSweep::run(const Grid& grid, const Slots& slots, const EntryLoad& load
 }
 
 template <int Dim, class Slots, class Rule>
-void LayerSweep::layers(const Grid& g, const Slots& slots, const EntryLoad& load, TransferResults& results) {
+void LayerSweep::layers(const Grid& g, const Slots& layout, const EntryLoad& load, TransferResults& results) {
   // The dimension is a template parameter so that face offsets are compile-time constants.
+  const Slots slots = layout;  // a local: its strides and flags stay in registers
   constexpr int nd = 2 * Dim;
   const int a = axis_of(load.dir);
   const bool forward = is_positive(load.dir);

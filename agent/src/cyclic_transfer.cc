@@ -1,6 +1,5 @@
 // Readings 2 and 6 of the patent rule set: a work-list over the cyclic transfer graph, wave by wave.
 #include <agent/cyclic_transfer.h>
-#include <agent/load_transfer.h>
 
 #include <algorithm>
 #include <climits>
@@ -107,7 +106,7 @@ void check_cyclic(const Grid& grid, const Material& material, const Coefficients
                                           std::string(1, char('x' + a)));
 }
 
-void cyclic_transfer(const Grid& g, const Material& material, const Coefficients& k, const Readings& readings,
+void cyclic_transfer(const Grid& g, const Material& material, const Coefficients& k, const TransferReadings& readings,
                      const std::vector<EntryLoad>& loads, std::vector<double>& faces,
                      std::vector<std::int32_t>& generation, Diagnostics& d, std::size_t update_cap) {
   check_cyclic(g, material, k);
@@ -178,9 +177,10 @@ void cyclic_transfer(const Grid& g, const Material& material, const Coefficients
             (push ? d.lateral_dropped : d.dropped) += child.weight;
             return;
           }
-          if (g.has_neighbour(c, side)) {
+          const std::size_t across = g.neighbour(c, side);
+          if (across != Grid::npos && !g.is_air(across)) {
             if (loads_face) fc[side] += child.weight;
-            child.cell = g.tiled() ? g.neighbour(c, side) : side % 2 ? c + g.stride(axis_of(side)) : c - g.stride(axis_of(side));
+            child.cell = across;
             child.in_side = std::uint8_t(opposite(side));
           } else {
             const bool rigid = g.boundary(side, c) == Boundary::Rigid;
@@ -233,6 +233,18 @@ void cyclic_transfer(const Grid& g, const Material& material, const Coefficients
       wave.swap(next);
     }
   }
+}
+
+CyclicTransfer::CyclicTransfer(const Grid& grid, const Material& material, const Coefficients& k,
+                               const TransferReadings& readings)
+    : material_(material), k_(k), readings_(readings) {
+  check_coefficients(k, RuleSet::Patent);
+  check_cyclic(grid, material, k);
+}
+
+void CyclicTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+  out.clear_all();
+  cyclic_transfer(grid, material_, k_, readings_, loads, out.faces, out.generation, out.diagnostics);
 }
 
 }  // namespace agent

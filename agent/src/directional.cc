@@ -1,6 +1,6 @@
 // The directional rule set (the project's extension): load packets with slopes, marched row by row.
 #include <agent/directional.h>
-#include <agent/load_transfer.h>
+#include <agent/slots.h>
 
 #include <algorithm>
 #include <array>
@@ -53,16 +53,19 @@ struct Row {
 
 }  // namespace
 
-void directional_transfer(const Grid& g, const DirectionalCoefficients& k, double gamma,
-                          const std::vector<EntryLoad>& loads, std::vector<double>& faces,
-                          std::vector<std::int32_t>& generation, Diagnostics& d) {
+namespace {
+
+template <class Slots>
+void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k, double gamma,
+           const std::vector<EntryLoad>& loads, std::vector<double>& faces, std::vector<std::int32_t>& generation,
+           Diagnostics& d) {
+  const Slots slots = layout;  // a local: its strides and flags stay in registers
   const int dim = g.dim, nd = 2 * dim, n = k.directions;
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
   const Fan fan = entry_fan(k, dim);
-  const std::uint8_t* flags = g.flags.data();
   // Slot ids may be Grid::npos on a tiled grid (an unstored tile): air, no rigid face.
-  auto rigid = [flags](std::size_t cell, int side) { return cell != Grid::npos && ((flags[cell] >> side) & 1); };
-  auto air = [flags](std::size_t cell) { return cell == Grid::npos || (flags[cell] & Grid::kAirBit); };
+  auto rigid = [&slots](std::size_t cell, int side) { return slots.rigid(cell, side); };
+  auto air = [&slots](std::size_t cell) { return slots.air(cell); };
 
   Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
   std::vector<double> row_force;
@@ -94,21 +97,12 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
     const int a = axis_of(load.dir);
     const bool forward = is_positive(load.dir);
     const int step = forward ? 1 : -1;
-    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;  // lateral axes (l1 has one cell in 2D)
+    const int l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;  // l1 has one cell in 2D
     const int n0 = g.cells[l0], n1 = g.cells[l1];
-    const std::size_t sa = g.stride(a), s0 = g.stride(l0), s1 = g.stride(l1), layer_size = std::size_t(n0) * n1;
+    const std::size_t layer_size = std::size_t(n0) * n1;
     const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
-    // The slot at a layer and lateral position: by strides on a dense grid, through the tile
-    // table on a tiled one.
-    const bool tiled = g.tiled();
-    auto slot_of = [&](int layer, int u, int v) {
-      if (!tiled) return std::size_t(layer) * sa + u * s0 + v * s1;
-      std::array<int, 3> c{};
-      c[a] = layer;
-      c[l0] = u;
-      c[l1] = v;
-      return g.index(c[0], c[1], c[2]);
-    };
+    // The slot at a layer and lateral position (agent/slots.h).
+    auto slot_of = [&](int layer, int u, int v) { return slots.layer(a, layer)(u, v); };
     const auto entry = g.coords(load.cell);
     const int eu = entry[l0], ev = entry[l1];
     // Per row: the drift of a unit slope and the diffusion step, in lateral agents. Diffusion is
@@ -298,6 +292,21 @@ void directional_transfer(const Grid& g, const DirectionalCoefficients& k, doubl
       std::swap(now, next);
     }
   }
+}
+
+}  // namespace
+
+void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, double gamma,
+                          const std::vector<EntryLoad>& loads, std::vector<double>& faces,
+                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics) {
+  with_slots(grid, [&](const auto& slots) { march(grid, slots, k, gamma, loads, faces, generation, diagnostics); });
+}
+
+DirectionalTransfer::DirectionalTransfer(const Coefficients& k) : k_(k) { check_coefficients(k, RuleSet::Directional); }
+
+void DirectionalTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+  out.clear_all();
+  directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics);
 }
 
 }  // namespace agent

@@ -1,5 +1,6 @@
 // Stress, strain and displacement of the agents from their face forces.
 #include <agent/fields.h>
+#include <agent/slots.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +20,10 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
   return sigma;
 }
 
-std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces, const Readings& readings,
-                                   int load_dir, double beta, double poisson) {
+std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces,
+                                   const StressReadings& readings, int load_dir, double beta, double poisson) {
   auto sigma = agent_stresses(grid, face_forces);
-  if (!readings.entering_face_stress && !readings.lateral_strain_stress) return sigma;
+  if (!readings.any()) return sigma;
   const int dim = grid.dim, nd = 2 * dim, a = axis_of(load_dir), enter_face = opposite(load_dir);
   const double area = grid.face_area(a);
   for (std::size_t c = 0; c < grid.count(); ++c) {
@@ -83,131 +84,89 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
   return datums;
 }
 
-namespace {
-
-// node_displacements on a tiled grid: the dense grid's numbers, bit for bit, from the stored tiles
-// only. A column's line (its strain integrated from the box's lower side) changes only inside
-// stored tiles (air adds 0.0 exactly), so it is integrated tile by tile along its tile column and
-// read between them as the value it carried out of the last stored tile below. Each stored node
-// then adds its adjacent columns in the dense loop's order (v, then w) and divides by their count.
-// Cost: each column that a stored node touches once over its tile column's stored tiles.
-std::vector<double> tiled_node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
+std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
+  // Column by column along each axis: a column's line (its strain integrated from the box's lower
+  // side, then shifted to zero at the datum) is added to the nodes of its cells, and each node is
+  // divided by the number of columns beside it. Only stored slots are walked (agent/slots.h,
+  // blocks()): a column's line changes only inside stored blocks (air adds 0.0 exactly), so between
+  // them it is the value carried out of the last stored block below; a column with no stored block
+  // adds 0 to its nodes and is skipped. Columns go in (l1, l0) order, so every node adds its
+  // columns in one order whatever the layout: a tiled grid gives the dense grid's numbers bit for
+  // bit, and a dense grid is one block.
   const int dim = grid.dim;
-  const Tiles& t = grid.tiles;
+  const Blocks blocks = with_slots(grid, [](const auto& slots) { return slots.blocks(); });
   std::vector<double> u(grid.node_count() * dim, 0.0);
+  std::vector<double> line;
   for (int a = 0; a < dim; ++a) {
-    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;
-    const int n = grid.cells[a], tile_a = 1 << t.shift[a];
+    const int l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;
+    const int n = grid.cells[a], b = blocks.size[a], b0 = blocks.size[l0], b1 = blocks.size[l1];
+    // The datum sits in agent `datum_cell` at fraction `frac` of its length.
     const double position = std::min(std::max(datums[a], 0.0), double(n));
     const int datum_cell = std::min(int(position), n - 1);
     const double frac = position - datum_cell;
-    // The stored tiles along a of each tile column (tile coordinates on l0, l1), in order.
+    // The stored blocks along a of each column of blocks, keyed (l1, l0) in block units, in order.
     std::map<std::pair<int, int>, std::vector<int>> along;
-    for (const auto& first : t.first) along[{first[l0] >> t.shift[l0], first[l1] >> t.shift[l1]}].push_back(first[a] >> t.shift[a]);
-    for (auto& [key, tiles] : along) std::sort(tiles.begin(), tiles.end());
-    // A column's line at the nodes of its stored tiles ((tile_a + 1) values each) and its shift.
-    struct Column {
-      const std::vector<int>* tiles = nullptr;
-      std::vector<double> line;
-      double shift = 0;
+    for (const auto& first : *blocks.first) along[{first[l1] / b1, first[l0] / b0}].push_back(first[a] / b);
+    for (auto& entry : along) std::sort(entry.second.begin(), entry.second.end());
+    // A column's line at node i: in block k of its stored blocks at line[k * (b + 1) + i - start].
+    auto line_at = [&](const std::vector<int>& starts, int i) {
+      const auto it = std::upper_bound(starts.begin(), starts.end(), i / b);  // blocks starting at or below i
+      if (it == starts.begin()) return 0.0;
+      const std::size_t k = std::size_t(it - starts.begin()) - 1;
+      const int r = std::min(i - starts[k] * b, b);  // past the block: what it carried out
+      return line[k * (b + 1) + r];
     };
-    std::map<std::pair<int, int>, Column> columns;
-    auto line_at = [&](const Column& c, int i) {
-      if (!c.tiles) return 0.0;
-      const auto& tiles = *c.tiles;
-      const auto it = std::upper_bound(tiles.begin(), tiles.end(), i / tile_a);  // tiles starting at or below i
-      if (it == tiles.begin()) return 0.0;
-      const std::size_t k = std::size_t(it - tiles.begin()) - 1;
-      const int r = std::min(i - tiles[k] * tile_a, tile_a);  // past the tile: what it carried out
-      return c.line[k * (tile_a + 1) + r];
-    };
-    auto column = [&](int w, int v) -> const Column& {
-      auto [entry, added] = columns.try_emplace({w, v});
-      Column& c = entry->second;
-      if (!added) return c;
-      const auto found = along.find({w >> t.shift[l0], v >> t.shift[l1]});
-      if (found == along.end()) return c;
-      c.tiles = &found->second;
-      c.line.resize(c.tiles->size() * (tile_a + 1));
-      double carried = 0.0;
-      std::array<int, 3> at{};
-      at[l0] = w;
-      at[l1] = v;
-      for (std::size_t k = 0; k < c.tiles->size(); ++k) {
-        const int i0 = (*c.tiles)[k] * tile_a;
-        double* line = &c.line[k * (tile_a + 1)];
-        line[0] = carried;
-        for (int r = 0; r < tile_a; ++r) {
-          at[a] = i0 + r;
-          if (at[a] < n) carried = carried + strains[3 * grid.index(at[0], at[1], at[2]) + a] * grid.size[a];
-          line[r + 1] = carried;
+    for (auto row = along.begin(); row != along.end();) {
+      auto row_end = row;
+      while (row_end != along.end() && row_end->first.first == row->first.first) ++row_end;
+      const int v_end = std::min((row->first.first + 1) * b1, grid.cells[l1]);
+      for (int v = row->first.first * b1; v < v_end; ++v)
+        for (auto column = row; column != row_end; ++column) {
+          const auto& starts = column->second;
+          const int w_end = std::min((column->first.second + 1) * b0, grid.cells[l0]);
+          for (int w = column->first.second * b0; w < w_end; ++w) {
+            // Integrate the column's strain from its first node, then shift to zero at the datum.
+            std::array<int, 3> at{};
+            at[l0] = w;
+            at[l1] = v;
+            line.resize(starts.size() * (b + 1));
+            double carried = 0.0;
+            for (std::size_t k = 0; k < starts.size(); ++k) {
+              line[k * (b + 1)] = carried;
+              for (int r = 0; r < b; ++r) {
+                at[a] = starts[k] * b + r;
+                if (at[a] < n) carried = carried + strains[3 * grid.index(at[0], at[1], at[2]) + a] * grid.size[a];
+                line[k * (b + 1) + r + 1] = carried;
+              }
+            }
+            const double below = line_at(starts, datum_cell), above = line_at(starts, datum_cell + 1);
+            const double shift = below + frac * (above - below);
+            // Add to the nodes of this column's cells (2 node lines across in 2D, 4 in 3D) that
+            // have ids: those in the stored blocks of the node line's column of blocks.
+            for (int dv = 0; dv < (dim == 3 ? 2 : 1); ++dv)
+              for (int dw = 0; dw < 2; ++dw) {
+                const auto nodes = along.find({(v + dv) / b1, (w + dw) / b0});
+                if (nodes == along.end()) continue;
+                std::array<int, 3> p{};
+                p[l0] = w + dw;
+                p[l1] = v + dv;
+                for (int start : nodes->second)
+                  for (int i = start * b; i < std::min((start + 1) * b, n + 1); ++i) {
+                    p[a] = i;
+                    u[grid.node_index(p[0], p[1], p[2]) * dim + a] += line_at(starts, i) - shift;
+                  }
+              }
+          }
         }
-      }
-      const double below = line_at(c, datum_cell), above = line_at(c, datum_cell + 1);
-      c.shift = below + frac * (above - below);
-      return c;
-    };
+      row = row_end;
+    }
+    // Every node of the box: the columns beside it (a node beyond a tiled box's side keeps 0).
     for (std::size_t node = 0; node < grid.node_count(); ++node) {
       if (!grid.is_grid_node(node)) continue;
       const auto p = grid.node_coords(node);
-      double sum = 0.0, weight = 0;
-      const int v_lo = dim == 3 ? p[l1] - 1 : 0, v_hi = dim == 3 ? p[l1] : 0;
-      for (int v = std::max(v_lo, 0); v <= std::min(v_hi, grid.cells[l1] - 1); ++v)
-        for (int w = std::max(p[l0] - 1, 0); w <= std::min(p[l0], grid.cells[l0] - 1); ++w) {
-          const Column& c = column(w, v);
-          sum += line_at(c, p[a]) - c.shift;
-          weight += 1;
-        }
-      u[node * dim + a] = sum / weight;
+      auto beside = [](int i, int cells) { return double(std::min(i, cells - 1) - std::max(i - 1, 0) + 1); };
+      u[node * dim + a] /= beside(p[l0], grid.cells[l0]) * (dim == 3 ? beside(p[l1], grid.cells[l1]) : 1.0);
     }
-  }
-  return u;
-}
-
-}  // namespace
-
-std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
-  if (grid.tiled()) return tiled_node_displacements(grid, strains, datums);
-  const int dim = grid.dim;
-  std::vector<double> u(grid.node_count() * dim, 0.0);
-  std::vector<double> weight(grid.node_count());
-  std::vector<double> line;
-  for (int a = 0; a < dim; ++a) {
-    const int l0 = a == 0 ? 1 : 0, l1 = a == 2 ? 1 : 2;
-    const int n = grid.cells[a];
-    // The datum sits in agent `cell` at fraction `frac` of its length.
-    const double position = std::min(std::max(datums[a], 0.0), double(n));
-    const int cell = std::min(int(position), n - 1);
-    const double frac = position - cell;
-    std::fill(weight.begin(), weight.end(), 0.0);
-    line.assign(n + 1, 0.0);
-    for (int v = 0; v < grid.cells[l1]; ++v)
-      for (int w = 0; w < grid.cells[l0]; ++w) {
-        std::array<int, 3> c{};
-        c[l0] = w;
-        c[l1] = v;
-        auto strain = [&](int i) {
-          c[a] = i;
-          return strains[3 * grid.index(c[0], c[1], c[2]) + a] * grid.size[a];
-        };
-        // Integrate the column's strain from its first node, then shift to zero at the datum.
-        for (int i = 0; i < n; ++i) line[i + 1] = line[i] + strain(i);
-        const double shift = line[cell] + frac * (line[cell + 1] - line[cell]);
-        // Add to the nodes of this column's cells (2 node lines across in 2D, 4 in 3D).
-        const int corners_v = dim == 3 ? 2 : 1;
-        for (int dv = 0; dv < corners_v; ++dv)
-          for (int dw = 0; dw < 2; ++dw)
-            for (int i = 0; i <= n; ++i) {
-              std::array<int, 3> p{};
-              p[a] = i;
-              p[l0] = w + dw;
-              p[l1] = v + dv;
-              const std::size_t node = grid.node_index(p[0], p[1], p[2]);
-              u[node * dim + a] += line[i] - shift;
-              weight[node] += 1;
-            }
-      }
-    for (std::size_t node = 0; node < grid.node_count(); ++node) u[node * dim + a] /= weight[node];
   }
   return u;
 }

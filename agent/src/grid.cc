@@ -53,7 +53,7 @@ std::size_t Grid::node_count() const {
 }
 
 std::array<int, 3> Grid::node_coords(std::size_t node) const {
-  if (tiled()) return tiled_coords(node);
+  if (tiled()) return tiles.coords(node);
   const auto n = node_counts();
   const int i = int(node % n[0]);
   const std::size_t rest = node / n[0];
@@ -62,7 +62,7 @@ std::array<int, 3> Grid::node_coords(std::size_t node) const {
 
 bool Grid::is_grid_node(std::size_t node) const {
   if (!tiled()) return node < node_count();
-  const auto c = tiled_coords(node);
+  const auto c = tiles.coords(node);
   const auto n = node_counts();
   return c[0] < n[0] && c[1] < n[1] && c[2] < n[2];
 }

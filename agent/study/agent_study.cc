@@ -175,7 +175,7 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   s.face_forces = model.face_forces();
   s.generation = model.generation();
   s.diagnostics = model.diagnostics();
-  s.stress = agent::agent_stresses(grid, s.face_forces, model.readings(), study.loads.front().dir,
+  s.stress = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
                                   model.coefficients().beta, model.material().poisson);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
   s.displacement = agent::node_displacements(grid, s.strain, agent::choose_datums(grid, loads));

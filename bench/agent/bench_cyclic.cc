@@ -4,7 +4,7 @@
 //
 // Cyclic/h_um/gamma_exp/fitted: the seed plate (200 mm x 200 mm x 2 mm, rigid base, 2 N on a patch
 // of two agents at the top centre) with agents of h_um micrometres, gamma = 10^-gamma_exp N, the
-// seed's coefficients (fitted = 0) or the prototype fit (alpha1 0.53, alpha2 0.49,
+// seed's coefficients (fitted = 0) or the prototype fit (alpha1 0.53, alpha2 0.49,
 // alpha3 0.49; fitted = 1). Counters: updates (work-list items processed), updates/s, reached
 // agents, waves (transfers in the longest chain above gamma, plus one).
 #include <agent/load_transfer.h>

@@ -1,4 +1,4 @@
-// Throughput and locality of the agent load transfer (issue 2; results in docs/performance.md).
+// Throughput and locality of the agent load transfer (results in docs/performance.md).
 //
 //   build/bench/agent_bench --benchmark_counters_tabular=true
 //

@@ -264,7 +264,9 @@ TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
   c.study = agent_study::load_agent_study(file);
   agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
                             agent::RuleSet::Patent, all);
-  c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
+  agent_study::AgentStudy truth_study = c.study;  // the stress readings are the study's, not the model's
+  truth_study.readings = all;
+  c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(truth_study, model, 1.0));
   auto w = options().weights;
   std::vector<Score> without, with;
   objective({c}, truth, agent::RuleSet::Patent, w, &without);

@@ -3,8 +3,11 @@
 // every transfer operation (friction to every side, back included; agents reached by friction or
 // a push pass friction, the step along their load and pushes on), and boundary faces return the
 // load into the body. The transfer graph then has cycles; this is the work-list iteration that
-// solves it (LoadTransfer::solve dispatches here when either reading is on).
+// solves it (the rule type agent::CyclicTransfer, which LoadTransfer chooses when either reading
+// is on).
+#include <agent/coefficients.h>
 #include <agent/grid.h>
+#include <agent/transfer.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -13,14 +16,8 @@
 
 namespace agent {
 
-struct Material;
-struct Coefficients;
-struct Readings;
-struct EntryLoad;
-struct Diagnostics;
-
 /// The work-list stops with CyclicCapReached after this many agent updates, or when one wave would
-/// hold more items (about 150 B each: 1.5 GB) (a second guard: the LoadTransfer constructor already
+/// hold more items (about 150 B each: 1.5 GB) (a second guard: agent::Cyclic's constructor already
 /// refuses gamma = 0 and any transfer factor >= 1, so the iteration ends by itself;
 /// docs/agent-model.md gives the proof and the bound). The seed plate needs 4 k (gamma 1e-3 N).
 constexpr std::size_t kCyclicUpdateCap = 10'000'000;
@@ -58,9 +55,27 @@ void check_cyclic(const Grid& grid, const Material& material, const Coefficients
 /// Chains that reach the same agent in the same way (kind, direction, side) with the same product
 /// of factors are merged before they are passed on: exact, and independent of the order of work.
 /// Throws CyclicCapReached (diagnostics filled, `unfinished` > 0) after kCyclicUpdateCap updates.
-void cyclic_transfer(const Grid& grid, const Material& material, const Coefficients& k, const Readings& readings,
+void cyclic_transfer(const Grid& grid, const Material& material, const Coefficients& k, const TransferReadings& readings,
                      const std::vector<EntryLoad>& loads, std::vector<double>& faces,
                      std::vector<std::int32_t>& generation, Diagnostics& diagnostics,
                      std::size_t update_cap = kCyclicUpdateCap);
+
+/// Readings 2 and/or 6 of the patent rule set as a LoadTransfer rule type.
+class CyclicTransfer {
+ public:
+  /// Throws std::invalid_argument for coefficients outside their ranges (agent::check_coefficients)
+  /// and when the iteration would not end (agent::check_cyclic).
+  CyclicTransfer(const Grid& grid, const Material& material, const Coefficients& k, const TransferReadings& readings);
+  /// Clears the whole result (loads move in every direction), then runs cyclic_transfer; throws
+  /// CyclicCapReached at the cap.
+  void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
+  /// Nothing is held between solves (the waves are allocated per solve).
+  std::size_t memory_bytes() const { return 0; }
+
+ private:
+  Material material_;
+  Coefficients k_;
+  TransferReadings readings_;
+};
 
 }  // namespace agent

@@ -6,15 +6,12 @@
 // linearly with depth (as in elasticity) while every agent still talks only to its neighbours.
 #include <agent/coefficients.h>
 #include <agent/grid.h>
+#include <agent/transfer.h>
 
 #include <cstdint>
 #include <vector>
 
 namespace agent {
-
-struct Material;
-struct EntryLoad;
-struct Diagnostics;
 
 /// The slopes of the fan along one lateral axis (lateral drift per unit depth) and the entry
 /// weight of each (sum 1; in 3D a packet's weight is the product of its two axes' weights).
@@ -25,10 +22,26 @@ Fan entry_fan(const DirectionalCoefficients& k, int dim);
 
 /// Adds the face forces, generations and diagnostics of `loads` (an entry load at or below gamma is
 /// dropped; packets are not: a threshold per packet cuts the tails of the spreading fan, 62 % of
-/// the load on the seed plate at 5 mm agents with gamma = 1e-3 N) to `faces` (2*dim per agent), `generation` and `diagnostics`. Packets are moved,
-/// split and reflected whole, so nothing is lost on the way (diagnostics.lost stays 0).
+/// the load on the seed plate at 5 mm agents with gamma = 1e-3 N) to `faces` (2*dim per agent),
+/// `generation` and `diagnostics`. Packets are moved, split and reflected whole, so nothing is
+/// lost on the way (diagnostics.lost stays 0).
 void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                           const std::vector<EntryLoad>& loads, std::vector<double>& faces,
                           std::vector<std::int32_t>& generation, Diagnostics& diagnostics);
+
+/// The directional rule set as a LoadTransfer rule type: it reads gamma and the directional
+/// coefficients only, and takes no reading.
+class DirectionalTransfer {
+ public:
+  /// Throws std::invalid_argument for coefficients outside their ranges (agent::check_coefficients).
+  explicit DirectionalTransfer(const Coefficients& k);
+  /// Clears the whole result (a row's moment balance reaches every agent of the row), then marches.
+  void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
+  /// Nothing is held between solves (the rows are allocated per solve).
+  std::size_t memory_bytes() const { return 0; }
+
+ private:
+  Coefficients k_;
+};
 
 }  // namespace agent

@@ -1,7 +1,7 @@
 #pragma once
 // Stress, strain and displacement of the agents, from the face forces of a LoadTransfer.
 #include <agent/grid.h>
-#include <agent/load_transfer.h>
+#include <agent/transfer.h>
 
 #include <array>
 #include <vector>
@@ -12,14 +12,15 @@ namespace agent {
 /// forces on the two opposite faces over the face area, negative in compression.
 std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces);
 
-/// The same under the model's stress readings (docs/agent-model.md, readings 4 and 5), for loads
-/// moving in direction `load_dir`: with entering_face_stress the stress along the load is the
-/// force on the face the load enters by (opposite to load_dir) over its area; with
+/// The same under the stress readings (docs/agent-model.md, readings 4 and 5; any rule set's face
+/// forces), for loads moving in direction `load_dir`: with entering_face_stress the stress along
+/// the load is the force on the face the load enters by (opposite to load_dir) over its area; with
 /// lateral_strain_stress each stress across the load is -beta nu times the stress along it (the
 /// agent's own lateral strain eps_x = -beta nu eps_y as a stress, tension). Without either reading
-/// it equals agent_stresses(grid, face_forces).
-std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces, const Readings& readings,
-                                   int load_dir, double beta, double poisson);
+/// it equals agent_stresses(grid, face_forces). A Readings converts (its transfer readings are
+/// the transfer's).
+std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces,
+                                   const StressReadings& readings, int load_dir, double beta, double poisson);
 
 /// Normal strains per agent, 3 values (eps_x, eps_y, eps_z), by Hooke's law: plane stress in 2D
 /// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. Agents carry no shear.

@@ -60,6 +60,53 @@ struct Tiles {
   std::vector<std::uint32_t> number;
   /// Per stored tile: the box coordinates of its first slot.
   std::vector<std::array<int, 3>> first;
+
+  /// Id of slot (i, j, k) of the box; Grid::npos in a tile that is not stored.
+  std::size_t id(int i, int j, int k) const {
+    const std::uint32_t n = number[tile_of(i, j, k)];
+    if (n == kNone) return std::size_t(-1);
+    return (std::size_t(n) << kSlotsLog2) | std::size_t(i & ((1 << shift[0]) - 1)) |
+           (std::size_t(j & ((1 << shift[1]) - 1)) << shift[0]) |
+           (std::size_t(k & ((1 << shift[2]) - 1)) << (shift[0] + shift[1]));
+  }
+  /// Box coordinates of slot id `cell`.
+  std::array<int, 3> coords(std::size_t cell) const {
+    const auto& f = first[cell >> kSlotsLog2];
+    const int local = int(cell & ((std::size_t(1) << kSlotsLog2) - 1));
+    return {f[0] + (local & ((1 << shift[0]) - 1)), f[1] + ((local >> shift[0]) & ((1 << shift[1]) - 1)),
+            f[2] + (local >> (shift[0] + shift[1]))};
+  }
+  /// The slot across face `side` of slot `cell` in a box of `cells`; npos outside the box or in a
+  /// tile that is not stored. Inside the tile a step of the local id; across its side, the next
+  /// tile's number from the table and the local id with the coordinate along the axis flipped.
+  std::size_t neighbour(std::size_t cell, int side, const std::array<int, 3>& cells) const {
+    const int a = side / 2, offset = a == 0 ? 0 : a == 1 ? shift[0] : shift[0] + shift[1];
+    const int last = (1 << shift[a]) - 1, l = int(cell >> offset) & last;
+    const auto& f = first[cell >> kSlotsLog2];
+    const bool positive = side % 2 == 1;
+    if (positive) {
+      if (f[a] + l + 1 >= cells[a]) return std::size_t(-1);
+      if (l < last) return cell + (std::size_t(1) << offset);
+    } else {
+      if (f[a] + l == 0) return std::size_t(-1);
+      if (l > 0) return cell - (std::size_t(1) << offset);
+    }
+    const std::size_t step = a == 0 ? 1 : a == 1 ? std::size_t(count[0]) : std::size_t(count[0]) * count[1];
+    const std::size_t tile = tile_of(f[0], f[1], f[2]);
+    const std::uint32_t n = number[positive ? tile + step : tile - step];
+    if (n == kNone) return std::size_t(-1);
+    return (std::size_t(n) << kSlotsLog2) | ((cell & ((std::size_t(1) << kSlotsLog2) - 1)) ^ (std::size_t(last) << offset));
+  }
+  /// Bytes held by the tile table and the stored tiles' corners.
+  std::size_t memory_bytes() const {
+    return number.capacity() * sizeof(std::uint32_t) + first.capacity() * sizeof(std::array<int, 3>);
+  }
+
+ private:
+  std::size_t tile_of(int i, int j, int k) const {
+    return std::size_t(i >> shift[0]) +
+           std::size_t(count[0]) * (std::size_t(j >> shift[1]) + std::size_t(count[1]) * std::size_t(k >> shift[2]));
+  }
 };
 
 /// The agents: a set of equal, axis-aligned squares (2D) or cubes (3D) on a lattice. Each slot of
@@ -123,37 +170,18 @@ struct Grid {
   /// The slot across face `side` of slot `cell` (an agent or air), npos outside the box or in a
   /// tile that is not stored.
   std::size_t neighbour(std::size_t cell, int side) const {
-    if (!tiled()) return dense_neighbour(cell, side);
-    // On tiles: a step of the local id inside the tile; across its side, the next tile's number
-    // from the table and the local id with the coordinate along the axis flipped (0 <-> last).
-    const Tiles& t = tiles;
-    const int a = axis_of(side), offset = a == 0 ? 0 : a == 1 ? t.shift[0] : t.shift[0] + t.shift[1];
-    const int last = (1 << t.shift[a]) - 1, l = int(cell >> offset) & last;
-    const auto& first = t.first[cell >> Tiles::kSlotsLog2];
-    if (is_positive(side)) {
-      if (first[a] + l + 1 >= cells[a]) return npos;
-      if (l < last) return cell + (std::size_t(1) << offset);
-    } else {
-      if (first[a] + l == 0) return npos;
-      if (l > 0) return cell - (std::size_t(1) << offset);
-    }
-    const std::size_t step = a == 0 ? 1 : a == 1 ? std::size_t(t.count[0]) : std::size_t(t.count[0]) * t.count[1];
-    const std::size_t tile = std::size_t(first[0] >> t.shift[0]) +
-                             std::size_t(t.count[0]) * (std::size_t(first[1] >> t.shift[1]) + std::size_t(t.count[1]) * std::size_t(first[2] >> t.shift[2]));
-    const std::uint32_t n = t.number[is_positive(side) ? tile + step : tile - step];
-    if (n == Tiles::kNone) return npos;
-    return (std::size_t(n) << Tiles::kSlotsLog2) | ((cell & ((std::size_t(1) << Tiles::kSlotsLog2) - 1)) ^ (std::size_t(last) << offset));
+    return tiled() ? tiles.neighbour(cell, side, cells) : dense_neighbour(cell, side);
   }
   /// Id step to the next slot along `axis` (dense grids only; a tiled grid steps with neighbour).
   std::size_t stride(int axis) const { return axis == 0 ? 1 : axis == 1 ? std::size_t(cells[0]) : std::size_t(cells[0]) * cells[1]; }
   /// Id of slot (i, j, k) of the box (0 <= i < cells[0], ...); npos in a tile that is not stored.
   std::size_t index(int i, int j, int k) const {
     if (!tiled()) return i + std::size_t(cells[0]) * (j + std::size_t(cells[1]) * k);
-    return tiled_id(i, j, k);
+    return tiles.id(i, j, k);
   }
   /// Box coordinates of slot id `cell` (beyond the box for the air slots of an edge tile).
   std::array<int, 3> coords(std::size_t cell) const {
-    if (tiled()) return tiled_coords(cell);
+    if (tiled()) return tiles.coords(cell);
     const int i = int(cell % cells[0]);
     const std::size_t rest = cell / cells[0];
     return {i, int(rest % cells[1]), int(rest / cells[1])};
@@ -194,7 +222,7 @@ struct Grid {
   /// and its tile is not stored.
   std::size_t node_index(int i, int j, int k) const {
     if (!tiled()) return i + std::size_t(cells[0] + 1) * (j + std::size_t(cells[1] + 1) * k);
-    return tiled_id(i, j, k);
+    return tiles.id(i, j, k);
   }
   /// Box coordinates of node id `node`.
   std::array<int, 3> node_coords(std::size_t node) const;
@@ -209,23 +237,6 @@ struct Grid {
 
  private:
   std::size_t dense_neighbour(std::size_t cell, int side) const;
-  std::size_t tiled_id(int i, int j, int k) const {
-    const auto& t = tiles;
-    const std::size_t tile =
-        std::size_t(i >> t.shift[0]) + std::size_t(t.count[0]) * (std::size_t(j >> t.shift[1]) + std::size_t(t.count[1]) * std::size_t(k >> t.shift[2]));
-    const std::uint32_t n = t.number[tile];
-    if (n == Tiles::kNone) return npos;
-    return (std::size_t(n) << Tiles::kSlotsLog2) | std::size_t(i & ((1 << t.shift[0]) - 1)) |
-           (std::size_t(j & ((1 << t.shift[1]) - 1)) << t.shift[0]) |
-           (std::size_t(k & ((1 << t.shift[2]) - 1)) << (t.shift[0] + t.shift[1]));
-  }
-  std::array<int, 3> tiled_coords(std::size_t cell) const {
-    const auto& t = tiles;
-    const auto& f = t.first[cell >> Tiles::kSlotsLog2];
-    const int local = int(cell & ((std::size_t(1) << Tiles::kSlotsLog2) - 1));
-    return {f[0] + (local & ((1 << t.shift[0]) - 1)), f[1] + ((local >> t.shift[0]) & ((1 << t.shift[1]) - 1)),
-            f[2] + (local >> (t.shift[0] + t.shift[1]))};
-  }
 };
 
 /// How Grid::lattice lays out these agents (box coordinates) in a box of `cells`: on tiles when

@@ -135,7 +135,7 @@ def render(out):
         if os.path.exists(temporary):
             os.remove(temporary)
         if e.errno in DISK_ERRORS:  # a full disk, a file-size limit: reported as every failed write is
-            write_failed(target, e)
+            write_failed(temporary, e)
         raise SystemExit(f"report_html.py: {target}: cannot write it ({e.strerror})")
     print(f"report_html.py: wrote {target} ({len(html)} bytes)")
 

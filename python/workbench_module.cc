@@ -220,7 +220,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
     if (output_dir)
       staged(*output_dir, *file, [&](const fs::path& dir) { return agent_study::write_agent_outputs(study, dir, log); });
     const auto& grid = study.mesh.grid;
-    agent::LoadTransfer model(grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules, study.readings);
+    auto model = agent_study::transfer_model(study);
     Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
           {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}, grid.tiled(), {}, {}, study.coefficients};
     for (std::size_t cell = 0; cell < grid.count(); ++cell) {

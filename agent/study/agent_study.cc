@@ -330,9 +330,12 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
 
 }  // namespace
 
+agent::LoadTransfer transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules) {
+  return agent::LoadTransfer(study.mesh.grid, {study.setup.young, study.setup.poisson}, k, rules, study.readings);
+}
+
 std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
-  agent::Material material{study.setup.young, study.setup.poisson};
-  agent::LoadTransfer model(study.mesh.grid, material, study.coefficients, study.rules, study.readings);
+  auto model = transfer_model(study);
   const auto mesh = output_mesh(study);
   const int steps = study.setup.steps;
   std::vector<std::pair<double, std::string>> series;

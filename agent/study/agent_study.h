@@ -69,6 +69,14 @@ struct TransferDidNotEnd : workbench::Error {
   using workbench::Error::Error;
 };
 
+/// The study's agent model: its grid, material and readings with coefficients `k` under `rules`
+/// (a calibration's trial point), by default the study's own. Throws std::invalid_argument for
+/// coefficients the rule set refuses.
+agent::LoadTransfer transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules);
+inline agent::LoadTransfer transfer_model(const AgentStudy& study) {
+  return transfer_model(study, study.coefficients, study.rules);
+}
+
 /// Solves with the loads scaled by `factor` (a load step); throws TransferDidNotEnd at the cyclic
 /// transfer's cap.
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);

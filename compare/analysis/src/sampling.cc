@@ -53,21 +53,23 @@ GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::Fem
   GridFields out;
   out.stress.assign(grid.count() * kStressSlots, 0.0);
   std::vector<int> hits(grid.count(), 0);
-  const std::vector<double>* components[kStressSlots] = {&fem.sigma_x, &fem.sigma_y, &fem.sigma_z, &fem.tau_xy,
-                                                         &fem.tau_yz,  &fem.tau_xz,  &fem.von_mises};
+  const std::vector<double>* components[6] = {&fem.sigma_x, &fem.sigma_y, &fem.sigma_z,
+                                              &fem.tau_xy,  &fem.tau_yz,  &fem.tau_xz};
   for (std::size_t e = 0; e < fem.cell_count(); ++e) {
     int c[3];
     if (!locate_cell(grid, &fem.cell_centres[3 * e], c)) continue;
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
     if (cell == agent::Grid::npos) continue;  // a tiled grid's unstored tile: air
-    for (int k = 0; k < kStressSlots; ++k) out.stress[kStressSlots * cell + k] += (*components[k])[e];
+    for (int k = 0; k < 6; ++k) out.stress[kStressSlots * cell + k] += (*components[k])[e];
     ++hits[cell];
   }
   for (std::size_t cell : mesh.cell_of_element) {
     if (hits[cell] == 0)
       throw Error(case_name + ": no FEM cell centre lies in agent " + std::to_string(cell) +
                   " (the FEM mesh does not cover the agents' body, or its cells are larger than the agents)");
-    for (int k = 0; k < kStressSlots; ++k) out.stress[kStressSlots * cell + k] /= hits[cell];
+    double* s = &out.stress[kStressSlots * cell];
+    for (int k = 0; k < 6; ++k) s[k] /= hits[cell];
+    s[kVonMises] = von_mises(s);  // of the agent's mean stress, as for the agents' own
   }
   out.u.assign(grid.node_count() * dim, 0.0);
   std::vector<char> found(grid.node_count(), 0);
@@ -141,16 +143,16 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
       if (!probe.found) continue;
       double* s = &out.stress[kStressSlots * cell];
       for (int k = 0; k < 6; ++k) s[k] += probe.sigma[k];
-      s[kVonMises] += von_mises(probe.sigma.data());
       ++found;
     }
     double* s = &out.stress[kStressSlots * cell];
     if (found > 0) {
-      for (int k = 0; k < kStressSlots; ++k) s[k] /= found;
+      for (int k = 0; k < 6; ++k) s[k] /= found;
+      s[kVonMises] = von_mises(s);
     } else {  // the whole agent lies outside the true body
       const std::size_t e = nearest_element(points[at]);
       const double nearest[kStressSlots] = {fem.sigma_x[e], fem.sigma_y[e], fem.sigma_z[e], fem.tau_xy[e],
-                                            fem.tau_yz[e],  fem.tau_xz[e],  fem.von_mises[e]};
+                                            fem.tau_yz[e],  fem.tau_xz[e],  fem.von_mises[e]};  // the element's own
       std::copy(nearest, nearest + kStressSlots, s);
       ++outside[0];
     }

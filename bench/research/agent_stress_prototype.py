@@ -69,9 +69,14 @@ def turning_transfer(nx, ny, h, x0, force, thick, k):
     sy = np.zeros((nx, ny)); tau = np.zeros((nx, ny)); sy_bal = np.zeros((nx, ny))
     for j in range(ny - 1, -1, -1):
         d = (ny - 1 - j + 0.5) * h                      # depth of the row's centre below the loaded face
-        arg = s0 * d / L
-        x = x0 + L * np.tanh(arg)
-        slope = s0 / np.cosh(arg) ** 2
+        if k.get("mirror"):
+            # straight rays folded by the free sides (the current rule), deposited the same way
+            x = np.abs(np.mod(x0 + s0 * d + W, 2 * W) - W)
+            slope = s0 * np.sign(np.mod(x0 + s0 * d, 2 * W) - W) * -1
+        else:
+            arg = s0 * d / L
+            x = x0 + L * np.tanh(arg)
+            slope = s0 / np.cosh(arg) ** 2
         sig = np.full(len(s0), np.sqrt(max(k["diffusion_mm"] * 1e-3 * d, (0.3 * h) ** 2)))
         cw = column_shares(x, sig, nx, h) * (force * w)[:, None]
         f = cw.sum(0)
@@ -81,6 +86,43 @@ def turning_transfer(nx, ny, h, x0, force, thick, k):
         delta = -mu / np.sum((xs - cu) ** 2) * (xs - cu)
         sy[:, j] = -(f + delta) / A
         sy_bal[:, j] = -delta / A
+    return sy, tau, sy_bal
+
+
+def turning_march(nx, ny, h, x0, force, thick, k):
+    """The same rule as the directional rule set marches it (what C++ would do): packets per direction and
+    agent at their force-weighted mean position; each row a packet moves by the slope of its direction's path
+    at that depth, s0 / cosh^2(s0 d / L) (a table per direction and row: the diffusion spreads pieces about the
+    path, the path alone turns), and splits into two halves at +-r (r^2 = diffusion x row height). A free side
+    folds a piece's position back (its direction, and so its path, stays). Same returns as turning_transfer."""
+    s0, w = fan(k["directions"], k["fan_angle"], k["fan_power"])
+    n, A, W = len(s0), h * thick, nx * h
+    q = np.cumsum(w) - w / 2
+    xf = np.where(s0 < 0, x0 * q / 0.5, x0 + (W - x0) * (q - 0.5) / 0.5)
+    L = np.where(s0 * (xf - x0) > 0, xf - x0, np.sign(s0) * 1e-12)
+    r = np.sqrt(k["diffusion_mm"] * 1e-3 * h)
+    xs = (np.arange(nx) + 0.5) * h
+    px, pd, pf = np.full(n, x0), np.arange(n), force * w
+    sy = np.zeros((nx, ny)); tau = np.zeros((nx, ny)); sy_bal = np.zeros((nx, ny))
+    for j in range(ny - 1, -1, -1):
+        d = (ny - 1 - j + 0.5) * h
+        slope = (s0 / np.cosh(s0 * d / L) ** 2)[pd]
+        # the row's forces at the packets' positions half a row on (the agent centre), as the sweep books them
+        xm = px + 0.5 * slope * h
+        cell = np.clip((xm / h).astype(int), 0, nx - 1)
+        f = np.bincount(cell, pf, nx)
+        tau[:, j] = np.bincount(cell, pf * slope, nx) / A
+        mu = np.sum(f * (xs - x0)); cu = xs.mean()
+        delta = -mu / np.sum((xs - cu) ** 2) * (xs - cu)
+        sy[:, j] = -(f + delta) / A
+        sy_bal[:, j] = -delta / A
+        x = px + slope * h
+        x2 = np.concatenate([x - r, x + r]); d2 = np.concatenate([pd, pd]); f2 = np.concatenate([pf, pf]) * 0.5
+        x2 = np.where(x2 < 0, -x2, x2); x2 = np.where(x2 > W, 2 * W - x2, x2)
+        key = np.clip((x2 / h).astype(int), 0, nx - 1) * n + d2
+        uk, inv = np.unique(key, return_inverse=True)
+        F = np.bincount(inv, f2)
+        px, pd, pf = np.bincount(inv, f2 * x2) / np.where(F != 0, F, 1), uk % n, F
     return sy, tau, sy_bal
 
 
@@ -140,10 +182,12 @@ def spread_width(p, h):
     return np.sqrt(12 * np.sum(p * (xs - m) ** 2) / p.sum())
 
 
-def turning_rule(g, k):
-    """sigma_x, sigma_y, tau_xy of the recommended rule on plate g."""
+def turning_rule(g, k, march=False):
+    """sigma_x, sigma_y, tau_xy of the recommended rule on plate g (march: the packet march, else the
+    continuous form)."""
     nx, ny, h = g["nx"], g["ny"], g["h"]
-    sy, tau_p, sy_bal = turning_transfer(nx, ny, h, g["x0"], g["force"], g["thick"], k)
+    transfer = turning_march if march else turning_transfer
+    sy, tau_p, sy_bal = transfer(nx, ny, h, g["x0"], g["force"], g["thick"], k)
     wr = k["window_mm"] * 1e-3 / h
     tau_bal = shear_from_sigma_y(sy_bal, h, wr)
     ell = k["base_layer"] * min(spread_width(sy[:, 0], h), nx * h)
@@ -281,7 +325,9 @@ def scores(g, m, fem):
 def evaluate(folder, k):
     g, fem, cur = load_folder(folder)
     out = {"current": scores(g, cur, fem)}
-    for name, (sx, sy, tau) in (("recovery", recovery_rule(g, cur["sy"], k)), ("turning", turning_rule(g, k))):
+    for name, (sx, sy, tau) in (("recovery", recovery_rule(g, cur["sy"], k)), ("turning", turning_rule(g, k)),
+                                ("march", turning_rule(g, k, march=True)),
+                                ("mirror", turning_rule(g, dict(k, mirror=True)))):
         m = dict(sx=sx, sy=sy, tau=tau, vm=von_mises(sx, sy, tau, g["nu"], g["strain"]))
         m["u"] = displacement(sx, sy, tau, g)
         out[name] = scores(g, m, fem)

@@ -1,0 +1,10 @@
+exec(open('exp1.py').read().split("print('sy far'")[0])
+sx,tau=sr.equilibrium_recovery(ag['sy'],h,2,0)
+np.set_printoptions(precision=0, suppress=True, linewidth=250)
+print('centre col sx FEM  ', fem['sx'][19,::-2])
+print('centre col sx agent', sx[19,::-2])
+print('centre col sy FEM  ', fem['sy'][19,::-2])
+print('centre col sy agent', ag['sy'][19,::-2])
+for j in (30,20,10,2):
+  print('row',j,'sx FEM  ', fem['sx'][::2,j]); print('row',j,'sx agent', sx[::2,j])
+  print('row',j,'sy FEM  ', fem['sy'][::2,j]); print('row',j,'sy agent', ag['sy'][::2,j])

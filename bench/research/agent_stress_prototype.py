@@ -257,9 +257,11 @@ def load_folder(folder):
         lines = json.load(open(os.path.join(folder, "lines.json")))
     except (OSError, ValueError, KeyError) as e:
         fail(folder, f"not a finished 2D comparison output ({e})")
-    case_path = summary["case"]
-    if not os.path.isabs(case_path) and not os.path.exists(case_path):
-        case_path = os.path.join(folder, "..", case_path)
+    # summary.json names the case as given to compare: relative to where it ran (here, the folder's parent
+    # or the repository)
+    repo = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    tries = [summary["case"], os.path.join(folder, "..", summary["case"]), os.path.join(repo, summary["case"])]
+    case_path = next((c for c in tries if os.path.exists(c)), summary["case"])
     try:
         case = tomllib.load(open(case_path, "rb"))
     except (OSError, tomllib.TOMLDecodeError) as e:

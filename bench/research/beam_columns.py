@@ -63,7 +63,7 @@ EI = np.array([E * t * (np.sum(h * (y[present[k]] - y[present[k]].mean()) ** 2) 
 GA = np.array([G * t * h * present[k].sum() * 5 / 6 for k in range(nx)])
 xn = np.arange(nx + 1) * h
 rot = np.concatenate([[0], np.cumsum(M_eff / EI * h)])                   # slope change from bending, at nodes
-w = np.concatenate([[0], np.cumsum(0.5 * (rot[1:] + rot[:-1]) * h)]) + np.concatenate([[0], np.cumsum(V / GA * h)])
+w = np.concatenate([[0], np.cumsum(0.5 * (rot[1:] + rot[:-1]) * h)]) + np.concatenate([[0], -np.cumsum(V / GA * h)])  # shear: down where V > 0 (reaction up)
 w -= np.interp(a, xn, w) + (np.interp(b, xn, w) - np.interp(a, xn, w)) * (xn - a) / (b - a)
 fem_uy = {}
 for ii, uy in zip(nd["i"].astype(int), nd["fem_u_y [m]"]):
@@ -82,3 +82,8 @@ print("sigma_x far %.3f body %.3f | tau_xy far %.3f body %.3f | sigma_y (0) 1.00
 k = nx // 2
 print("mid-span deflection (mean over the column's nodes): columns %.3e m, FEM %.3e m, ratio %.3f; "
       "deflection line rel L2 %.3f" % (w[k], fem_mid[k], w[k] / fem_mid[k], np.linalg.norm(w - fem_mid) / np.linalg.norm(fem_mid)))
+if os.environ.get("SHOW_COLUMN"):
+    np.set_printoptions(precision=0, suppress=True, linewidth=200)
+    kcol = int(os.environ["SHOW_COLUMN"])
+    print("column", kcol, "tau FEM", tf[kcol]); print("tau columns", tau[kcol])
+    print("sx FEM", sxf[kcol]); print("sx columns", sx[kcol]); print("sy FEM", syf[kcol])

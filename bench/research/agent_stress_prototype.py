@@ -29,7 +29,7 @@ from scipy.special import erf
 
 # ---------------------------------------------------------------------------------------------------------
 # The recommended rule: defaults (fitted on the seed plate, 5 mm agents, load at x = 100 mm).
-DEFAULTS = dict(fan_angle=66.0, fan_power=2.0, directions=32, diffusion_mm=2.0, base_layer=0.25, window_mm=5.0)
+DEFAULTS = dict(fan_angle=66.0, fan_power=2.0, directions=32, diffusion_mm=2.0, base_layer=0.25, window_mm=5.0, reach=1.0)
 
 
 def fan(directions, fan_angle, fan_power):
@@ -55,6 +55,7 @@ def turning_transfer(nx, ny, h, x0, force, thick, k):
     """Turning packets. The entry fan as in the directional rule set; each packet turns toward the lateral
     position where it belongs once the load fills the width (its quantile of the half-fan on its side of
     the load, spread over the width on that side): x(d) = x0 + L tanh(s d / L), slope s / cosh^2(s d / L).
+    A target is never farther out than reach x the packet's straight ray at the far face (depth ny h).
     Diffusion: a Gaussian of variance diffusion * depth. The row's moment balance as in C++. Returns per
     agent sigma_y, the packets' shear tau = sum(F slope) / A and the balance's own sigma_y part.
     `force` is signed along the march (the inward normal of the loaded face): a pull is negative."""
@@ -65,6 +66,9 @@ def turning_transfer(nx, ny, h, x0, force, thick, k):
     xf = np.where(s0 < 0, x0 * q / 0.5, x0 + (W - x0) * (q - 0.5) / 0.5)
     L = xf - x0
     L = np.where(s0 * L > 0, L, np.sign(s0) * 1e-12)
+    if k["reach"] > 0:
+        # a packet turns no farther out than its straight ray would reach at the rigid face, times reach
+        L = np.sign(L) * np.minimum(np.abs(L), k["reach"] * np.abs(s0) * ny * h)
     xs = (np.arange(nx) + 0.5) * h
     sy = np.zeros((nx, ny)); tau = np.zeros((nx, ny)); sy_bal = np.zeros((nx, ny))
     for j in range(ny - 1, -1, -1):
@@ -100,6 +104,8 @@ def turning_march(nx, ny, h, x0, force, thick, k):
     q = np.cumsum(w) - w / 2
     xf = np.where(s0 < 0, x0 * q / 0.5, x0 + (W - x0) * (q - 0.5) / 0.5)
     L = np.where(s0 * (xf - x0) > 0, xf - x0, np.sign(s0) * 1e-12)
+    if k["reach"] > 0:
+        L = np.sign(L) * np.minimum(np.abs(L), k["reach"] * np.abs(s0) * ny * h)
     r = np.sqrt(k["diffusion_mm"] * 1e-3 * h)
     xs = (np.arange(nx) + 0.5) * h
     px, pd, pf = np.full(n, x0), np.arange(n), force * w

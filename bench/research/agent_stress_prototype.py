@@ -349,12 +349,16 @@ def main():
         ap.add_argument("--" + key.replace("_", "-"), type=type(val), default=val)
     args = ap.parse_args()
     k = {key: getattr(args, key) for key in DEFAULTS}
+    results = [(folder, evaluate(folder, k)) for folder in args.folders]  # every folder read before printing
+    for folder, res in results:
+        for model, r in res.items():
+            if not all(np.isfinite(v).all() for v in r.values()):
+                fail(folder, f"a non-finite error for the {model} model")
     print("relative L2 against FEM, far field / body (zero model: 1.000); ux_sign: share of side-edge nodes "
           "above the lowest tenth with FEM's sign of u_x")
     print("%-16s %-9s %-13s %-13s %-13s %-13s %-13s %s" % ("case", "model", "sigma_x", "sigma_y", "tau_xy",
                                                             "von_Mises", "displacement", "ux_sign (>= 5 %)"))
-    for folder in args.folders:
-        res = evaluate(folder, k)
+    for folder, res in results:
         for model, r in res.items():
             print("%-16s %-9s %s  %.2f (%.2f)" % (os.path.basename(os.path.normpath(folder)), model,
                                                  " ".join("%.3f / %.3f" % r[f] for f in ("sx", "sy", "tau", "vm", "u")),

@@ -21,12 +21,7 @@ using test_support::error_of;
 
 namespace {
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 // Sets an environment variable for one test's scope.
 struct ScopedEnv {
@@ -58,7 +53,7 @@ TEST(OutputFile, WritesEveryByteInSmallAndLargePieces) {
     expected += piece;
   }
   out.close();
-  EXPECT_EQ(read(file), expected);
+  EXPECT_EQ(read_file(file), expected);
 }
 
 TEST(OutputFile, NamesAFileInTheStagingFolderAsInItsTarget) {
@@ -86,7 +81,7 @@ TEST(OutputFile, ReplaceFileLeavesNothingBeside) {
   const fs::path file = test_support::scratch_folder() / "junit.xml";
   write_file(file, "old");
   replace_file(file, "new");
-  EXPECT_EQ(read(file), "new");
+  EXPECT_EQ(read_file(file), "new");
   std::string names;
   for (const auto& e : fs::directory_iterator(file.parent_path())) names += e.path().filename().string() + " ";
   EXPECT_EQ(names, "junit.xml ");
@@ -116,5 +111,5 @@ TEST(OutputFile, AVtuSeriesThatDoesNotFitIsRefusedBeforeItsFirstFile) {
   EXPECT_NE(message.find("the file system has 0.1 MB free"), std::string::npos) << message;
   EXPECT_FALSE(fs::exists(file));
   write_vtu(file, mesh, {f}, {}, 10);  // fits
-  EXPECT_NE(read(file).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
+  EXPECT_NE(read_file(file).find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
 }

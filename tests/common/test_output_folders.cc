@@ -28,12 +28,7 @@ using test_support::error_of;
 
 namespace {
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::read_file;
 
 // Everything in `dir` but the names listed (siblings a run may have left behind).
 std::vector<std::string> entries(const fs::path& dir) {
@@ -68,9 +63,9 @@ TEST(StagedDirectory, AppearsWholeOrNotAtAllAndCarriesTheStamp) {
     std::ofstream(staged.path() / "a.txt") << "whole";
     staged.commit();
   }
-  EXPECT_EQ(read(target / "a.txt"), "whole");
+  EXPECT_EQ(read_file(target / "a.txt"), "whole");
   EXPECT_TRUE(carries_stamp(target));
-  const std::string stamp = read(target / kStampFile);
+  const std::string stamp = read_file(target / kStampFile);
   EXPECT_EQ(stamp.rfind("program = \"workbench\"\nversion = \"", 0), 0u) << stamp;
   EXPECT_NE(stamp.find("case = \"" + fs::absolute(kCase).string() + "\""), std::string::npos) << stamp;
 }
@@ -83,7 +78,7 @@ TEST(StagedDirectory, ReplacesItsOwnOutputAndLeavesNothingBeside) {
     staged.commit();
   }
   EXPECT_FALSE(fs::exists(target / "first.txt"));
-  EXPECT_EQ(read(target / "second.txt"), "second");
+  EXPECT_EQ(read_file(target / "second.txt"), "second");
   EXPECT_EQ(entries(test_support::scratch_folder()), std::vector<std::string>{"out"});
 }
 
@@ -94,7 +89,7 @@ TEST(StagedDirectory, RefusesAFolderItDidNotWriteAndTouchesNothing) {
   const std::string e = error_of([&] { StagedDirectory staged(target, kCase); });
   EXPECT_EQ(e, target.string() + ": is a folder the workbench did not write (it has files and no " + kStampFile +
                    "); refusing to replace it, choose a new or empty folder");
-  EXPECT_EQ(read(target / "thesis.tex"), "years of work");
+  EXPECT_EQ(read_file(target / "thesis.tex"), "years of work");
   EXPECT_EQ(entries(test_support::scratch_folder()), std::vector<std::string>{"mine"});
   // A stamp that is not ours (a file of that name with other contents) does not count either.
   std::ofstream(target / kStampFile) << "something else\n";
@@ -107,7 +102,7 @@ TEST(StagedDirectory, RefusesAFolderThatChangedWhileTheStudyRan) {
   fs::create_directories(target);
   std::ofstream(target / "notes.txt") << "written meanwhile";
   EXPECT_NE(error_of([&] { staged.commit(); }).find("did not write"), std::string::npos);
-  EXPECT_EQ(read(target / "notes.txt"), "written meanwhile");
+  EXPECT_EQ(read_file(target / "notes.txt"), "written meanwhile");
 }
 
 TEST(StagedDirectory, UsesAnEmptyFolder) {
@@ -116,7 +111,7 @@ TEST(StagedDirectory, UsesAnEmptyFolder) {
   StagedDirectory staged(target, kCase);
   std::ofstream(staged.path() / "a.txt") << "x";
   staged.commit();
-  EXPECT_EQ(read(target / "a.txt"), "x");
+  EXPECT_EQ(read_file(target / "a.txt"), "x");
 }
 
 TEST(StagedDirectory, RefusesAFileALinkTheRootAndTheCurrentFolder) {
@@ -134,7 +129,7 @@ TEST(StagedDirectory, RefusesAFileALinkTheRootAndTheCurrentFolder) {
   fs::current_path(before);
   EXPECT_EQ(e, (dir / "here").string() + ": is the current folder or holds it; refusing to replace it");
   EXPECT_NE(up.find("is the current folder or holds it"), std::string::npos) << up;
-  EXPECT_EQ(read(dir / "file"), "keep");
+  EXPECT_EQ(read_file(dir / "file"), "keep");
 }
 
 TEST(StagedDirectory, RemovesOnlyStaleStagingOfRunsThatAreGone) {
@@ -167,9 +162,9 @@ TEST(ChildProcess, PassesArgumentsVerbatimAndReportsTheExitStatus) {
   const fs::path log = test_support::scratch_folder() / "child.log";
   const std::string tricky = "it's a $HOME `x` \"y\" ; rm -rf /nothing";
   EXPECT_EQ(run_child({"/bin/sh", "-c", "printf '%s|%s' \"$0\" \"$1\"; exit 3", tricky, "second arg"}, log), 3);
-  EXPECT_EQ(read(log), tricky + "|second arg");
+  EXPECT_EQ(read_file(log), tricky + "|second arg");
   EXPECT_EQ(run_child({"sh", "-c", "echo to-stderr >&2"}, log), 0);  // looked up on PATH; stderr to the log
-  EXPECT_EQ(read(log), "to-stderr\n");
+  EXPECT_EQ(read_file(log), "to-stderr\n");
   EXPECT_EQ(run_child({"/bin/sh", "-c", "kill -TERM $$"}, log), 128 + 15);
   EXPECT_EQ(error_of([&] { run_child({"/nonexistent/program"}, log); }),
             "/nonexistent/program: cannot run (No such file or directory)");
@@ -181,7 +176,7 @@ TEST(ChildProcess, ReadsWhatIsSentAndSeesTheEndOfItsInput) {
   EXPECT_TRUE(child.send("first line"));
   EXPECT_TRUE(child.send("second"));
   EXPECT_EQ(child.wait(), 4);  // wait() closed its input: the third read met the end
-  EXPECT_EQ(read(log), "first line|second\n");
+  EXPECT_EQ(read_file(log), "first line|second\n");
   EXPECT_EQ(child.pid(), 0);
 }
 
@@ -205,7 +200,7 @@ TEST(ChildProcess, OneNotWaitedForIsEndedWithItsGroup) {
     ChildProcess child({"/bin/sh", "-c", "trap '' TERM; echo ready > \"$0\"; exec sleep 1000", fifo.string()}, log);
     pid = child.pid();
     ASSERT_GT(pid, 0);
-    EXPECT_EQ(read(fifo), "ready\n");
+    EXPECT_EQ(read_file(fifo), "ready\n");
   }
   EXPECT_EQ(::kill(-pid, 0), -1);  // no process of its group is left
   EXPECT_EQ(errno, ESRCH);
@@ -248,7 +243,7 @@ TEST(CsvFile, WritesShortestRoundTripNumbersAndRefusesNonFiniteNamingTheColumn) 
   EXPECT_EQ(error_of([&] { out << ',' << -HUGE_VAL; }), "t.csv: column 'y' (row 9): -inf is not a finite number");
   out << '\n';
   out.close();
-  EXPECT_EQ(read(file), "# a comment, not the header\nnode,x,y\n7,0.1,0.3333333333333333\n8,-2.5e-300,1e+21\n9,1,,\n");
+  EXPECT_EQ(read_file(file), "# a comment, not the header\nnode,x,y\n7,0.1,0.3333333333333333\n8,-2.5e-300,1e+21\n9,1,,\n");
   EXPECT_EQ(std::stod(shortest_decimal(1.0 / 3.0)), 1.0 / 3.0);
   EXPECT_EQ(shortest_decimal(0.1), "0.1");
 }
@@ -263,7 +258,7 @@ TEST(CsvFile, AnUndefinedValueIsAnEmptyFieldOnlyWhenSaidSo) {
             "ratios.csv: column 'ratio' (row 2): nan is not a finite number");
   out << '\n';
   out.close();
-  EXPECT_EQ(read(file), "cell,ratio\n0,0.25\n1,\n2,\n");
+  EXPECT_EQ(read_file(file), "cell,ratio\n0,0.25\n1,\n2,\n");
 }
 
 TEST(CsvFile, AFailedWriteIsAnError) {

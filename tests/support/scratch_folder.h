@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <unistd.h>
@@ -29,6 +30,14 @@ inline const std::filesystem::path& scratch_folder() {
   };
   static const Folder folder;
   return folder.path;
+}
+
+/// The whole content of `file` ("" when it cannot be read).
+inline std::string read_file(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 /// Writes `text` to the scratch folder's file `name` and returns its path.

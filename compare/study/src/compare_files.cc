@@ -185,8 +185,8 @@ ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& ag
     const auto& line = in.lines[li];
     const auto& s = samples[li];
     std::vector<double> arc, at, sigma[2], u[2];
-    const std::size_t sx = 0, sy = 1, ux = 8, uy = 9, uz = 10;  // kFields' sigma_x, sigma_y, u_x, u_y, u_z
-    static_assert(std::size(kFields) == 11, "compared_fields picks fields of kFields by place");
+    constexpr std::size_t sx = field_index("sigma_x"), sy = field_index("sigma_y"), ux = field_index("u_x"),
+                          uy = field_index("u_y"), uz = field_index("u_z");
     for (std::size_t i = 0; i < line.body_samples.size(); ++i) {
       const Eigen::Vector3d p = line.point(line.body_samples[i]);
       arc.push_back((p - line.from).norm());

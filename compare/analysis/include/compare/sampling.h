@@ -7,7 +7,9 @@
 #include <fem_reference/fem.h>
 
 #include <array>
+#include <iterator>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace compare {
@@ -46,6 +48,14 @@ inline constexpr FieldSpec kFields[] = {
     {"u_x", true, 0, 0b1100, false, "m"},                {"u_y", true, 1, 0b1100, false, "m"},
     {"u_z", true, 2, 0b1000, false, "m"},
 };
+
+/// The place of the field `name` in kFields (a compile-time lookup: an unknown name does not compile
+/// where it is used as a constant).
+constexpr std::size_t field_index(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(kFields); ++i)
+    if (name == kFields[i].name) return i;
+  throw "no such field in compare::kFields";
+}
 
 /// The relative L2 error of predicting zero everywhere (the zero model), beside which every
 /// relative L2 error is read: a model whose error is not below it is worse than predicting nothing.

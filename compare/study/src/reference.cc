@@ -27,12 +27,6 @@ GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState&
   return out;
 }
 
-std::string ReferenceOptions::describe() const {
-  const std::string on = mesh.empty() ? "the agents' mesh" : "the true geometry " + mesh.filename().string();
-  return "FEM Q" + std::to_string(degree) +
-         (refine == 0 ? " on " + on : ", " + on + " refined " + std::to_string(refine) + (refine == 1 ? " time" : " times"));
-}
-
 fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
                                             const agent::Grid& grid) {
   problem.options.degree = options.degree;

@@ -19,31 +19,6 @@
 
 namespace compare {
 
-/// The [compare] table of a case file.
-struct CompareOptions {
-  std::string model = "agent";                  ///< the fast model: "agent" or "pbd"
-  std::vector<double> depths{0.25, 0.5, 0.75};  ///< agent: lines across each load, fractions of the body along it
-  double mask = 0.01;                           ///< agent: ratio masked where |FEM| < mask * max |FEM|
-  ReferenceOptions reference;                   ///< agent: [compare.reference]
-  /// agent: the far field leaves out cells closer than this to a loaded face [m]; 0: 5 agent sizes
-  double far_distance = 0;
-  /// agent: the warning when the agent model carries less than this share of the load to a rigid face
-  double min_reaction_share = 0.9;
-  std::vector<std::array<Eigen::Vector3d, 2>> lines;  ///< agent: [[compare.line]] from, to [m]
-  std::map<std::string, double> gate;           ///< metric name -> largest value allowed
-  /// agent: fields ("far.sigma_x") whose relative L2 error must be below the zero model's (1): the
-  /// gate fails, naming the field, where the model does not beat predicting nothing
-  std::vector<std::string> better_than_zero;
-  bool figures = true;                          ///< Figures 8-11 and the animation (Python)
-  /// The figures' files: "png" (quick to draw and view), "pdf" (vector, for print; about 1 s more
-  /// CPU on the seed plate, docs/performance.md).
-  std::vector<std::string> figure_formats{"png"};
-};
-
-/// Reads [compare]: model, then the keys that model uses (depths, mask, reference, far field and
-/// lines for the agent model only), figures, gate.
-CompareOptions read_compare_options(const workbench::CaseTable& root);
-
 /// A named number of the summary (errors, ratios, equilibrium, timings).
 struct Metric {
   std::string name;

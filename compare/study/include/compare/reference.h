@@ -2,6 +2,7 @@
 // The FEM reference of a comparison: the same geometry refined and/or of higher degree, solved
 // with its output files, with its own discretisation error estimated from a second refinement
 // level, and sampled onto the agent grid (compare/sampling.h; docs/compare.md).
+#include <compare/compare_options.h>
 #include <compare/sampling.h>
 
 #include <filesystem>
@@ -21,27 +22,6 @@ namespace compare {
 /// agents' strains), no shear (the agents carry none: their tau is 0, the zero model's), and the
 /// von Mises stress of those.
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state);
-
-/// [compare.reference]: FEM on the agents' geometry (or on `mesh`, the true geometry) with `refine`
-/// global refinements of the gmsh mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the
-/// agents' own mesh.
-struct ReferenceOptions {
-  int degree = 2;
-  int refine = -1;  ///< -1 (the default): 1 in 2D, 0 in 3D (a refined 3D mesh costs 8 times more)
-  /// The true (smooth) geometry the agents' staircase was voxelized from (.geo or .msh with the same
-  /// physical groups); empty: the agents' own mesh.
-  std::filesystem::path mesh;
-  /// These options with the default refinement resolved for a `dim`-dimensional mesh.
-  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh}; }
-  /// The level beside the reference for its error estimate: one refinement coarser; on the
-  /// unrefined mesh Q1 for Q2, and for Q1 itself one refinement finer.
-  ReferenceOptions estimate() const {
-    if (refine > 0) return {degree, refine - 1, mesh};
-    if (degree == 2) return {1, 0, mesh};
-    return {1, 1, mesh};
-  }
-  std::string describe() const;  ///< e.g. "FEM Q2, the agents' mesh refined 1 time"
-};
 
 /// `problem` set to the level `options`: its degree and refinement, and with options.mesh (the true
 /// geometry) that mesh instead of the agents' and the agent_probe_points as probes.

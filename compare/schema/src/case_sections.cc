@@ -3,7 +3,7 @@
 #include <compare/case_sections.h>
 
 #include <agent_study.h>
-#include <compare/compare_study.h>
+#include <compare/compare_options.h>
 #include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/study_setup.h>

@@ -1,0 +1,62 @@
+#pragma once
+// The [compare] section of a case file, read and checked: what a comparison is asked to do. Part of
+// the case schema (compare/case_sections.h), so that checking a case needs no comparison code.
+#include <workbench/case_file.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace compare {
+
+/// [compare.reference]: FEM on the agents' geometry (or on `mesh`, the true geometry) with `refine`
+/// global refinements of the gmsh mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the
+/// agents' own mesh.
+struct ReferenceOptions {
+  int degree = 2;
+  int refine = -1;  ///< -1 (the default): 1 in 2D, 0 in 3D (a refined 3D mesh costs 8 times more)
+  /// The true (smooth) geometry the agents' staircase was voxelized from (.geo or .msh with the same
+  /// physical groups); empty: the agents' own mesh.
+  std::filesystem::path mesh;
+  /// These options with the default refinement resolved for a `dim`-dimensional mesh.
+  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh}; }
+  /// The level beside the reference for its error estimate: one refinement coarser; on the
+  /// unrefined mesh Q1 for Q2, and for Q1 itself one refinement finer.
+  ReferenceOptions estimate() const {
+    if (refine > 0) return {degree, refine - 1, mesh};
+    if (degree == 2) return {1, 0, mesh};
+    return {1, 1, mesh};
+  }
+  std::string describe() const;  ///< e.g. "FEM Q2, the agents' mesh refined 1 time"
+};
+
+/// The [compare] table of a case file.
+struct CompareOptions {
+  std::string model = "agent";                  ///< the fast model: "agent" or "pbd"
+  std::vector<double> depths{0.25, 0.5, 0.75};  ///< agent: lines across each load, fractions of the body along it
+  double mask = 0.01;                           ///< agent: ratio masked where |FEM| < mask * max |FEM|
+  ReferenceOptions reference;                   ///< agent: [compare.reference]
+  /// agent: the far field leaves out cells closer than this to a loaded face [m]; 0: 5 agent sizes
+  double far_distance = 0;
+  /// agent: the warning when the agent model carries less than this share of the load to a rigid face
+  double min_reaction_share = 0.9;
+  std::vector<std::array<Eigen::Vector3d, 2>> lines;  ///< agent: [[compare.line]] from, to [m]
+  std::map<std::string, double> gate;           ///< metric name -> largest value allowed
+  /// agent: fields ("far.sigma_x") whose relative L2 error must be below the zero model's (1): the
+  /// gate fails, naming the field, where the model does not beat predicting nothing
+  std::vector<std::string> better_than_zero;
+  bool figures = true;                          ///< Figures 8-11 and the animation (Python)
+  /// The figures' files: "png" (quick to draw and view), "pdf" (vector, for print; about 1 s more
+  /// CPU on the seed plate, docs/performance.md).
+  std::vector<std::string> figure_formats{"png"};
+};
+
+/// Reads [compare]: model, then the keys that model uses (depths, mask, reference, far field and
+/// lines for the agent model only), figures, gate.
+CompareOptions read_compare_options(const workbench::CaseTable& root);
+
+}  // namespace compare

@@ -2,11 +2,13 @@
 #include "commands.h"
 
 #include <compare/calibration_study.h>
+#include <fem_reference/mpi.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
 
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace cli {
 
@@ -20,10 +22,18 @@ void add_calibrate_command(CLI::App& app, Action& action) {
     action = [case_file, output] {
       workbench::CaseFile file = read_case_file(*case_file);
       const std::string dir = output_folder(*output, file, "calibrate");
-      workbench::StagedDirectory staged(dir, file.path());
-      compare::run_calibration(file, staged.path(), std::cerr);
-      staged.commit();
-      std::cerr << "calibrate: wrote " << staged.target().string() << "\n";
+      // Under MPI every rank solves the references and scores its share of the cases; rank 0
+      // owns the folder and writes (compare/calibration_study.h).
+      const bool root = fem_reference::mpi_rank() == 0;
+      std::optional<workbench::StagedDirectory> staged;
+      fem_reference::mpi_collective([&] {
+        if (root) staged.emplace(dir, file.path());
+      });
+      compare::run_calibration(file, root ? staged->path() : std::filesystem::path(), progress_log());
+      fem_reference::mpi_on_root([&] {
+        staged->commit();
+        std::cerr << "calibrate: wrote " << staged->target().string() << "\n";
+      });
       return 0;
     };
   });

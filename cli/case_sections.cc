@@ -2,17 +2,41 @@
 #include "commands.h"
 
 
+#include <fem_reference/mpi.h>
+
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <ostream>
 
 #include <unistd.h>
 
 namespace cli {
 
-workbench::CaseFile read_case_file(const std::string& path) {
+namespace {
+
+void check_not_a_folder(const std::string& path) {
   if (std::filesystem::is_directory(path))
     throw workbench::Error(path + ": is a folder, not a case file (give the .toml file inside it)");
+}
+
+}  // namespace
+
+workbench::CaseFile read_case_file(const std::string& path) {
+  check_not_a_folder(path);
   return workbench::CaseFile(path);
+}
+
+std::unique_ptr<workbench::CaseFile> read_checked_case(const std::string& path,
+                                                       const std::function<void(const workbench::CaseFile&)>& first) {
+  std::unique_ptr<workbench::CaseFile> file;
+  fem_reference::mpi_collective([&] {
+    check_not_a_folder(path);
+    file = std::make_unique<workbench::CaseFile>(path);
+    if (first) first(*file);
+    check_every_section(*file);
+  });
+  return file;
 }
 
 void check_writable_file(const std::string& path, const std::string& option) {
@@ -35,6 +59,11 @@ void check_writable_file(const std::string& path, const std::string& option) {
 int checked(const workbench::CaseFile& file, const std::string& subcommand) {
   std::cerr << subcommand << ": " << file.path().string() << ": checked, nothing written\n";
   return 0;
+}
+
+std::ostream& progress_log() {
+  static std::ostream nowhere(nullptr);  // a stream without a buffer drops what it is given
+  return !fem_reference::started_by_launcher() || fem_reference::mpi_rank() == 0 ? std::cerr : nowhere;
 }
 
 std::string output_folder(const std::string& option, const workbench::CaseFile& file, const std::string& subcommand) {

@@ -5,6 +5,9 @@
 #include <workbench/case_file.h>
 
 #include <functional>
+#include <iosfwd>
+#include <memory>
+#include <set>
 #include <string>
 
 namespace cli {
@@ -20,6 +23,11 @@ int checked(const workbench::CaseFile& file, const std::string& subcommand);
 
 /// The case file at `path`; a folder or a missing file is one line naming it.
 workbench::CaseFile read_case_file(const std::string& path);
+/// The case file at `path` with every section checked, as one collective step (under MPI every
+/// rank reads it, and bad input ends every rank with one line). `first`, when given, reads the
+/// subcommand's own sections before the check of every section.
+std::unique_ptr<workbench::CaseFile> read_checked_case(const std::string& path,
+                                                       const std::function<void(const workbench::CaseFile&)>& first = {});
 
 /// Refuses (one line naming `option`) a file that could not be written later: a folder, an
 /// unwritable file, or one whose nearest existing parent is not a writable folder. Writes nothing.
@@ -30,6 +38,13 @@ std::string output_folder(const std::string& option, const workbench::CaseFile& 
 
 /// A subcommand's action, run after parsing; returns the exit code.
 using Action = std::function<int()>;
+
+/// The subcommands that run distributed under mpirun (each rank runs the action; rank 0 writes);
+/// main() runs every other one on rank 0 alone.
+inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate"};
+
+/// Where a distributed subcommand's progress goes: standard error on rank 0, nowhere on the others.
+std::ostream& progress_log();
 
 void add_agent_command(CLI::App& app, Action& action);
 void add_voxelize_command(CLI::App& app, Action& action);

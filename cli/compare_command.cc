@@ -2,6 +2,7 @@
 #include "commands.h"
 
 #include <compare/compare_study.h>
+#include <fem_reference/mpi.h>
 #include <workbench/case_file.h>
 #include <workbench/output_file.h>
 #include <workbench/staged_directory.h>
@@ -11,8 +12,37 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
+#include <optional>
 
 namespace cli {
+
+namespace {
+
+/// Rank 0, once the study is written: the folder moved into place, the JUnit copy, the gate's
+/// lines; returns the exit code.
+int finish(workbench::StagedDirectory& staged, const compare::CompareOutcome& outcome, const std::string& junit) {
+  staged.commit();
+  if (!junit.empty()) {
+    const auto parent = std::filesystem::path(junit).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    std::ifstream report(staged.target() / "junit.xml", std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
+    try {
+      workbench::replace_file(junit, text);  // a failed write leaves an earlier report whole
+    } catch (const workbench::Error& e) {
+      throw workbench::Error(std::string(e.what()) + " (--junit; the output folder is complete)");
+    }
+  }
+  std::cerr << "compare: wrote " << staged.target().string() << "\n";
+  for (const auto& f : outcome.failures) std::cerr << "compare: gate: " << f.describe() << "\n";
+  if (outcome.gated > 0)
+    std::cerr << "compare: gate: " << outcome.gated - outcome.failures.size() << " passed, "
+              << outcome.failures.size() << " failed\n";
+  return outcome.failures.empty() ? 0 : 1;
+}
+
+}  // namespace
 
 void add_compare_command(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
@@ -29,33 +59,23 @@ void add_compare_command(CLI::App& app, Action& action) {
   cmd->add_option("--junit", *junit, "also copy the gate's JUnit XML report to this file");
   cmd->callback([&action, case_file, output, check, junit] {
     action = [case_file, output, check, junit] {
-      workbench::CaseFile file = read_case_file(*case_file);
-      check_every_section(file);
+      const auto case_ptr = read_checked_case(*case_file);
+      const workbench::CaseFile& file = *case_ptr;
       if (*check) return checked(file, "compare");
       if (!junit->empty()) check_writable_file(*junit, "--junit");
       const std::string dir = output_folder(*output, file, "compare");
-      workbench::StagedDirectory staged(dir, file.path());
-      const auto outcome = compare::run_compare(file, staged.path(), std::cerr);
-      staged.commit();
-      if (!junit->empty()) {
-        const auto parent = std::filesystem::path(*junit).parent_path();
-        std::error_code ec;
-        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        std::ifstream report(staged.target() / "junit.xml", std::ios::binary);
-        const std::string text{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
-        try {
-          workbench::replace_file(*junit, text);  // a failed write leaves an earlier report whole
-        } catch (const workbench::Error& e) {
-          throw workbench::Error(std::string(e.what()) + " (--junit; the output folder is complete)");
-        }
-      }
-      std::cerr << "compare: wrote " << staged.target().string() << "\n";
-      for (const auto& f : outcome.failures)
-        std::cerr << "compare: gate: " << f.describe() << "\n";
-      if (outcome.gated > 0)
-        std::cerr << "compare: gate: " << outcome.gated - outcome.failures.size() << " passed, "
-                  << outcome.failures.size() << " failed\n";
-      return outcome.failures.empty() ? 0 : 1;
+      // Rank 0 owns the staged folder; every rank solves the FEM and writes its VTU piece into it,
+      // rank 0 alone the rest (compare_study.h).
+      const bool root = fem_reference::mpi_rank() == 0;
+      std::optional<workbench::StagedDirectory> staged;
+      fem_reference::mpi_collective([&] {
+        if (root) staged.emplace(dir, file.path());
+      });
+      const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
+      const auto outcome = compare::run_compare(file, path, progress_log());
+      int code = 0;
+      fem_reference::mpi_on_root([&] { code = finish(*staged, outcome, *junit); });
+      return code;
     };
   });
 }

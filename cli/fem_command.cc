@@ -23,9 +23,10 @@ void add_fem_command(CLI::App& app, Action& action) {
   cmd->add_flag("--check", *check, kCheckHelp);
   cmd->callback([&action, case_file, output, check] {
     action = [case_file, output, check] {
-      workbench::CaseFile file = read_case_file(*case_file);
-      const auto problem = fem_reference::problem_from_case(file);
-      check_every_section(file);
+      fem_reference::FemProblem problem;
+      const auto case_ptr = read_checked_case(
+          *case_file, [&](const workbench::CaseFile& f) { problem = fem_reference::problem_from_case(f); });
+      const workbench::CaseFile& file = *case_ptr;
       if (*check) return checked(file, "fem");
       const std::string dir = output_folder(*output, file, "fem");
       // Rank 0 owns the staged folder; every rank writes its VTU piece into it. Steps that may fail

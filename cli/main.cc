@@ -7,6 +7,10 @@
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench <subcommand> --help                    the options of each subcommand
 //
+// Under mpirun, fem, compare and calibrate run distributed (the FEM over the ranks, the rest on
+// rank 0); every other subcommand runs once, on rank 0 (docs/scaling.md). Every rank ends with the
+// same exit code, and every line is printed once.
+//
 // Every error is one line "workbench: error: <file>: <what>"; bad input (command line included)
 // exits 2. Output folders appear whole or not at all and never replace a folder the workbench did
 // not write; SIGINT/SIGTERM end the run cleanly with 130/143 (docs/reliability.md).
@@ -18,6 +22,7 @@
 
 #include <csignal>
 #include <iostream>
+#include <set>
 
 int main(int argc, char** argv) {
   fem_reference::configure_singleton_mpi();      // first: it sets the environment
@@ -42,8 +47,22 @@ int main(int argc, char** argv) {
     std::cerr << "workbench: error: command line: " << e.what() << " (see workbench --help)\n";
     return 2;
   }
+  const std::string subcommand = app.get_subcommands().front()->get_name();
   try {
-    return action();
+    if (!fem_reference::started_by_launcher() || fem_reference::mpi_size() == 1) return action();
+    // More than one rank: every rank leaves with rank 0's exit code.
+    int code = 0;
+    if (cli::kDistributed.count(subcommand)) {
+      code = action();
+    } else {
+      if (fem_reference::mpi_rank() == 0)
+        std::cerr << subcommand << ": " << fem_reference::mpi_size() << " ranks: runs once, on rank 0 (not distributed)\n";
+      fem_reference::mpi_on_root([&] { code = action(); });
+    }
+    return std::stoi(fem_reference::mpi_broadcast(std::to_string(code)));
+  } catch (const fem_reference::CollectiveError& e) {  // every rank has it: printed once
+    if (!fem_reference::started_by_launcher() || fem_reference::mpi_rank() == 0) std::cerr << "workbench: error: " << e.what() << "\n";
+    return 2;
   } catch (const workbench::Error& e) {
     std::cerr << "workbench: error: " << e.what() << "\n";
     return 2;

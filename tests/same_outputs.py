@@ -12,7 +12,11 @@ output folder is compared:
 - a JSON file key by key: every number bit for bit; timings (keys starting with "time") aside;
   keys only the new output has are listed as added (they are not differences), keys it lost are
   differences;
-- any other text file (CSV, TOML, the output stamp) line by line, timing lines ("time",
+- a CSV file column by column, by header name: every column the old file has must hold the same
+  text in every row; columns only the new file has are listed as added;
+- a VTU file array by array, by name (the encoded data of each array; its range attributes
+  follow from it): arrays only the new file has are listed as added;
+- any other text file (TOML, the output stamp, logs) line by line, timing lines ("time",
   "seconds", "memory", " s)") aside.
 Paths into OLD_TREE read as the same paths into NEW_TREE. A binary file that differs (PNG, GIF,
 compressed VTU) and a file present in the old output only are differences; a file only the new
@@ -20,6 +24,8 @@ output has is listed as added. Prints one
 line per case and exits 1 when any output differs.
 """
 import argparse
+import csv
+import io
 import json
 import math
 import os
@@ -87,6 +93,36 @@ def text_diff(a, b):
     return [] if la == lb else [f"first differing line: {x!r} -> {y!r}" for x, y in zip(la + [""], lb + [""]) if x != y][:1]
 
 
+def csv_diff(a, b):
+    """(differences, added columns) between two CSV texts, columns matched by header name."""
+    ra, rb = list(csv.reader(io.StringIO(a))), list(csv.reader(io.StringIO(b)))
+    if not ra or not rb:
+        return ([] if ra == rb else ["one file is empty"]), []
+    ha, hb = ra[0], rb[0]
+    added = [h for h in hb if h not in ha]
+    gone = [h for h in ha if h not in hb]
+    if gone:
+        return [f"columns gone: {gone}"], added
+    if len(ra) != len(rb):
+        return [f"{len(ra) - 1} rows -> {len(rb) - 1} rows"], added
+    where = [hb.index(h) for h in ha]
+    for i, (x, y) in enumerate(zip(ra[1:], rb[1:]), start=1):
+        if [y[j] if j < len(y) else None for j in where] != x:
+            return [f"row {i} differs in an old column: {x!r} -> {y!r}"], added
+    return [], added
+
+
+DATA_ARRAY = re.compile(r'<DataArray[^>]*Name="([^"]+)"[^>]*>(.*?)</DataArray>', re.S)
+
+
+def vtu_diff(a, b):
+    """(differences, added arrays) between two VTU texts, arrays matched by name."""
+    aa, ab = dict(DATA_ARRAY.findall(a)), dict(DATA_ARRAY.findall(b))
+    diffs = [f"array {n!r}: gone" for n in aa if n not in ab]
+    diffs += [f"array {n!r}: data differ" for n in aa if n in ab and aa[n] != ab[n]]
+    return diffs, [n for n in ab if n not in aa]
+
+
 def compare_dirs(old, new, old_tree, new_tree):
     diffs, added = [], []
     files = lambda d: {os.path.relpath(os.path.join(r, f), d) for r, _, fs in os.walk(d) for f in fs}
@@ -106,6 +142,10 @@ def compare_dirs(old, new, old_tree, new_tree):
             d, ad = json_diff(json.loads(ta), json.loads(tb))
             diffs += [f"{f}{x}" for x in d]
             added += [f"{f}{x}" for x in ad]
+        elif f.endswith(".csv") or f.endswith(".vtu"):
+            d, ad = (csv_diff if f.endswith(".csv") else vtu_diff)(ta, tb)
+            diffs += [f"{f}: {x}" for x in d]
+            added += [f"{f}: {x}" for x in ad]
         else:
             diffs += [f"{f}: {x}" for x in text_diff(ta, tb)]
     return diffs, added
@@ -142,8 +182,14 @@ def main():
             diffs, added = compare_dirs(*outs, old, new) if os.path.isdir(outs[0]) else ([], [])
             failed += bool(diffs)
             verdict = "identical" if not diffs else f"{len(diffs)} differences"
+            per_file = {}
+            for x in added:  # "file: column", "file/json/key" or "file" (a new file)
+                m = re.match(r"(.*?\.(?:json|csv|vtu))[:/]", x)
+                f = m.group(1) if m else x
+                per_file[f] = per_file.get(f, 0) + 1
             print(f"{case} {sub}: {verdict} ({time.time() - start:.0f} s)"
-                  + (f"; added: {', '.join(sorted(set(x.split('[')[0] for x in added)))}" if added else ""), flush=True)
+                  + (f"; added: {', '.join(f'{f} ({n})' for f, n in sorted(per_file.items()))}" if added else ""),
+                  flush=True)
             for d in diffs[:10]:
                 print(f"    {d}")
     print(f"{failed} case runs differ; outputs in {work}")

@@ -6,12 +6,17 @@
 #include <fem_reference/mpi.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
+#include <workbench/memory_limit.h>
 #include <workbench/study_setup.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <ostream>
+#include <sstream>
+#include <thread>
 
 namespace fem_reference {
 
@@ -131,6 +136,49 @@ void check_problem(const FemProblem& p, const PlainMesh& mesh) {
                 "; a distributed (MPI) run needs a quadrilateral/hexahedral mesh (Transfinite + Recombine in the .geo)");
 }
 
+/// The ranks of this run on this machine: the launcher's local count, else every rank.
+int ranks_on_this_machine() {
+  for (const char* local : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "SLURM_NTASKS_PER_NODE"})
+    if (const char* v = std::getenv(local)) {
+      const int n = std::atoi(v);
+      if (n > 0) return n;
+    }
+  return mpi_size();
+}
+
+/// Refuses, before anything large is allocated, a solve whose estimated memory on this machine
+/// exceeds its limit (workbench/memory_limit.h), saying what it needs and on how many machines.
+/// Measured peaks (fem_summary.csv, one rank): about 190 MB of libraries and MPI per process; per
+/// DoF 0.7-1.6 kB in 2D (matrix-free multigrid, KLU, AMG), 4 kB for 3D Q1 and 5-7 kB for 3D Q2
+/// (the assembled matrix and its ML hierarchy); the mesh and the gathered results, on every rank,
+/// about 1 kB per gmsh cell.
+void check_memory(const FemProblem& p, const PlainMesh& mesh) {
+  const int dim = mesh.dim, degree = p.options.degree;
+  const double fine_cells = double(mesh.cell_count()) * std::pow(double(1 << dim), p.options.refine);
+  const double dofs = dim * fine_cells * std::pow(double(degree), dim);
+  const double per_dof = dim == 2 ? 1600.0 : degree == 1 ? 4000.0 : 7000.0;
+  const double process = 200e6 + 1e3 * double(mesh.cell_count());
+  const int ranks = mpi_size(), local = std::min(ranks_on_this_machine(), ranks);
+  const double per_rank = process + dofs * per_dof / ranks;
+  const double limit = workbench::memory_limit_bytes();
+  if (local * per_rank <= limit) return;
+  // Machines of this one's memory, each with as many ranks as it has cores.
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  const double room = limit - cores * process;
+  const int machines = room > 0 ? int(std::ceil(dofs * per_dof / room)) : 0;
+  std::ostringstream s;
+  s.precision(3);
+  s << p.name << ": the FEM problem (about " << dofs << " DoFs, Q" << degree << " in " << dim << "D) needs an estimated "
+    << local * per_rank / workbench::kGiB << " GiB on this machine";
+  if (local > 1) s << " (" << per_rank / workbench::kGiB << " GiB on each of its " << local << " ranks)";
+  s << ", above its memory limit of " << limit / workbench::kGiB << " GiB";
+  if (machines > 0)
+    s << "; about " << (dofs * per_dof + machines * cores * process) / workbench::kGiB << " GiB in all: run it on "
+      << machines << " machines of this memory, e.g. mpirun -np " << machines * cores << " (docs/scaling.md)";
+  s << " (WORKBENCH_MEMORY_LIMIT=<GiB> sets the limit)";
+  throw CollectiveError(s.str());  // every rank finds the same
+}
+
 /// Area-weighted centre of a group's faces.
 std::array<double, 3> group_centre(const PlainMesh& mesh, const std::string& group) {
   std::array<double, 3> c{};
@@ -166,6 +214,7 @@ FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::
     throw Error(problem.name + ": mesh: " + e.what());
   }
   check_problem(problem, mesh);
+  check_memory(problem, mesh);
   FemProblem p = problem;
   for (auto& f : p.point_forces)
     if (!f.group.empty()) f.point = group_centre(mesh, f.group);

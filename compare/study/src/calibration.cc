@@ -1,5 +1,7 @@
 // Calibration of the agent transfer coefficients: the objective, BOBYQA from seeded starts in parallel, sensitivity.
 #include <compare/calibration.h>
+
+#include <fem_reference/mpi.h>
 #include <compare/metrics.h>
 
 #include <nlopt.hpp>
@@ -90,11 +92,37 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
 
 }  // namespace
 
+namespace {
+
+/// A score as numbers, for the sum over the ranks.
+constexpr int kScoreSlots = 8;
+void pack(const Score& s, double* out) {
+  const double v[kScoreSlots] = {s.objective,      s.sigma_x,         s.sigma_y, s.displacement, s.reaction_share,
+                                 s.equilibrium_dev, s.reach, s.load_refused ? 1.0 : 0.0};
+  std::copy(v, v + kScoreSlots, out);
+}
+Score unpack(const double* v) {
+  Score s;
+  s.objective = v[0];
+  s.sigma_x = v[1];
+  s.sigma_y = v[2];
+  s.displacement = v[3];
+  s.reaction_share = v[4];
+  s.equilibrium_dev = v[5];
+  s.reach = v[6];
+  s.load_refused = v[7] != 0;
+  return s;
+}
+
+}  // namespace
+
 double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
-                 const ObjectiveWeights& w, std::vector<Score>* per_case) {
-  double total = 0;
-  if (per_case) per_case->clear();
+                 const ObjectiveWeights& w, std::vector<Score>* per_case, CaseShare share) {
+  // Each case's score in its slots, zero where another rank scores it: the sum over the ranks adds
+  // only zeros to a score, so it is exact.
+  std::vector<double> scores(cases.size() * kScoreSlots, 0.0);
   for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    if (int(ci % std::size_t(share.size)) != share.rank) continue;
     const auto& c = cases[ci];
     const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
     // Readings 2 and 6 refuse a factor of 1 (their transfer would not end) and stop at a cap: such
@@ -111,8 +139,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
       Score s;
       s.load_refused = true;
       s.objective = 1e30;
-      total += c.weight * s.objective;
-      if (per_case) per_case->push_back(s);
+      pack(s, &scores[ci * kScoreSlots]);
       continue;
     }
     const auto& state = *solved;
@@ -126,7 +153,14 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
       s.objective = 1e30;
     }
     if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
-    total += c.weight * s.objective;
+    pack(s, &scores[ci * kScoreSlots]);
+  }
+  if (share.size > 1) fem_reference::mpi_sum(scores);
+  double total = 0;
+  if (per_case) per_case->clear();
+  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+    const Score s = unpack(&scores[ci * kScoreSlots]);
+    total += cases[ci].weight * s.objective;
     if (per_case) per_case->push_back(s);
   }
   return total;
@@ -148,7 +182,12 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     for (std::size_t j = 0; j < free.size(); ++j) v[free[j]] = x[j];
     return v;
   };
-  auto J = [&](const CoefficientValues& v) { return objective(cases, coefficients_from(v), o.rules, o.weights); };
+  // Under MPI the ranks share every evaluation's cases; each start's evaluations are then
+  // collective, in the same order on every rank, so the starts run one after another.
+  const CaseShare share{fem_reference::mpi_rank(), fem_reference::mpi_size()};
+  auto J = [&](const CoefficientValues& v) {
+    return objective(cases, coefficients_from(v), o.rules, o.weights, nullptr, share);
+  };
 
   // The starts: the given point, then uniform random points in the bounds (seeded).
   std::vector<std::vector<double>> starts;
@@ -164,7 +203,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
 
   CalibrationResult result;
   result.start = coefficients_from(start_values);
-  result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before);
+  result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before, share);
   if (o.weights.keep_load)
     for (const auto& s : result.before) o.weights.equilibrium_ceiling.push_back(s.equilibrium_dev + kLoadTolerance);
   std::vector<double> best_f(starts.size(), INFINITY);
@@ -225,8 +264,8 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     }
   };
 
-  const int threads = std::max(1, std::min<int>(o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency()),
-                                                int(starts.size())));
+  const int wanted = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+  const int threads = share.size > 1 ? 1 : std::max(1, std::min<int>(wanted, int(starts.size())));
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t)
     pool.emplace_back([&] {
@@ -244,7 +283,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   // Never worse than the start.
   if (!(best_f[best] <= result.objective_start)) v = start_values;
   result.best = coefficients_from(v);
-  result.objective_best = objective(cases, result.best, o.rules, o.weights, &result.after);
+  result.objective_best = objective(cases, result.best, o.rules, o.weights, &result.after, share);
 
   // Sensitivity: the objective 10 % of each free coefficient's range either side of the optimum.
   for (int i : free) {

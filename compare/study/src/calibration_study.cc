@@ -6,6 +6,7 @@
 #include "report.h"
 
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <workbench/case_edit.h>
 #include <workbench/error.h>
 
@@ -149,19 +150,22 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
 
 CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto start_time = std::chrono::steady_clock::now();
-  CalibrationPlan plan = read_calibration_plan(file);
-  file.reject_unknown_keys();
-
-  // Every load case: the agent study, and the FEM reference solved once.
+  // The plan and every load case (the agent study, and the FEM reference solved once); under MPI
+  // on every rank, the references across the ranks, bad input one line.
+  CalibrationPlan plan;
   std::vector<CalibrationCase> cases;
-  const auto calibrate_table = file.root().table("calibrate");
-  for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
-    workbench::CaseFile case_file(plan.case_files[i]);
-    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
-    auto c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
-    c.weight = plan.case_weights[i];
-    cases.push_back(std::move(c));
-  }
+  fem_reference::mpi_collective([&] {
+    plan = read_calibration_plan(file);
+    file.reject_unknown_keys();
+    const auto calibrate_table = file.root().table("calibrate");
+    for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
+      workbench::CaseFile case_file(plan.case_files[i]);
+      log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
+      auto c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
+      c.weight = plan.case_weights[i];
+      cases.push_back(std::move(c));
+    }
+  });
 
   // Start from the first case's own coefficients, and hold each case's own where not fitted,
   // unless the calibration file gives a start.
@@ -260,47 +264,50 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   } else if (plan.cross_validate) {
     r << "\ncross-validation: needs two or more cases\n";
   }
-  report::write_text(dir / "report.txt", r.str());
-  log << r.str();
+  // The files, written once (rank 0 under MPI).
+  fem_reference::mpi_on_root([&] {
+    report::write_text(dir / "report.txt", r.str());
+    log << r.str();
 
-  nlohmann::json j;
-  auto coeffs = [](const agent::Coefficients& k) {
     nlohmann::json j;
-    for (const auto& [name, value] : agent_study::coefficient_values(k)) j[name] = value;
-    return j;
-  };
-  j["calibration"] = file.path().string();
-  j["title"] = file.root().text("title", "");
-  j["rule_set"] = agent::rule_set_name(o.rules);
-  if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
-  j["start"] = coeffs(result.start);
-  j["fitted"] = coeffs(result.best);
-  j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
-  j["evaluations"] = result.evaluations;
-  j["seconds"] = seconds;
-  j["start_objectives"] = result.start_objectives;
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    j["cases"][cases[i].name] = {
-        {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
-        {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}},
-        {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
-        {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
-        {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
-  j["keep_load"] = o.weights.keep_load;
-  j["warnings"] = warnings;
-  for (const auto& s : result.sensitivity)
-    j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
-  for (const auto& f : folds)
-    j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all}, {"start", f.start}};
-  report::write_text(dir / "report.json", j.dump(2) + "\n");
+    auto coeffs = [](const agent::Coefficients& k) {
+      nlohmann::json j;
+      for (const auto& [name, value] : agent_study::coefficient_values(k)) j[name] = value;
+      return j;
+    };
+    j["calibration"] = file.path().string();
+    j["title"] = file.root().text("title", "");
+    j["rule_set"] = agent::rule_set_name(o.rules);
+    if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
+    j["start"] = coeffs(result.start);
+    j["fitted"] = coeffs(result.best);
+    j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
+    j["evaluations"] = result.evaluations;
+    j["seconds"] = seconds;
+    j["start_objectives"] = result.start_objectives;
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      j["cases"][cases[i].name] = {
+          {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
+          {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}},
+          {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
+          {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
+          {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
+    j["keep_load"] = o.weights.keep_load;
+    j["warnings"] = warnings;
+    for (const auto& s : result.sensitivity)
+      j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
+    for (const auto& f : folds)
+      j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all}, {"start", f.start}};
+    report::write_text(dir / "report.json", j.dump(2) + "\n");
 
-  fs::create_directories(dir / "calibrated");
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
-                          for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
-                          plan.readings, "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
-                              std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
-  report::render_html(dir, log);
+    fs::create_directories(dir / "calibrated");
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
+                            for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
+                            plan.readings, "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
+                                std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
+    report::render_html(dir, log);
+  });
   return result;
 }
 

@@ -11,6 +11,7 @@
 
 #include <agent_study.h>
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/vtk_output.h>
@@ -273,14 +274,20 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
 CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
                                  std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
-  // 1. Read and check everything before running anything.
-  const auto in = read_input(file, options);
+  // Under MPI every rank solves the FEM levels (their results are whole on every rank); rank 0
+  // alone runs the agent model, compares and writes, each such step collective (a failure ends
+  // every rank). One rank: every step runs here.
+  using fem_reference::mpi_on_root;
+  // 1. Read and check everything before running anything (every rank: bad input is one line).
+  std::optional<AgentCompareInput> input;
+  fem_reference::mpi_collective([&] { input.emplace(read_input(file, options)); });
+  const auto& in = *input;
   const auto& grid = in.study.mesh.grid;
 
   // 2. The agent model, every load step.
   auto t = std::chrono::steady_clock::now();
-  const auto states = run_agent(in.study, dir, log);
-  const auto& agent_state = states.back();
+  std::vector<agent_study::AgentState> states;
+  mpi_on_root([&] { states = run_agent(in.study, dir, log); });
   const double agent_seconds = seconds_since(t);
 
   // 3. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
@@ -289,14 +296,17 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // by one thread at a time: the main thread again only after animation_data.get()).
   const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
   std::optional<report::BackgroundFigures> figures;
-  if (options.figures) figures.emplace(dir, title, options.figure_formats, log);
-  auto animation_data = std::async(std::launch::async, [&] {
-    write_steps_csv(dir / "steps.csv", in.study, states);
-    report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
-    if (figures) figures->steps_ready();
+  std::future<void> animation_data;
+  mpi_on_root([&] {
+    if (options.figures) figures.emplace(dir, title, options.figure_formats, log);
+    animation_data = std::async(std::launch::async, [&] {
+      write_steps_csv(dir / "steps.csv", in.study, states);
+      report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
+      if (figures) figures->steps_ready();
+    });
   });
 
-  // 4. The FEM reference (its output in dir/fem).
+  // 4. The FEM reference (its output in dir/fem), on every rank.
   t = std::chrono::steady_clock::now();
   auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
   double fem_seconds = seconds_since(t);
@@ -304,61 +314,68 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 5. Both models on the agent grid and along the lines, and the files the figures read: the
   // figures go on while the reference's own error is estimated.
   t = std::chrono::steady_clock::now();
-  const auto agent_fields = agent_on_grid(grid, agent_state);
+  GridFields agent_fields;
   std::vector<ScopeSamples> samples(in.lines.size());
-  for (std::size_t li = 0; li < in.lines.size(); ++li)
-    sample_line(grid, in.lines[li], {&agent_fields, &reference.fields}, samples[li]);
-  write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
-  write_field_files(dir, in, agent_fields, reference.fields, agent_state, options.mask);
-  animation_data.get();
-  if (figures) figures->data_ready();
+  mpi_on_root([&] {
+    agent_fields = agent_on_grid(grid, states.back());
+    for (std::size_t li = 0; li < in.lines.size(); ++li)
+      sample_line(grid, in.lines[li], {&agent_fields, &reference.fields}, samples[li]);
+    write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
+    write_field_files(dir, in, agent_fields, reference.fields, states.back(), options.mask);
+    animation_data.get();
+    if (figures) figures->data_ready();
+  });
   double compare_seconds = seconds_since(t);
 
-  // 6. The reference's error estimate (and with the true geometry the staircase's own error).
+  // 6. The reference's error estimate (and with the true geometry the staircase's own error), on
+  // every rank.
   t = std::chrono::steady_clock::now();
   estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log);
   fem_seconds += seconds_since(t);
-
-  // 7. The metrics.
-  t = std::chrono::steady_clock::now();
-  const GridFields* staircase = reference.staircase_fields ? &*reference.staircase_fields : nullptr;
-  for (std::size_t li = 0; li < in.lines.size(); ++li)
-    sample_line(grid, in.lines[li], {nullptr, nullptr, &reference.estimate_fields, staircase}, samples[li]);
+  // 7-9 on rank 0.
   CompareOutcome outcome;
-  add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
-  for (std::size_t li = 0; li < in.lines.size(); ++li)
-    add_scope(outcome, in.lines[li].name, samples[li], options.mask, grid.dim);
-  add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
-  outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
-                             "|reactions + applied| / |applied| (FEM)"});
-  compare_seconds += seconds_since(t);
-  outcome.metrics.push_back({"time.agent_s", agent_seconds, "agent model, all load steps with output [s]"});
-  outcome.metrics.push_back({"time.fem_s", fem_seconds, "FEM reference, both levels, with output [s]"});
-  outcome.metrics.push_back({"time.compare_s", compare_seconds, "comparison and its output [s]"});
+  mpi_on_root([&] {
+    const auto& agent_state = states.back();
+    // 7. The metrics.
+    t = std::chrono::steady_clock::now();
+    const GridFields* staircase = reference.staircase_fields ? &*reference.staircase_fields : nullptr;
+    for (std::size_t li = 0; li < in.lines.size(); ++li)
+      sample_line(grid, in.lines[li], {nullptr, nullptr, &reference.estimate_fields, staircase}, samples[li]);
+    add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
+    for (std::size_t li = 0; li < in.lines.size(); ++li)
+      add_scope(outcome, in.lines[li].name, samples[li], options.mask, grid.dim);
+    add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
+    outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
+                               "|reactions + applied| / |applied| (FEM)"});
+    compare_seconds += seconds_since(t);
+    outcome.metrics.push_back({"time.agent_s", agent_seconds, "agent model, all load steps with output [s]"});
+    outcome.metrics.push_back({"time.fem_s", fem_seconds, "FEM reference, both levels, with output [s]"});
+    outcome.metrics.push_back({"time.compare_s", compare_seconds, "comparison and its output [s]"});
 
-  // 8. The figures: what is left of them once the rest is done.
-  t = std::chrono::steady_clock::now();
-  if (figures) figures->finish();
-  outcome.metrics.push_back({"time.figures_wait_s", seconds_since(t),
-                             "waiting for the figures after the rest (they are drawn beside the FEM reference) [s]"});
-  outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
+    // 8. The figures: what is left of them once the rest is done.
+    t = std::chrono::steady_clock::now();
+    if (figures) figures->finish();
+    outcome.metrics.push_back({"time.figures_wait_s", seconds_since(t),
+                               "waiting for the figures after the rest (they are drawn beside the FEM reference) [s]"});
+    outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
 
-  // 9. The gate, summary.json / summary.txt / junit.xml.
-  outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
-  auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
-  std::vector<std::string> notes{
-      "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
-          " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
-          " DoFs) against it",
-      "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
-          " mm from every loaded face"};
-  if (reference.staircase_fields)
-    notes.push_back("the staircase's own error (column staircase_error): the same norm of FEM on the agents' mesh (" +
-                    std::to_string(reference.staircase_dofs) + " DoFs, the reference's degree and refinement) against "
-                    "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
-                    std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
-                    "nearest element's stress / nearest node's displacement");
-  report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero);
+    // 9. The gate, summary.json / summary.txt / junit.xml.
+    outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
+    auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
+    std::vector<std::string> notes{
+        "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
+            " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
+            " DoFs) against it",
+        "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
+            " mm from every loaded face"};
+    if (reference.staircase_fields)
+      notes.push_back("the staircase's own error (column staircase_error): the same norm of FEM on the agents' mesh (" +
+                      std::to_string(reference.staircase_dofs) + " DoFs, the reference's degree and refinement) against "
+                      "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
+                      std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
+                      "nearest element's stress / nearest node's displacement");
+    report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero);
+  });
   return outcome;
 }
 
@@ -366,6 +383,9 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
 CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto options = read_compare_options(file.root());
+  if (options.model == "pbd" && fem_reference::mpi_size() > 1)  // every rank says so: printed once
+    throw fem_reference::CollectiveError(file.path().string() + ": compare.model = \"pbd\" runs on one rank (its FEM "
+                                         "strip is small): run it without mpirun");
   return options.model == "pbd" ? run_pbd_compare(file, options, dir, log) : run_agent_compare(file, options, dir, log);
 }
 

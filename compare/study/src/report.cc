@@ -1,6 +1,7 @@
 // What both comparisons share: the gate, summary.json / summary.txt / junit.xml, the FEM run and the figure script.
 #include "report.h"
 
+#include <fem_reference/mpi.h>
 #include <workbench/child_process.h>
 #include <workbench/error.h>
 #include <workbench/output_file.h>
@@ -61,9 +62,10 @@ bool worse_than_zero(const Metric& m) {
 fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const std::filesystem::path& dir,
                                  std::ostream& log, double& seconds) {
   const auto start = std::chrono::steady_clock::now();
-  std::filesystem::create_directories(dir / "fem");
+  // Every rank writes its VTU piece into dir/fem; rank 0 makes the folder and writes the CSV files.
+  fem_reference::mpi_on_root([&] { std::filesystem::create_directories(dir / "fem"); });
   auto fem = fem_reference::solve_fem(problem, dir / "fem", &log);
-  fem_reference::write_fem_csv(fem, dir / "fem");
+  fem_reference::mpi_on_root([&] { fem_reference::write_fem_csv(fem, dir / "fem"); });
   seconds = seconds_since(start);
   return fem;
 }

@@ -9,8 +9,11 @@
 //     ...
 //     fem_reference::mpi_collective([&] { if (fem_reference::mpi_rank() == 0) make_folder(); });
 //   }
+#include <workbench/error.h>
+
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace fem_reference {
 
@@ -29,9 +32,25 @@ int mpi_size();
 void mpi_barrier();
 /// Broadcasts a string from rank 0.
 std::string mpi_broadcast(const std::string& text);
+/// Sums `values` over the ranks, in place, on every rank (the same length on every rank).
+void mpi_sum(std::vector<double>& values);
+
+/// The error every rank throws from a collective step that failed on some rank: the program prints
+/// it once (on rank 0), where an error of one rank alone is printed by that rank.
+struct CollectiveError : workbench::Error {
+  using workbench::Error::Error;
+};
+
 /// Runs `step` on every rank (collective: every rank calls it); if it throws on any rank, every rank
-/// throws the same workbench::Error (the message of the lowest failing rank), so no rank is left
+/// throws the same CollectiveError (the message of the lowest failing rank), so no rank is left
 /// waiting in a later collective. For steps that may fail on one rank only (files, folders).
 void mpi_collective(const std::function<void()>& step);
+/// Runs `step` on rank 0 only, as a collective step: the other ranks wait, and a failure ends every
+/// rank with its message. For the work done once under MPI (the fast models, the files written).
+void mpi_on_root(const std::function<void()>& step);
+
+/// True when mpirun or srun started this process (it may still be the only rank); tells without
+/// starting MPI.
+bool started_by_launcher();
 
 }  // namespace fem_reference

@@ -67,9 +67,14 @@ std::string broadcast(std::string text, int root) {
 
 }  // namespace
 
-void configure_singleton_mpi() {
+bool started_by_launcher() {
   for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
-    if (std::getenv(launcher)) return;  // started by mpirun or srun: their settings stand
+    if (std::getenv(launcher)) return true;
+  return false;
+}
+
+void configure_singleton_mpi() {
+  if (started_by_launcher()) return;  // mpirun's or srun's settings stand
   // Measured with MPI_Init_thread alone (docs/performance.md): 0.26 s as configured by Debian,
   // 0.08 s with ob1, 0.06 s without UCX's one-sided component too, 0.02 s without orted.
   ::setenv("OMPI_MCA_pml", "ob1", 0);
@@ -116,7 +121,19 @@ void mpi_collective(const std::function<void()>& step) {
     message = broadcast(message, first);
     failed = true;
   }
-  if (failed) throw Error(message);
+  if (failed) throw CollectiveError(message);
+}
+
+void mpi_on_root(const std::function<void()>& step) {
+  const bool root = mpi_rank() == 0;
+  mpi_collective([&] {
+    if (root) step();
+  });
+}
+
+void mpi_sum(std::vector<double>& values) {
+  if (mpi_size() == 1) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
 }  // namespace fem_reference

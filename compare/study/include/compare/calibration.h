@@ -72,9 +72,18 @@ struct Score {
   bool load_refused = false;  ///< over the case's equilibrium ceiling (keep_load)
 };
 
-/// The objective for one set of coefficients; `per_case` receives each case's errors.
+/// Which cases this process scores: case i where i % size == rank, the rest by the other ranks
+/// (every rank holds every case). The default, one rank, scores every case.
+struct CaseShare {
+  int rank = 0, size = 1;
+};
+
+/// The objective for one set of coefficients; `per_case` receives each case's errors. Under a share
+/// of several ranks (a collective call: every rank makes it) each rank scores its cases and the
+/// scores are summed over the ranks, then added in case order: the same total, bit for bit, as one
+/// rank's.
 double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
-                 const ObjectiveWeights& w, std::vector<Score>* per_case = nullptr);
+                 const ObjectiveWeights& w, std::vector<Score>* per_case = nullptr, CaseShare share = {});
 
 struct Sensitivity {
   std::string name;
@@ -93,7 +102,9 @@ struct CalibrationResult {
 };
 
 /// Fits the free coefficients. Reproducible: the starts depend on `seed` only, and each start
-/// runs the same sequence of evaluations whatever the thread count.
+/// runs the same sequence of evaluations whatever the thread count or the number of MPI ranks.
+/// Under MPI (a collective call) the ranks split every evaluation's cases (CaseShare) and run the
+/// starts one after another, one thread each.
 CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress = nullptr);
 

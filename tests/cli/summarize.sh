@@ -29,6 +29,17 @@ assert [r["agent.rule_set"] for r in rows] == ["conserving", "patent", ""], [r["
 PY
 check empty_cells $? "see above"
 
+# The Python module gives the same table (when it is built).
+if [ -d "$(dirname "$bin")/../python" ]; then
+  PYTHONPATH="$(dirname "$bin")/../python" /usr/bin/python3 - "$work/table.json" "$work/runs/conserving" \
+    "$work/runs/patent" "$work/runs/pbd" <<'PY'
+import json, sys, workbench
+t = workbench.summarize(sys.argv[2:])
+assert t == json.load(open(sys.argv[1])), "workbench.summarize differs from the JSON table"
+PY
+  check python_module $? "see above"
+fi
+
 mkdir -p "$work/empty"
 "$bin" agent "$work/patent.toml" -o "$work/agent_only" 2>/dev/null
 refused missing_folder "nowhere: no such folder" "$work/runs" "$bin" summarize "$work/runs/patent" "$work/nowhere" -o "$work/t2.csv"

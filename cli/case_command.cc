@@ -6,6 +6,7 @@
 #include <compare/derived_case.h>
 #include <compare/summarize.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <vector>
@@ -53,7 +54,7 @@ void add_summarize_command(CLI::App& app, Action& action) {
     action = [folders, output, json, force] {
       check_writable_file(*output, "-o");
       if (!json->empty()) check_writable_file(*json, "--json");
-      const auto table = compare::summarize({folders->begin(), folders->end()});
+      const auto table = compare::summarize(std::vector<std::filesystem::path>(folders->begin(), folders->end()));
       compare::write_summary_csv(table, *output, *force);
       if (!json->empty()) compare::write_summary_json(table, *json, *force);
       std::cerr << "summarize: " << table.rows.size() << " folders, " << table.parameters.size() << " parameters, "

@@ -5,9 +5,9 @@
 # Usage: summarize.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 
-base="$src/cases/gate_plate.toml"
+base="$src/cases/seed_plate.toml"
 for rules in conserving patent; do
-  "$bin" case set "$base" mesh.parameters.h=0.02 mesh.parameters.lw=0.04 agent.rule_set=$rules -o "$work/$rules.toml" 2>"$logs/log"
+  "$bin" case set "$base" mesh.parameters.h=0.02 mesh.parameters.lw=0.04 compare.figures=false agent.rule_set=$rules -o "$work/$rules.toml" 2>"$logs/log"
   check "case_$rules" $? "$(cat "$logs/log")"
   "$bin" compare "$work/$rules.toml" -o "$work/runs/$rules" 2>"$logs/log"
   rc=$?
@@ -15,9 +15,16 @@ for rules in conserving patent; do
 done
 "$bin" compare "$src/cases/pbd_strip_fem.toml" -o "$work/runs/pbd" 2>"$logs/log"
 check compare_pbd $? "$(tail -3 "$logs/log")"
+# The two plates: one parameter, the rule set.
+"$bin" summarize "$work/runs/conserving" "$work/runs/patent" -o "$work/plates.csv" --json "$work/plates.json" 2>"$logs/log"
+check summarize_plates $? "$(cat "$logs/log")"
+/usr/bin/python3 "$src/tests/cli/check_summary_table.py" "$work/plates.csv" "$work/plates.json" agent.rule_set
+check plates_equal_summaries $? "see above"
+# With the PBD strip, whose case differs in nearly every key.
 "$bin" summarize "$work/runs/conserving" "$work/runs/patent" "$work/runs/pbd" -o "$work/table.csv" --json "$work/table.json" 2>"$logs/log"
 check summarize_exit $? "$(cat "$logs/log")"
-/usr/bin/python3 "$src/tests/cli/check_summary_table.py" "$work/table.csv" "$work/table.json" agent.rule_set
+parameters=$(/usr/bin/python3 -c "import json, sys; print(' '.join(json.load(open(sys.argv[1]))['parameters']))" "$work/table.json")
+/usr/bin/python3 "$src/tests/cli/check_summary_table.py" "$work/table.csv" "$work/table.json" $parameters
 check table_equals_summaries $? "see above"
 /usr/bin/python3 - "$work/table.csv" <<'PY'
 import csv, sys
@@ -26,6 +33,7 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 assert rows[2]["agent.equilibrium_dev"] == "" and rows[0]["agent.equilibrium_dev"] != "", rows[2]
 assert rows[0]["tip.deflection.rel_error"] == "" and rows[2]["tip.deflection.rel_error"] != "", rows[0]
 assert [r["agent.rule_set"] for r in rows] == ["conserving", "patent", ""], [r["agent.rule_set"] for r in rows]
+assert rows[2]["pbd.frames"] != "" and rows[0]["pbd.frames"] == "" and "mesh.parameters.h" in rows[0], rows[2]
 PY
 check empty_cells $? "see above"
 

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The sweep workflow (workflows/sweep) on its example table, 2 agent sizes x 2 rule sets of the
-# gate plate, with `snakemake --cores 2` in a scratch folder: four cases, four comparisons, the
+# seed plate, with `snakemake --cores 2` in a scratch folder: four cases, four comparisons, the
 # collected table equal to the four summary.json files, the figure drawn.
 # Usage: sweep_workflow.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 
 flow="$src/workflows/sweep"
 snakemake -s "$flow/Snakefile" --directory "$work" --cores 2 --quiet \
-  --config workbench="$bin" base_case="$src/cases/gate_plate.toml" parameters="$flow/parameters.csv" out=sweep \
+  --config workbench="$bin" base_case="$src/cases/seed_plate.toml" parameters="$flow/parameters.csv" out=sweep \
   >"$logs/log" 2>&1
 check snakemake_exit $? "$(tail -20 "$logs/log")"
 rows=$(($(wc -l <"$flow/parameters.csv") - 1))

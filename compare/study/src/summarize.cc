@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -93,17 +95,17 @@ SummaryRow read_row(const fs::path& dir) {
                 "workbench compare or calibrate");
   const fs::path case_path = case_of(dir);
   if (comparison) {
-    const auto json = read_json(dir / "summary.json");
-    for (const auto& [name, metric] : json.value("metrics", nlohmann::json::object()).items())
+    const auto metrics = read_json(dir / "summary.json").value("metrics", nlohmann::json::object());
+    for (const auto& [name, metric] : metrics.items())
       if (metric.contains("value") && metric["value"].is_number()) row.metrics[name] = metric["value"].get<double>();
   } else {
     flatten(read_json(dir / "report.json"), "", row.metrics);
   }
-  const workbench::CaseFile file(case_path);
-  flatten(*toml::parse_file(case_path.string()).as_table(), "", row.parameters);
+  const workbench::CaseFile file(case_path);  // a syntax error: one line naming the file
+  const toml::table parsed = toml::parse_file(case_path.string());
+  flatten(parsed, "", row.parameters);
   if (comparison) {  // a study case: its paths as the files they name, however each case spells them
     check_every_section(file);
-    const toml::table parsed = toml::parse_file(case_path.string());
     for (const auto& key : file.path_keys()) {
       fs::path p(*parsed.at_path(key).value<std::string>());
       if (p.is_relative()) p = fs::absolute(case_path.parent_path() / p);

@@ -13,8 +13,8 @@ check snakemake_exit $? "$(tail -20 "$logs/log")"
 rows=$(($(wc -l <"$flow/parameters.csv") - 1))
 cases=$(ls "$work"/sweep/runs/*/summary.json 2>/dev/null | wc -l)
 check one_run_per_row $((cases != rows || rows != 4)) "$cases summaries for $rows rows"
-/usr/bin/python3 "$src/tests/cli/check_summary_table.py" "$work/sweep/summary.csv" "$work/sweep/summary.json" \
-  agent.rule_set mesh.parameters.h
+(cd "$work" && /usr/bin/python3 "$src/tests/cli/check_summary_table.py" sweep/summary.csv sweep/summary.json \
+  agent.rule_set mesh.parameters.h)  # the folders are relative to where snakemake ran
 check table_equals_summaries $? "see above"
 /usr/bin/python3 - "$work/sweep/summary.csv" "$flow/parameters.csv" <<'PY'
 import csv, sys

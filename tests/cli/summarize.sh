@@ -48,6 +48,28 @@ PY
   check python_module $? "see above"
 fi
 
+# A calibration's folder: every number of its report.json, named by its dotted place.
+printf '[calibrate]\nrule_set = "conserving"\nstarts = 1\nmax_evaluations = 20\n[[calibrate.case]]\nfile = "conserving.toml"\n' >"$work/calibrate.toml"
+"$bin" calibrate "$work/calibrate.toml" -o "$work/runs/calibration" >/dev/null 2>"$logs/log"
+check calibrate $? "$(tail -3 "$logs/log")"
+"$bin" summarize "$work/runs/calibration" -o "$work/calibration.csv" 2>"$logs/log"
+check summarize_calibration $? "$(cat "$logs/log")"
+/usr/bin/python3 - "$work/calibration.csv" "$work/runs/calibration/report.json" <<'PY'
+import csv, json, sys
+row = next(csv.DictReader(open(sys.argv[1])))
+def numbers(j, prefix=""):
+    for k, v in j.items():
+        if isinstance(v, dict):
+            yield from numbers(v, prefix + k + ".")
+        elif isinstance(v, (int, float)) and not isinstance(v, bool):
+            yield prefix + k, v
+expected = dict(numbers(json.load(open(sys.argv[2]))))
+assert set(row) - {"folder"} == set(expected), sorted(set(row) ^ set(expected))
+assert all(float(row[k]) == v for k, v in expected.items()), [k for k, v in expected.items() if float(row[k]) != v]
+assert "fitted.alpha2" in expected and "objective.fitted" in expected, sorted(expected)
+PY
+check calibration_table $? "see above"
+
 mkdir -p "$work/empty"
 "$bin" agent "$work/patent.toml" -o "$work/agent_only" 2>/dev/null
 refused missing_folder "nowhere: no such folder" "$work/runs" "$bin" summarize "$work/runs/patent" "$work/nowhere" -o "$work/t2.csv"

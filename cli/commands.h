@@ -52,5 +52,7 @@ void add_pbd_command(CLI::App& app, Action& action);
 void add_fem_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action);
+void add_case_command(CLI::App& app, Action& action);
+void add_summarize_command(CLI::App& app, Action& action);
 
 }  // namespace cli

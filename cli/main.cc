@@ -5,6 +5,8 @@
 //   workbench compare cases/seed_plate.toml          both on one mesh: metrics, Figures 8-11, gate
 //   workbench calibrate cases/calibrate_plate.toml   fit alpha1..3, beta (gamma) against FEM
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
+//   workbench case set CASE KEY=VALUE -o NEW.toml    a derived case file (sweeps)
+//   workbench summarize DIR... -o table.csv          many output folders' summaries as one table
 //   workbench <subcommand> --help                    the options of each subcommand
 //
 // Under mpirun, fem, compare and calibrate run distributed (the FEM over the ranks, the rest on
@@ -39,6 +41,8 @@ int main(int argc, char** argv) {
   cli::add_fem_command(app, action);
   cli::add_compare_command(app, action);
   cli::add_calibrate_command(app, action);
+  cli::add_case_command(app, action);
+  cli::add_summarize_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help

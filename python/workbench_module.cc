@@ -8,6 +8,7 @@
 #include <compare/case_sections.h>
 #include <compare/compare_study.h>
 #include <compare/reference.h>
+#include <compare/summarize.h>
 #include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/case_file.h>
@@ -555,6 +556,21 @@ PYBIND11_MODULE(workbench, m) {
         "`workbench compare`: writes everything into output_dir, returns the metrics and the gate's verdict.");
   m.def("calibrate", &run_calibrate, py::arg("calibration"), py::arg("output_dir"), py::arg("progress") = py::none(),
         "`workbench calibrate` on a calibration file: the fitted coefficients and the objective.");
+  m.def(
+      "summarize",
+      [](const std::vector<fs::path>& folders) {
+        const auto table = compare::summarize(folders);
+        py::list rows;
+        for (const auto& r : table.rows)
+          rows.append(py::dict(py::arg("folder") = r.folder, py::arg("parameters") = r.parameters,
+                               py::arg("metrics") = r.metrics));
+        return py::dict(py::arg("parameters") = table.parameters, py::arg("metrics") = table.metrics,
+                        py::arg("rows") = rows);
+      },
+      py::arg("folders"),
+      "`workbench summarize`: the summaries of compare and calibrate output folders as one table: `parameters` "
+      "(the case keys that differ between the folders), `metrics` (every name), `rows` (per folder: `folder`, "
+      "`parameters`, `metrics`).");
   m.def("run_pbd", &run_pbd, py::arg("case"), py::arg("progress") = py::none(),
         "The PBD model's frames: positions [m] per written frame (frames x nodes x 3), times [s], rest positions.");
 

@@ -12,6 +12,7 @@ packages=(
   python3-matplotlib python3-numpy python3-pil jupyter-core jupyter-nbconvert python3-nbconvert python3-ipykernel jupyter-client
   ffmpeg
   python3-jinja2 chromium python3-meshio
+  snakemake
 )
 
 missing=()

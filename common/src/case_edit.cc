@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <charconv>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -53,6 +54,11 @@ toml::table parse_value(const std::string& value) {
   }
 }
 
+/// The table at a dotted path ("" the root).
+toml::node_view<const toml::node> table_at(const toml::table& root, const std::string& table) {
+  return table.empty() ? toml::node_view<const toml::node>(root) : root.at_path(table);
+}
+
 /// Whether two values are of the same type and value (views of const nodes on both sides).
 bool same(toml::node_view<const toml::node> a, toml::node_view<const toml::node> b) { return a == b; }
 
@@ -89,13 +95,18 @@ std::string set_case_keys(const std::string& text, const std::string& table,
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);) lines.push_back(line);
   }
-  const auto old_table = original.at_path(table);
+  const auto old_table = table_at(original, table);
   std::vector<bool> done(values.size(), false);
+  if (!old_table && table.find('[') != std::string::npos)
+    throw Error(table + ": no such entry in the case (an entry of [[...]] is set, not added)");
   std::string current;
+  std::map<std::string, int> entries;  // [[name]] entries seen so far, by name
   int table_end = -1;  // index after the table's last non-blank line
   for (std::size_t n = 0; n < lines.size(); ++n) {
     if (const auto t = table_of(lines[n]); !t.empty()) {
-      current = t;
+      // The n-th [[name]] entry is the table "name[n]".
+      const bool entry = lines[n].compare(lines[n].find_first_not_of(" \t"), 2, "[[") == 0;
+      current = entry ? t + "[" + std::to_string(entries[t]++) + "]" : t;
       continue;
     }
     if (current != table) continue;
@@ -110,6 +121,7 @@ std::string set_case_keys(const std::string& text, const std::string& table,
   std::vector<std::string> missing;
   for (std::size_t w = 0; w < values.size(); ++w)
     if (!done[w]) missing.push_back(values[w].first + " = " + values[w].second);
+  if (table_end < 0 && table.empty()) table_end = 0;  // a file with tables only: keys go first
   if (table_end < 0) {
     if (!missing.empty()) lines.push_back("\n[" + table + "]");
     table_end = int(lines.size());
@@ -126,7 +138,7 @@ std::string set_case_keys(const std::string& text, const std::string& table,
                 "] arrays on one line");
   }
   for (std::size_t w = 0; w < values.size(); ++w)
-    if (!same(std::as_const(check).at_path(table)[values[w].first], std::as_const(wanted[w])["v"]))
+    if (!same(table_at(std::as_const(check), table)[values[w].first], std::as_const(wanted[w])["v"]))
       throw Error("the derived case does not read back " + table + "." + values[w].first + " = " + values[w].second +
                   " (write the key's value on one line)");
   return out;

@@ -237,6 +237,7 @@ std::map<std::string, double> CaseTable::number_map(const std::string& key) cons
 
 std::filesystem::path CaseTable::path(const std::string& key, std::optional<std::string> fallback) const {
   const std::string value = text(key, std::move(fallback));
+  if (has(key)) file_->paths_.insert(full(key));
   std::filesystem::path p(value);
   if (p.is_relative()) p = file_->path().parent_path() / p;
   return p.lexically_normal();

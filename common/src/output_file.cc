@@ -106,11 +106,15 @@ void write_file(const fs::path& file, std::string_view bytes) {
 }
 
 void replace_file(const fs::path& file, std::string_view bytes) {
+  replace_file(file, [bytes](const fs::path& temporary) { write_file(temporary, bytes); });
+}
+
+void replace_file(const fs::path& file, const std::function<void(const fs::path&)>& write) {
   const fs::path absolute = fs::absolute(file);
   const fs::path temporary =
       absolute.parent_path() / ("." + absolute.filename().string() + ".partial-" + std::to_string(::getpid()));
   try {
-    write_file(temporary, bytes);
+    write(temporary);
     sync_path(temporary, false);
   } catch (...) {
     std::error_code ec;

@@ -1,4 +1,5 @@
 // Case files: typed, range-checked keys; every mistake named with its file and key.
+#include <workbench/case_edit.h>
 #include <workbench/case_file.h>
 #include <workbench/memory_limit.h>
 #include <workbench/study_setup.h>
@@ -71,6 +72,28 @@ TEST(CaseFile, RejectsUnknownKeysIncludingInsideArraysOfTables) {
     l.number("force", {});
   }
   EXPECT_NE(error_of([&] { g.reject_unknown_keys(); }).find("unknown key 'load[0].forse'"), std::string::npos);
+}
+
+TEST(CaseFile, RemembersTheKeysReadAsPaths) {
+  CaseFile f("[mesh]\nfile = \"../m.geo\"\n[pbd]\nmesh = \"/abs.msh\"\n", "cases/case.toml");
+  EXPECT_EQ(f.root().table("mesh").path("file", std::nullopt).string(), "m.geo");  // cases/../m.geo
+  EXPECT_EQ(f.root().table("pbd").path("mesh", std::nullopt).string(), "/abs.msh");
+  EXPECT_EQ(f.root().table("compare").path("mesh", "d.geo").string(), "cases/d.geo");  // a default: not the file's
+  EXPECT_EQ(f.path_keys(), (std::vector<std::string>{"mesh.file", "pbd.mesh"}));
+}
+
+TEST(CaseEdit, SetsAKeyOfOneArrayEntryAndOfTheTopLevel) {
+  const std::string text = "# header\ntitle = \"a\"\n\n[[load]]\ngroup = \"l\"\nforce = 1.0  # N\n\n[[load]]\n"
+                           "group = \"m\"\nforce = 2.0\n";
+  const auto second = set_case_keys(text, "load[1]", {{"force", "5.0"}, {"direction", "\"+x\""}});
+  EXPECT_NE(second.find("force = 1.0  # N\n"), std::string::npos) << second;  // the first entry untouched
+  EXPECT_NE(second.find("group = \"m\"\nforce = 5.0\ndirection = \"+x\"\n"), std::string::npos) << second;
+  const auto first = set_case_keys(text, "load[0]", {{"force", "3"}});
+  EXPECT_NE(first.find("force = 3  # N\n"), std::string::npos) << first;
+  EXPECT_THROW(set_case_keys(text, "load[2]", {{"force", "3"}}), Error);  // entries are set, not added
+  const auto title = set_case_keys(text, "", {{"title", "\"b\""}, {"extra", "1"}});
+  EXPECT_EQ(title.substr(0, title.find("\n\n")), "# header\ntitle = \"b\"\nextra = 1") << title;
+  EXPECT_EQ(set_case_keys("[agent]\nalpha1 = 0.5\n", "", {{"title", "\"t\""}}).substr(0, 12), "title = \"t\"\n");
 }
 
 TEST(CaseFile, SyntaxErrorsGiveLineAndColumn) {

@@ -18,7 +18,8 @@ std::string toml_string(const std::string& s);
 std::string toml_strings(const std::vector<std::string>& values);
 
 /// `text` with each key of `table` (a dotted name such as "agent" or "compare.reference"; a table
-/// opened with [name], not an inline table) set to the TOML value text given. A key's line keeps
+/// opened with [name], not an inline table; "load[1]" is the second [[load]] entry, which must
+/// exist; "" the keys before the first table) set to the TOML value text given. A key's line keeps
 /// its comment and is rewritten only where the value changes; a missing key is added after the
 /// table's last line, a missing table at the end. Throws workbench::Error when the result does not
 /// parse, or when a key does not read back as the value given (e.g. an array written over several

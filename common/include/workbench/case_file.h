@@ -104,6 +104,8 @@ class CaseFile {
   const std::filesystem::path& path() const { return path_; }
   /// Throws for the first key (in file order) that no getter has read.
   void reject_unknown_keys() const;
+  /// The dotted keys read so far as paths (CaseTable::path) that the file gives, e.g. "mesh.file".
+  std::vector<std::string> path_keys() const { return {paths_.begin(), paths_.end()}; }
 
  private:
   friend class CaseTable;
@@ -111,6 +113,7 @@ class CaseFile {
   std::filesystem::path path_;
   std::unique_ptr<toml::table> table_;
   mutable std::set<std::string> used_;
+  mutable std::set<std::string> paths_;
 };
 
 }  // namespace workbench

@@ -10,6 +10,7 @@
 // so a file-size limit (`ulimit -f`) is a failed write (EFBIG) here, not a kill.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -45,6 +46,8 @@ void write_file(const std::filesystem::path& file, std::string_view bytes);
 /// Replaces `file` outside a staging folder (compare --junit): written to a hidden sibling, synced
 /// and renamed over it, so that a failed write leaves the earlier file whole.
 void replace_file(const std::filesystem::path& file, std::string_view bytes);
+/// The same with a file that `write` writes (e.g. through a CsvFile) at the path it is given.
+void replace_file(const std::filesystem::path& file, const std::function<void(const std::filesystem::path&)>& write);
 
 /// The message of a failed write: "<file as the user knows it>: write failed (<strerror(err)>)".
 std::string write_failure(const std::filesystem::path& file, int err);

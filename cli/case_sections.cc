@@ -57,7 +57,7 @@ void check_writable_file(const std::string& path, const std::string& option) {
 }
 
 int checked(const workbench::CaseFile& file, const std::string& subcommand) {
-  std::cerr << subcommand << ": " << file.path().string() << ": checked, nothing written\n";
+  progress_log() << subcommand << ": " << file.path().string() << ": checked, nothing written\n";
   return 0;
 }
 

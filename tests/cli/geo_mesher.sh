@@ -17,31 +17,39 @@ case_for() {
   fi
 }
 
+# Each run gets its own TMPDIR (in $work/tmp), where none of the workbench's own files may be left
+# (OpenMPI's session folder may be), and its output folder in $work/runs, which must stay empty (no
+# output, no staging folder).
+mkdir -p "$work/runs" "$work/tmp"
+workbench_files() { ls -A "$1" | grep '^workbench-'; }
 for geo in "$src"/tests/data/gmsh_crashes/*.geo; do
   name=$(basename "$geo" .geo)
   case_for "$geo" >"$work/$name.toml"
   for command in agent fem; do
-    mkdir -p "$work/tmp_${name}_$command"
-    refused "${name}_$command" "$geo: gmsh failed meshing it (" "$work" \
-      env TMPDIR="$work/tmp_${name}_$command" "$bin" "$command" "$work/$name.toml" -o "$work/out_${name}_$command"
-    [ -z "$(ls -A "$work/tmp_${name}_$command")" ]
-    check "${name}_${command}_temporary_removed" $? "left: $(ls -A "$work/tmp_${name}_$command")"
+    tmp="$work/tmp/${name}_$command"
+    mkdir -p "$tmp"
+    refused "${name}_$command" "$geo: gmsh failed meshing it (" "$src/tests/data/gmsh_crashes" \
+      env TMPDIR="$tmp" "$bin" "$command" "$work/$name.toml" -o "$work/runs/${name}_$command"
+    [ -z "$(ls -A "$work/runs")" ]
+    check "${name}_${command}_no_output" $? "left: $(ls -A "$work/runs")"
+    [ -z "$(workbench_files "$tmp")" ]
+    check "${name}_${command}_temporary_removed" $? "left: $(workbench_files "$tmp")"
   done
 done
 
 # A good .geo still meshes, with nothing left in the temporary folder.
-mkdir -p "$work/tmp_good"
+mkdir -p "$work/tmp/good"
 sed "s#\.\./meshes#$src/meshes#" "$src/cases/cook.toml" | sed 's/^n = .*/n = 4/' >"$work/cook.toml"
-TMPDIR="$work/tmp_good" "$bin" fem "$work/cook.toml" -o "$work/out_good" 2>"$logs/good.err"
+TMPDIR="$work/tmp/good" "$bin" fem "$work/cook.toml" -o "$work/good" 2>"$logs/good.err"
 check good_exit $? "$(tail -1 "$logs/good.err")"
-[ -s "$work/out_good/fem_nodes.csv" ] && [ -z "$(ls -A "$work/tmp_good")" ]
-check good_output_and_nothing_left $? "$(ls "$work/out_good" "$work/tmp_good")"
+[ -s "$work/good/fem_nodes.csv" ] && [ -z "$(workbench_files "$work/tmp/good")" ]
+check good_output_and_nothing_left $? "$(ls "$work/good" "$work/tmp/good")"
 
 # SIGINT while the mesher meshes a large membrane: exit 130, one line, the mesher ended, its
 # temporary folder removed, no output folder.
-mkdir -p "$work/tmp_int"
-sed 's/^n = .*/n = 1500/' "$work/cook.toml" >"$work/large.toml"
-TMPDIR="$work/tmp_int" env --default-signal=INT "$bin" fem "$work/large.toml" -o "$work/out_int" 2>"$logs/int.err" &
+mkdir -p "$work/tmp/int"
+sed 's/^n = .*/n = 1000/' "$work/cook.toml" >"$work/large.toml"
+TMPDIR="$work/tmp/int" env --default-signal=INT "$bin" fem "$work/large.toml" -o "$work/out_int" 2>"$logs/int.err" &
 pid=$!
 mesher=
 for _ in $(seq 600); do
@@ -59,8 +67,8 @@ sleep 0.2
 [ -z "$mesher" ] || ! running "$mesher"
 check interrupt_mesher_ended $? "the mesher ($mesher) is still running"
 [ -n "$mesher" ] && kill -KILL "$mesher" 2>/dev/null  # (only if the check failed: a process this test started)
-[ -z "$(ls -A "$work/tmp_int")" ] && [ ! -e "$work/out_int" ]
-check interrupt_nothing_left $? "left: $(ls -A "$work/tmp_int") $(ls -d "$work/out_int" 2>/dev/null)"
+[ -z "$(workbench_files "$work/tmp/int")" ] && [ ! -e "$work/out_int" ]
+check interrupt_nothing_left $? "left: $(workbench_files "$work/tmp/int") $(ls -d "$work/out_int" 2>/dev/null)"
 
 echo "geo_mesher: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -18,6 +18,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -175,36 +177,58 @@ std::string ending_text(int status, const std::filesystem::path& log) {
   return "exit " + std::to_string(status) + (last.empty() ? "" : ": " + last);
 }
 
+/// The last .geo meshed in a child process, so that loading it again (a comparison's agent model,
+/// FEM reference and error estimate read the same one) reads its .msh without meshing it again.
+struct MeshedGeo {
+  std::vector<std::string> request;  // the .geo's text and the mesher's parameter arguments
+  std::string report, msh;           // the mesher's report and its .msh file
+};
+std::optional<MeshedGeo> last_meshed;
+constexpr std::size_t kMeshedGeoBytes = 64 << 20;  // a larger .msh is not kept
+
+std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 /// Meshes the .geo with `mesher` (workbench-geo-mesher) in a child process and loads its .msh.
 std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, const std::filesystem::path& file,
                                            const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
   const MesherFolder folder(name);
   const auto msh = folder.path() / "mesh.msh";
-  std::vector<std::string> argv{mesher.string(), name, msh.string()};
+  std::vector<std::string> request{file_text(file)};
   for (const auto& [key, value] : parameters) {
     char text[64];
     std::snprintf(text, sizeof text, "%a", value);  // hexadecimal: the value exactly
-    argv.insert(argv.end(), {key, text});
-  }
-  std::string report;
-  int status = 0;
-  try {
-    status = run_child(argv, folder.path() / "mesher.log", &report);
-  } catch (const std::runtime_error& e) {  // it could not be started
-    throw std::runtime_error(name + ": " + e.what());
+    request.insert(request.end(), {key, text});
   }
   // The report: "ok NODES ELEMENTS" and the declared names, a line each; or "error" and the message.
+  std::string report;
+  const bool meshed_before = last_meshed && last_meshed->request == request;
+  if (meshed_before) {
+    report = last_meshed->report;
+    std::ofstream out(msh, std::ios::binary);
+    out << last_meshed->msh;
+    out.close();
+    if (!out) throw std::runtime_error(name + ": cannot write its mesh to " + msh.string());
+  } else {
+    std::vector<std::string> argv{mesher.string(), name, msh.string()};
+    argv.insert(argv.end(), request.begin() + 1, request.end());
+    int status = 0;
+    try {
+      status = run_child(argv, folder.path() / "mesher.log", &report);
+    } catch (const std::runtime_error& e) {  // it could not be started
+      throw std::runtime_error(name + ": " + e.what());
+    }
+    if (status == kMesherRefused && report.rfind("error\n", 0) == 0)
+      throw std::runtime_error(report.substr(6, report.find('\n', 6) - 6));
+    if (status != 0 || report.rfind("ok ", 0) != 0)
+      throw std::runtime_error(name + ": gmsh failed meshing it (" + ending_text(status, folder.path() / "mesher.log") + ")");
+  }
   std::istringstream lines(report);
   std::string head;
   std::getline(lines, head);
-  if (status == kMesherRefused && head == "error") {
-    std::string message;
-    std::getline(lines, message);
-    throw std::runtime_error(message);
-  }
-  if (status != 0 || head.rfind("ok ", 0) != 0)
-    throw std::runtime_error(name + ": gmsh failed meshing it (" + ending_text(status, folder.path() / "mesher.log") + ")");
   std::vector<std::string> declared;
   for (std::string line; std::getline(lines, line);) declared.push_back(line);
   try {
@@ -220,6 +244,8 @@ std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, 
   }
   if ("ok " + model_counts() != head)
     throw std::runtime_error(name + ": the meshed model read back from " + msh.string() + " is incomplete");
+  if (!meshed_before && std::filesystem::file_size(msh) <= kMeshedGeoBytes)
+    last_meshed = MeshedGeo{request, report, file_text(msh)};
   return declared;
 }
 

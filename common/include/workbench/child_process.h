@@ -37,7 +37,8 @@ std::filesystem::path find_script(const std::string& relative);
 ///   figures.send("draw");      // the rest of its input is ready
 ///   int status = figures.wait();
 ///
-/// An interruption ends every running child's group. A ChildProcess that is destroyed without wait() (an error in between) ends the child and its group and reaps it.
+/// An interruption ends every running child's group. A ChildProcess that is destroyed without
+/// wait() (an error in between) ends the child and its group and reaps it.
 class ChildProcess {
  public:
   /// Starts `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log`;

@@ -6,8 +6,9 @@ MSH 2.2 / 4.1 meshes, mutates them (numbers to nan/inf/huge/negative/zero, keys 
 duplicated or retyped, node tags and coordinates corrupted, lines dropped or repeated, the text
 cut short) and runs `workbench agent|fem|pbd|compare` on each. Every run must end with exit code
 0, 1 or 2 (no signal, no exit 3 = an unexpected exception), within the timeout (no hang), with one
-"workbench: error:" line when it fails, and an exit 0 must not have written a non-finite number
-in a CSV, JSON or text file. The runs are the same for the same seed.
+"workbench: error:" line when it fails, an exit 0 must not have written a non-finite number
+in a CSV, JSON or text file, and nothing of the workbench's (workbench-*) may be left in the run's
+own TMPDIR (the .geo mesher's temporary folder). The runs are the same for the same seed.
 
 Usage: fuzz_readers.py WORKBENCH_BINARY SOURCE_DIR [--runs N] [--first F] [--seed S] [--jobs J] [--long]
 

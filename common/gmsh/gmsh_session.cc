@@ -9,6 +9,7 @@
 
 #include <workbench/child_process.h>
 #include <workbench/interruption.h>
+#include <workbench/output_file.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -22,8 +23,11 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
+#include <fcntl.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace workbench {
@@ -208,10 +212,7 @@ std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, 
   const bool meshed_before = last_meshed && last_meshed->request == request;
   if (meshed_before) {
     report = last_meshed->report;
-    std::ofstream out(msh, std::ios::binary);
-    out << last_meshed->msh;
-    out.close();
-    if (!out) throw std::runtime_error(name + ": cannot write its mesh to " + msh.string());
+    write_file(msh, last_meshed->msh);
   } else {
     std::vector<std::string> argv{mesher.string(), name, msh.string()};
     argv.insert(argv.end(), request.begin() + 1, request.end());
@@ -249,6 +250,61 @@ std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, 
   return declared;
 }
 
+/// Copies what arrives on `in` (a FIFO's read end) into `file` with checked writes until the last
+/// writer closes it; returns the first failure's message ("" if none), reading on after a failure
+/// so that the writer never blocks.
+std::string copy_fifo(int in, const std::string& file) {
+  std::string error;
+  std::optional<OutputFile> out;
+  try {
+    out.emplace(file);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::vector<char> buffer(1 << 16);
+  for (ssize_t n; (n = ::read(in, buffer.data(), buffer.size())) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return file + ": read failed (" + std::strerror(errno) + ")";
+    if (error.empty()) try {
+        out->write({buffer.data(), std::size_t(n)});
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+  }
+  if (error.empty()) try {
+      out->close();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  return error;
+}
+
+/// gmsh::write(msh) with its writes checked: gmsh ignores a failed write (a full disk, a file-size
+/// limit would leave a short .msh), so it writes into a FIFO beside `msh`, from which a thread
+/// copies the bytes with checked writes. Throws "<msh>: write failed (<reason>)".
+void write_checked(const std::string& msh) {
+  const std::string fifo = (std::filesystem::path(msh).parent_path() / "gmsh-output.msh").string();
+  if (::mkfifo(fifo.c_str(), 0600) != 0) throw std::runtime_error(fifo + ": cannot create (" + std::strerror(errno) + ")");
+  // This process holds a write end until gmsh is done, so the copier sees the end only then.
+  const int in = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  const int hold = in < 0 ? -1 : ::open(fifo.c_str(), O_WRONLY | O_CLOEXEC);
+  if (in < 0 || hold < 0) throw std::runtime_error(fifo + ": cannot open (" + std::strerror(errno) + ")");
+  ::fcntl(in, F_SETFL, ::fcntl(in, F_GETFL) & ~O_NONBLOCK);
+  std::string copy_error;
+  std::thread copier([&] { copy_error = copy_fifo(in, msh); });
+  std::string write_error;
+  try {
+    gmsh::write(fifo);
+  } catch (...) {
+    write_error = msh + ": " + last_error();
+  }
+  ::close(hold);
+  copier.join();
+  ::close(in);
+  if (!write_error.empty()) throw std::runtime_error(write_error);
+  if (!copy_error.empty()) throw std::runtime_error(copy_error);
+}
+
 }  // namespace
 
 std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
@@ -273,6 +329,7 @@ int geo_mesher_main(int argc, char** argv) {
       done += std::size_t(n);
     }
   };
+  std::signal(SIGXFSZ, SIG_IGN);  // a file-size limit is a failed write (EFBIG), as in the workbench
   std::map<std::string, double> parameters;
   for (int i = 3; i + 1 < argc; i += 2) parameters[argv[i]] = std::strtod(argv[i + 1], nullptr);
   const std::string msh = argv[2];
@@ -286,11 +343,7 @@ int geo_mesher_main(int argc, char** argv) {
     gmsh::option::setNumber("Mesh.SaveAll", 1);
     gmsh::option::setNumber("Mesh.SaveParametric", 0);
     gmsh::option::setNumber("Mesh.ScalingFactor", 1);
-    try {
-      gmsh::write(msh);
-    } catch (...) {
-      throw std::runtime_error(msh + ": " + last_error());
-    }
+    write_checked(msh);
     std::string report = "ok " + model_counts() + "\n";
     for (const auto& n : declared) report += n + "\n";
     send_report(report);

@@ -31,7 +31,9 @@ install(FILES ${PROJECT_BINARY_DIR}/workbenchConfig.cmake ${PROJECT_BINARY_DIR}/
               ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
         DESTINATION ${WORKBENCH_CMAKE_DIR})
 
-# The program; common/CMakeLists.txt installs the scripts it runs (share/workbench/).
+# The program; common/CMakeLists.txt installs the scripts it runs (share/workbench/). The .geo
+# mesher goes where gmsh_load looks for it (kGeoMesherPath in common/gmsh/gmsh_session.h).
+install(TARGETS workbench-geo-mesher RUNTIME DESTINATION libexec/workbench)
 if(WORKBENCH_WITH_FEM)
   install(TARGETS workbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

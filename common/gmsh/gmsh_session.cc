@@ -1,14 +1,34 @@
 // The process's one gmsh session: every .geo/.msh load starts from a fresh gmsh, after the
-// checks of mesh_checks.h (gmsh aborts or crashes on some bad input instead of reporting it).
+// checks of mesh_checks.h (gmsh aborts or crashes on some bad input instead of reporting it). A
+// .geo is parsed and meshed in a child process (workbench-geo-mesher), whose crash is one error.
 #include "gmsh_session.h"
 
 #include "mesh_checks.h"
 
 #include <gmsh.h>
 
+#include <workbench/child_process.h>
+#include <workbench/interruption.h>
+#include <workbench/output_file.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace workbench {
 
@@ -41,9 +61,8 @@ struct LoadError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-}  // namespace
-
-std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+/// The checks every load starts with (no gmsh involved).
+void check_load_request(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) throw std::runtime_error(name + ": no such mesh file");
   const std::string ext = file.extension().string();
@@ -51,6 +70,23 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
   if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters apply to .geo files only");
   for (const auto& [key, value] : parameters)
     if (!std::isfinite(value)) throw std::runtime_error(name + ": mesh parameter '" + key + "' is not a finite number");
+}
+
+/// Throws LoadError "name: <what>" for the first Error() gmsh logged since logger::start().
+void throw_logged_error(const std::string& name) {
+  std::vector<std::string> log;
+  gmsh::logger::get(log);
+  for (const auto& line : log)
+    if (line.rfind("Error", 0) == 0) {
+      const auto colon = line.find(':');
+      throw LoadError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
+    }
+}
+
+/// The load in this process: gmsh parses (and meshes) the file here.
+std::vector<std::string> load_here(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+  const std::string name = file.string();
+  const std::string ext = file.extension().string();
   if (ext == ".msh") check_msh_file(file);
   std::vector<std::string> declared;
   try {
@@ -71,13 +107,7 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
     gmsh::logger::start();
     gmsh::open(name);
     // Error() in a .geo is logged, not always thrown: report the first one.
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    for (const auto& line : log)
-      if (line.rfind("Error", 0) == 0) {
-        const auto colon = line.find(':');
-        throw LoadError(name + ": " + (colon == std::string::npos ? line : line.substr(colon + 2)));
-      }
+    throw_logged_error(name);
     if (ext == ".geo") {
       try {
         check_geo_mesh_size(file);
@@ -99,6 +129,229 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
     throw std::runtime_error(name + ": " + last_error());
   }
   return declared;
+}
+
+/// Counts of the loaded model's nodes and elements, by which the parent checks the .msh it reads.
+std::string model_counts() {
+  std::vector<std::size_t> tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(tags, coords, parametric);
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+  gmsh::model::mesh::getElements(types, element_tags, element_nodes);
+  std::size_t elements = 0;
+  for (const auto& t : element_tags) elements += t.size();
+  return std::to_string(tags.size()) + " " + std::to_string(elements);
+}
+
+/// A folder of our own for the mesher's .msh and log, removed when done or interrupted.
+class MesherFolder {
+ public:
+  explicit MesherFolder(const std::string& name) {
+    std::string pattern = (std::filesystem::temp_directory_path() / "workbench-mesh-XXXXXX").string();
+    auto lock = hold_interruptions();
+    if (!::mkdtemp(pattern.data()))
+      throw std::runtime_error(name + ": cannot create a temporary folder in " +
+                               std::filesystem::temp_directory_path().string() + " (" + std::strerror(errno) + ")");
+    path_ = pattern;
+    remove_on_interruption(path_);
+  }
+  MesherFolder(const MesherFolder&) = delete;
+  MesherFolder& operator=(const MesherFolder&) = delete;
+  ~MesherFolder() {
+    auto lock = hold_interruptions();
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+    forget_on_interruption(path_);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// What ended the mesher, for a message: "killed by signal 11: Segmentation fault", "aborted".
+std::string ending_text(int status, const std::filesystem::path& log) {
+  if (status == 128 + SIGABRT) return "aborted";
+  if (status > 128) return "killed by signal " + std::to_string(status - 128) + ": " + ::strsignal(status - 128);
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return "exit " + std::to_string(status) + (last.empty() ? "" : ": " + last);
+}
+
+/// The last .geo meshed in a child process, so that loading it again (a comparison's agent model,
+/// FEM reference and error estimate read the same one) reads its .msh without meshing it again.
+struct MeshedGeo {
+  std::vector<std::string> request;  // the .geo's text and the mesher's parameter arguments
+  std::string report, msh;           // the mesher's report and its .msh file
+};
+std::optional<MeshedGeo> last_meshed;
+constexpr std::size_t kMeshedGeoBytes = 64 << 20;  // a larger .msh is not kept
+
+std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Meshes the .geo with `mesher` (workbench-geo-mesher) in a child process and loads its .msh.
+std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, const std::filesystem::path& file,
+                                           const std::map<std::string, double>& parameters) {
+  const std::string name = file.string();
+  const MesherFolder folder(name);
+  const auto msh = folder.path() / "mesh.msh";
+  std::vector<std::string> request{file_text(file)};
+  for (const auto& [key, value] : parameters) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%a", value);  // hexadecimal: the value exactly
+    request.insert(request.end(), {key, text});
+  }
+  // The report: "ok NODES ELEMENTS" and the declared names, a line each; or "error" and the message.
+  std::string report;
+  const bool meshed_before = last_meshed && last_meshed->request == request;
+  if (meshed_before) {
+    report = last_meshed->report;
+    write_file(msh, last_meshed->msh);
+  } else {
+    std::vector<std::string> argv{mesher.string(), name, msh.string()};
+    argv.insert(argv.end(), request.begin() + 1, request.end());
+    int status = 0;
+    try {
+      status = run_child(argv, folder.path() / "mesher.log", &report);
+    } catch (const std::runtime_error& e) {  // it could not be started
+      throw std::runtime_error(name + ": " + e.what());
+    }
+    if (status == kMesherRefused && report.rfind("error\n", 0) == 0)
+      throw std::runtime_error(report.substr(6, report.find('\n', 6) - 6));
+    if (status != 0 || report.rfind("ok ", 0) != 0)
+      throw std::runtime_error(name + ": gmsh failed meshing it (" + ending_text(status, folder.path() / "mesher.log") + ")");
+  }
+  std::istringstream lines(report);
+  std::string head;
+  std::getline(lines, head);
+  std::vector<std::string> declared;
+  for (std::string line; std::getline(lines, line);) declared.push_back(line);
+  try {
+    fresh_gmsh();
+    gmsh::logger::start();
+    gmsh::open(msh.string());
+    throw_logged_error(name);
+    gmsh::logger::stop();
+  } catch (const LoadError&) {
+    throw;
+  } catch (...) {
+    throw std::runtime_error(name + ": " + last_error());
+  }
+  if ("ok " + model_counts() != head)
+    throw std::runtime_error(name + ": the meshed model read back from " + msh.string() + " is incomplete");
+  if (!meshed_before && std::filesystem::file_size(msh) <= kMeshedGeoBytes)
+    last_meshed = MeshedGeo{request, report, file_text(msh)};
+  return declared;
+}
+
+/// Copies what arrives on `in` (a FIFO's read end) into `file` with checked writes until the last
+/// writer closes it; returns the first failure's message ("" if none), reading on after a failure
+/// so that the writer never blocks.
+std::string copy_fifo(int in, const std::string& file) {
+  std::string error;
+  std::optional<OutputFile> out;
+  try {
+    out.emplace(file);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::vector<char> buffer(1 << 16);
+  for (ssize_t n; (n = ::read(in, buffer.data(), buffer.size())) != 0;) {
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return file + ": read failed (" + std::strerror(errno) + ")";
+    if (error.empty()) try {
+        out->write({buffer.data(), std::size_t(n)});
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+  }
+  if (error.empty()) try {
+      out->close();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  return error;
+}
+
+/// gmsh::write(msh) with its writes checked: gmsh ignores a failed write (a full disk, a file-size
+/// limit would leave a short .msh), so it writes into a FIFO beside `msh`, from which a thread
+/// copies the bytes with checked writes. Throws "<msh>: write failed (<reason>)".
+void write_checked(const std::string& msh) {
+  const std::string fifo = (std::filesystem::path(msh).parent_path() / "gmsh-output.msh").string();
+  if (::mkfifo(fifo.c_str(), 0600) != 0) throw std::runtime_error(fifo + ": cannot create (" + std::strerror(errno) + ")");
+  // This process holds a write end until gmsh is done, so the copier sees the end only then.
+  const int in = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  const int hold = in < 0 ? -1 : ::open(fifo.c_str(), O_WRONLY | O_CLOEXEC);
+  if (in < 0 || hold < 0) throw std::runtime_error(fifo + ": cannot open (" + std::strerror(errno) + ")");
+  ::fcntl(in, F_SETFL, ::fcntl(in, F_GETFL) & ~O_NONBLOCK);
+  std::string copy_error;
+  std::thread copier([&] { copy_error = copy_fifo(in, msh); });
+  std::string write_error;
+  try {
+    gmsh::write(fifo);
+  } catch (...) {
+    write_error = msh + ": " + last_error();
+  }
+  ::close(hold);
+  copier.join();
+  ::close(in);
+  if (!write_error.empty()) throw std::runtime_error(write_error);
+  if (!copy_error.empty()) throw std::runtime_error(copy_error);
+}
+
+}  // namespace
+
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+  check_load_request(file, parameters);
+  if (file.extension() == ".geo")
+    if (const auto mesher = find_beside_program(kGeoMesherPath); !mesher.empty())
+      return load_geo_in_child(mesher, file, parameters);
+  return load_here(file, parameters);
+}
+
+int geo_mesher_main(int argc, char** argv) {
+  if (argc < 3 || argc % 2 == 0) {
+    std::fprintf(stderr, "usage: %s GEO MSH [NAME VALUE]...  (run by the workbench, which reads the MSH)\n", argv[0]);
+    return 64;
+  }
+  // The report goes back on standard input, a socket (workbench/child_process.h).
+  const auto send_report = [](const std::string& text) {
+    for (std::size_t done = 0; done < text.size();) {
+      const ssize_t n = ::send(0, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return;
+      done += std::size_t(n);
+    }
+  };
+  std::signal(SIGXFSZ, SIG_IGN);  // a file-size limit is a failed write (EFBIG), as in the workbench
+  std::map<std::string, double> parameters;
+  for (int i = 3; i + 1 < argc; i += 2) parameters[argv[i]] = std::strtod(argv[i + 1], nullptr);
+  const std::string msh = argv[2];
+  try {
+    check_load_request(argv[1], parameters);
+    const auto declared = load_here(argv[1], parameters);
+    // Binary, so that every coordinate comes back exactly; every element, not only those of
+    // physical groups; no scaling a .geo may have asked for (the in-process load had none).
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 1);
+    gmsh::option::setNumber("Mesh.SaveAll", 1);
+    gmsh::option::setNumber("Mesh.SaveParametric", 0);
+    gmsh::option::setNumber("Mesh.ScalingFactor", 1);
+    write_checked(msh);
+    std::string report = "ok " + model_counts() + "\n";
+    for (const auto& n : declared) report += n + "\n";
+    send_report(report);
+    return 0;
+  } catch (const std::exception& e) {
+    send_report(std::string("error\n") + e.what() + "\n");
+    return kMesherRefused;
+  }
 }
 
 std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim) {

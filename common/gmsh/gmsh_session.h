@@ -10,6 +10,11 @@
 namespace workbench {
 
 /// Opens a gmsh .geo (and meshes it in its own dimension) or .msh file into gmsh's current model.
+/// A .geo is parsed and meshed in a child process, the mesher program (kGeoMesherPath, found beside
+/// the program: workbench/child_process.h), whose .msh is then read here, so that a crash of gmsh on
+/// a bad .geo becomes the error "<file>: gmsh failed meshing it (killed by signal 11: ...)"; the
+/// model is the one meshing here would give, node and element tags and order included. Without the
+/// mesher program (a program embedding the libraries), the .geo is meshed in this process.
 /// `parameters` override the .geo's DefineConstant values (ONELAB numbers); a name the .geo does
 /// not declare is an error, and so are parameters for a .msh. Returns the names the .geo declares.
 /// Before gmsh sees the file: parameters must be finite, a .msh passes check_msh_file(), a .geo's
@@ -18,6 +23,18 @@ namespace workbench {
 /// std::runtime_error with a one-line message starting with the file name. The model stays
 /// loaded until the next gmsh_load().
 std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
+
+/// The mesher program, relative to a folder beside the running program (or up to two above it).
+inline constexpr const char* kGeoMesherPath = "libexec/workbench/workbench-geo-mesher";
+
+/// The mesher's exit status when it refused the .geo (the message is in its report).
+inline constexpr int kMesherRefused = 2;
+
+/// The mesher program's main(): `workbench-geo-mesher GEO MSH [NAME VALUE]...` loads GEO as
+/// gmsh_load does in this process (VALUE in C's %a notation), writes the meshed model to MSH (binary
+/// MSH 4.1, every element) and reports on its standard input, a socket: "ok NODES ELEMENTS" and the
+/// names the .geo declares, a line each; or "error" and the one-line message (exit kMesherRefused).
+int geo_mesher_main(int argc, char** argv);
 
 /// An element of a physical group: its gmsh element type and its node tags.
 struct GroupElement {

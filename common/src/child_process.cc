@@ -34,12 +34,7 @@ std::string python_interpreter() {
   return env && *env ? env : "/usr/bin/python3";
 }
 
-fs::path find_script(const std::string& relative) {
-  if (const char* env = std::getenv("WORKBENCH_SCRIPT_DIR"); env && *env) {
-    const fs::path p = fs::path(env) / relative;
-    if (!fs::is_regular_file(p)) throw Error(p.string() + ": script not found (WORKBENCH_SCRIPT_DIR is set)");
-    return p;
-  }
+fs::path find_beside_program(const std::string& relative) {
   // Beside the program, else beside the shared object that holds this code: the Python module
   // (build/python/workbench.*.so -> build/share/workbench/), whose program is python3.
   std::vector<fs::path> starts;
@@ -49,9 +44,19 @@ fs::path find_script(const std::string& relative) {
   if (Dl_info info{}; ::dladdr(&anchor, &info) && info.dli_fname) starts.push_back(fs::absolute(info.dli_fname).parent_path());
   for (fs::path dir : starts)
     for (int up = 0; up < 3 && !dir.empty(); ++up, dir = dir.parent_path()) {
-      const fs::path p = dir / "share" / "workbench" / relative;
+      const fs::path p = dir / relative;
       if (fs::is_regular_file(p)) return p;
     }
+  return {};
+}
+
+fs::path find_script(const std::string& relative) {
+  if (const char* env = std::getenv("WORKBENCH_SCRIPT_DIR"); env && *env) {
+    const fs::path p = fs::path(env) / relative;
+    if (!fs::is_regular_file(p)) throw Error(p.string() + ": script not found (WORKBENCH_SCRIPT_DIR is set)");
+    return p;
+  }
+  if (fs::path p = find_beside_program("share/workbench/" + relative); !p.empty()) return p;
   throw Error(relative + ": script not found in share/workbench/ beside the program (set WORKBENCH_SCRIPT_DIR)");
 }
 
@@ -103,7 +108,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
   {
     auto lock = hold_interruptions();  // an interruption now sees the child's group
     err = posix_spawnp(&pid, args[0], &files, &attr, args.data(), env.data());
-    if (err == 0) set_child_group(pid);
+    if (err == 0) add_child_group(pid);
   }
   posix_spawn_file_actions_destroy(&files);
   posix_spawnattr_destroy(&attr);
@@ -142,8 +147,8 @@ int ChildProcess::wait() {
   }
   if (input_ >= 0) ::close(input_);
   input_ = -1;
+  forget_child_group(pid_);
   pid_ = 0;
-  set_child_group(0);
   while (interruption_under_way()) ::pause();  // the watcher ends the process (its signals are blocked here)
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
@@ -158,7 +163,7 @@ ChildProcess::~ChildProcess() {
   end_process_group(pid_);
   while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {  // if not reaped there (then: ECHILD)
   }
-  set_child_group(0);
+  forget_child_group(pid_);
 }
 
 int run_child(const std::vector<std::string>& argv, const fs::path& log, std::string* report) {

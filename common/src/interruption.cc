@@ -19,7 +19,7 @@ namespace {
 
 std::mutex registry_mutex;
 std::vector<std::filesystem::path> staging_folders;  // guarded by registry_mutex
-std::atomic<int> child_group{0};
+std::vector<int> child_groups;                       // guarded by registry_mutex
 std::atomic<bool> interrupted{false};
 
 }  // namespace
@@ -46,7 +46,12 @@ void forget_on_interruption(const std::filesystem::path& staging) {
   staging_folders.erase(std::remove(staging_folders.begin(), staging_folders.end(), staging), staging_folders.end());
 }
 
-void set_child_group(int pgid) { child_group = pgid; }
+void add_child_group(int pgid) { child_groups.push_back(pgid); }
+
+void forget_child_group(int pgid) {
+  auto lock = hold_interruptions();
+  child_groups.erase(std::remove(child_groups.begin(), child_groups.end(), pgid), child_groups.end());
+}
 
 bool interruption_under_way() { return interrupted; }
 
@@ -67,7 +72,7 @@ void handle_interruptions(const std::string& program) {
     }
     interrupted = true;
     auto lock = hold_interruptions();  // waits for a commit or a spawn in progress to finish
-    end_process_group(child_group.exchange(0));
+    for (int pgid : child_groups) end_process_group(pgid);
     for (const auto& dir : staging_folders) {
       std::error_code ec;
       std::filesystem::remove_all(dir, ec);  // only folders this process created (StagedDirectory)

@@ -1,7 +1,8 @@
 // gmsh -> PlainMesh: the same .geo files and ONELAB parameters as the agent's mesh import, read
-// through the gmsh API (no temporary .msh). Element order = gmsh::model::mesh::getElements order.
+// through the gmsh API. Element order = gmsh::model::mesh::getElements order.
 #include "plain_mesh.h"
 
+#include <fem_reference/mpi.h>
 #include <workbench/error.h>
 
 #include <gmsh.h>
@@ -49,12 +50,10 @@ std::string type_name(int type) {
 
 PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
-  // The one gmsh loader of the process (common/gmsh), shared with the agent and PBD readers.
-  try {
-    workbench::gmsh_load(file, parameters);
-  } catch (const std::runtime_error& e) {
-    throw Error(e.what());
-  }
+  // The one gmsh loader of the process (common/gmsh), shared with the agent and PBD readers. Every
+  // rank loads the mesh (a .geo in a child process, which may fail on one rank only): a failure on
+  // any rank ends every rank with the same message.
+  mpi_collective([&] { workbench::gmsh_load(file, parameters); });
 
   PlainMesh mesh;
   mesh.source = name;

@@ -6,15 +6,17 @@ MSH 2.2 / 4.1 meshes, mutates them (numbers to nan/inf/huge/negative/zero, keys 
 duplicated or retyped, node tags and coordinates corrupted, lines dropped or repeated, the text
 cut short) and runs `workbench agent|fem|pbd|compare` on each. Every run must end with exit code
 0, 1 or 2 (no signal, no exit 3 = an unexpected exception), within the timeout (no hang), with one
-"workbench: error:" line when it fails, and an exit 0 must not have written a non-finite number
-in a CSV, JSON or text file. The runs are the same for the same seed.
+"workbench: error:" line when it fails, an exit 0 must not have written a non-finite number
+in a CSV, JSON or text file, and nothing of the workbench's (workbench-*) may be left in the run's
+own TMPDIR (the .geo mesher's temporary folder). The runs are the same for the same seed.
 
-Usage: fuzz_readers.py WORKBENCH_BINARY SOURCE_DIR [--runs N] [--seed S] [--jobs J] [--long]
+Usage: fuzz_readers.py WORKBENCH_BINARY SOURCE_DIR [--runs N] [--first F] [--seed S] [--jobs J] [--long]
 
 --long (outside CI: hours): 10,000 runs unless --runs says otherwise, the 3D cases added (the
 3D bracket, the directional block), and a fifth of the runs mutate the .geo file a case reads
 (a number, a line dropped or repeated, the text cut short) instead of the case file. Progress every
-500 runs on stderr, so that a run stopped early still tells its count.
+100 runs on stderr, so that a run stopped early still tells its count. --first F skips runs 0 to
+F - 1 (done before: the plan is the same for the same seed whatever --runs).
 """
 import argparse
 import concurrent.futures
@@ -158,9 +160,12 @@ def run_one(binary, work, index, command, case_text, extra_file, timeout):
     with open(case, "w") as f:
         f.write(case_text)
     out = os.path.join(folder, "out")
+    # Its own temporary folder, in which nothing of the workbench's may be left (the .geo mesher's).
+    tmp = os.path.join(folder, "tmp")
+    os.makedirs(tmp)
     # Its own process group, so that a hang is ended with everything it started.
     p = subprocess.Popen([binary, command, case, "-o", out], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         text=True, errors="replace", start_new_session=True)
+                         text=True, errors="replace", start_new_session=True, env=dict(os.environ, TMPDIR=tmp))
     try:
         _, stderr = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
@@ -170,12 +175,15 @@ def run_one(binary, work, index, command, case_text, extra_file, timeout):
         last = stderr.strip().splitlines()[-1:] if stderr.strip() else ["no output"]
         return "hang (no exit within %d s) | last line: %s" % (timeout, last[0][:300])
     problem = None
+    left = [n for n in os.listdir(tmp) if n.startswith("workbench-")]
     if p.returncode < 0:
         problem = "signal %s" % signal.Signals(-p.returncode).name
     elif p.returncode not in (0, 1, 2):
         problem = "exit %d" % p.returncode
     elif p.returncode == 2 and len([l for l in stderr.splitlines() if l.startswith("workbench: error:")]) != 1:
         problem = "exit 2 without exactly one error line"
+    elif left:
+        problem = "temporary files left: " + ", ".join(left)
     elif p.returncode == 0:
         bad = non_finite_written(out)
         if bad:
@@ -187,22 +195,10 @@ def run_one(binary, work, index, command, case_text, extra_file, timeout):
     return None
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("binary")
-    ap.add_argument("src")
-    ap.add_argument("--runs", type=int, default=200)
-    ap.add_argument("--seed", type=int, default=20261122)
-    ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=int, default=60)
-    ap.add_argument("--keep", action="store_true", help="keep the folders of failing runs")
-    ap.add_argument("--long", action="store_true", help="10,000 runs, 3D cases and .geo mutations (hours)")
-    a = ap.parse_args()
-    if a.long and a.runs == 200:
-        a.runs = 10000
-    src = os.path.abspath(a.src)
-    rng = random.Random(a.seed)
-    cases = shrunk_cases(src, dict(SHRINK, **LONG_SHRINK) if a.long else SHRINK)
+def make_plan(src, runs, seed, long):
+    """The runs: (description, command, case text, extra file); the same for the same seed, whatever runs."""
+    rng = random.Random(seed)
+    cases = shrunk_cases(src, dict(SHRINK, **LONG_SHRINK) if long else SHRINK)
     meshes = []
     for m in MSH_FILES:
         with open(os.path.join(src, m)) as f:
@@ -210,10 +206,10 @@ def main():
     plate = dict((n, t) for n, t, _ in cases)["seed_plate.toml"]
     msh_case_text = re.sub(r"\[mesh\.parameters\][^\[]*", "", plate)
 
-    plan = []  # (description, command, case text, extra file)
-    for index in range(a.runs):
+    plan = []
+    for index in range(runs):
         geo_cases = [(n, t, c) for n, t, c in cases if GEO_FILE.search(t)]
-        if a.long and index % 5 == 4 and geo_cases:  # --long: a fifth of the runs mutate a case's .geo
+        if long and index % 5 == 4 and geo_cases:  # --long: a fifth of the runs mutate a case's .geo
             name, text, commands = rng.choice(geo_cases)
             geo_path = GEO_FILE.search(text).group(1)
             with open(geo_path) as f:
@@ -236,27 +232,46 @@ def main():
                 op += "+" + op2
             command = rng.choice(commands)
             plan.append(("%s %s %s" % (command, name, op), command, mutated, None))
+    return plan
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("binary")
+    ap.add_argument("src")
+    ap.add_argument("--runs", type=int, default=200)
+    ap.add_argument("--first", type=int, default=0, help="skip the runs before this one (done before)")
+    ap.add_argument("--seed", type=int, default=20261122)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=int, default=60)
+    ap.add_argument("--keep", action="store_true", help="keep the folders of failing runs")
+    ap.add_argument("--long", action="store_true", help="10,000 runs, 3D cases and .geo mutations (hours)")
+    a = ap.parse_args()
+    if a.long and a.runs == 200:
+        a.runs = 10000
+    plan = make_plan(os.path.abspath(a.src), a.runs, a.seed, a.long)
+    todo = range(min(a.first, len(plan)), len(plan))
 
     work = tempfile.mkdtemp(prefix="workbench-fuzz-")
     findings = []
     try:
         with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
-            futures = [pool.submit(run_one, a.binary, work, i, cmd, text, extra, a.timeout)
-                       for i, (_, cmd, text, extra) in enumerate(plan)]
-            for i, fut in enumerate(futures):
+            futures = [(i, pool.submit(run_one, a.binary, work, i, plan[i][1], plan[i][2], plan[i][3], a.timeout))
+                       for i in todo]
+            for done, (i, fut) in enumerate(futures, 1):
                 problem = fut.result()
                 if problem:
                     findings.append("run %d (%s): %s" % (i, plan[i][0], problem))
                     if a.long:
                         print("FINDING " + findings[-1], file=sys.stderr, flush=True)
-                if a.long and (i + 1) % 500 == 0:
-                    print("fuzz: %d of %d runs, %d findings" % (i + 1, len(plan), len(findings)),
+                if a.long and done % 100 == 0:
+                    print("fuzz: runs %d to %d done (%d of %d), %d findings" % (todo[0], i, done, len(todo), len(findings)),
                           file=sys.stderr, flush=True)
     finally:
         if not (a.keep and findings):
             shutil.rmtree(work, ignore_errors=True)
-    print("fuzz: seed %d, %d runs (%d of them corrupted mesh or .geo files), %d findings" %
-          (a.seed, len(plan), sum(1 for p in plan if p[3]), len(findings)))
+    print("fuzz: seed %d, runs %d to %d (%d of them corrupted mesh or .geo files), %d findings" %
+          (a.seed, todo.start, todo.stop - 1, sum(1 for i in todo if plan[i][3]), len(findings)))
     for f in findings:
         print("FINDING " + f)
     if a.keep and findings:

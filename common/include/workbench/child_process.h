@@ -17,6 +17,11 @@ inline constexpr int kWriteFailedStatus = 74;
 /// and matplotlib on Debian; the first python3 on PATH may not).
 std::string python_interpreter();
 
+/// `relative` (e.g. "libexec/workbench/workbench-geo-mesher") in the first folder, of the running
+/// program's and of the shared object's that holds this code, and up to two folders above each,
+/// that has it; empty when none has.
+std::filesystem::path find_beside_program(const std::string& relative);
+
 /// A script shipped with the program, `relative` to share/workbench/ (e.g. "compare/figures.py"):
 /// $WORKBENCH_SCRIPT_DIR when set, else the first share/workbench/ found beside the running program
 /// or up to two folders above it (the install tree: bin/../share; the build tree: the build
@@ -32,8 +37,8 @@ std::filesystem::path find_script(const std::string& relative);
 ///   figures.send("draw");      // the rest of its input is ready
 ///   int status = figures.wait();
 ///
-/// One at a time (an interruption ends the one registered child group). A ChildProcess that is
-/// destroyed without wait() (an error in between) ends the child and its group and reaps it.
+/// An interruption ends every running child's group. A ChildProcess that is destroyed without
+/// wait() (an error in between) ends the child and its group and reaps it.
 class ChildProcess {
  public:
   /// Starts `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log`;

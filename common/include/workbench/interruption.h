@@ -22,8 +22,11 @@ std::unique_lock<std::mutex> hold_interruptions();
 void remove_on_interruption(const std::filesystem::path& staging);
 void forget_on_interruption(const std::filesystem::path& staging);
 
-/// The process group of the running child (0: none), ended when interrupted.
-void set_child_group(int pgid);
+/// The process groups of running children, ended when interrupted (a figure script beside the FEM
+/// reference, which may start gmsh's mesher meanwhile). Adding one must be done under
+/// hold_interruptions(), together with starting the child; forgetting takes the lock itself.
+void add_child_group(int pgid);
+void forget_child_group(int pgid);
 
 /// Ends process group `pgid`: SIGTERM, SIGKILL after a 2 s grace period, and reaps its leader when
 /// it is this process's child (a zombie still counts as a member of its group).

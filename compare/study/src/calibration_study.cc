@@ -161,7 +161,13 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
       workbench::CaseFile case_file(plan.case_files[i]);
       log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
-      auto c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
+      CalibrationCase c;
+      try {
+        c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
+      } catch (...) {
+        log << "\n" << std::flush;  // the error's line (`workbench: error: ...`) starts a line of its own
+        throw;
+      }
       c.weight = plan.case_weights[i];
       cases.push_back(std::move(c));
     }

@@ -1,0 +1,18 @@
+// Cook's membrane with a curve tag of -2^63 in Transfinite Curve (run 469: curve 4 loses its divisions)
+// Crashed gmsh 4.8 inside the workbench (std::terminate from gmsh's OpenMP meshing loop); tests/cli/gmsh_crashes.sh.
+n = 8;
+Point(1) = {0, 0, 0}; Point(2) = {48, 44, 0}; Point(3) = {48, 60, 0}; Point(4) = {0, 44, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Transfinite Curve{1, 2, 3, -9223372036854775808} = n + 1;
+Transfinite Surface{1};
+Recombine Surface{1};
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3};
+Physical Curve("left") = {4};
+Physical Surface("membrane") = {1};

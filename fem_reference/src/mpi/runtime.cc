@@ -12,8 +12,11 @@
 #include <p4est_base.h>
 #include <sc.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <thread>
 
 namespace fem_reference {
 
@@ -55,6 +58,18 @@ void ensure_mpi() {
 }
 
 namespace {
+
+/// Waits for `request` without spinning: a rank waiting while rank 0 alone works (the agent model,
+/// the files: mpi_on_root) would otherwise poll at full speed and take a core from it and from
+/// its child processes. Checks every millisecond at most, so a collective costs at most that more.
+void wait_idle(MPI_Request& request) {
+  int done = 0;
+  for (int pause_us = 10;; pause_us = std::min(2 * pause_us, 1000)) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(pause_us));
+  }
+}
 
 /// `text` of rank `root` on every rank.
 std::string broadcast(std::string text, int root) {
@@ -116,7 +131,9 @@ void mpi_collective(const std::function<void()>& step) {
     const int size = mpi_size();
     const int mine = failed ? mpi_rank() : size;
     int first = size;
-    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Iallreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+    wait_idle(request);
     if (first == size) return;
     message = broadcast(message, first);
     failed = true;

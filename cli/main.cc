@@ -24,7 +24,6 @@
 
 #include <csignal>
 #include <iostream>
-#include <set>
 
 int main(int argc, char** argv) {
   fem_reference::configure_singleton_mpi();      // first: it sets the environment

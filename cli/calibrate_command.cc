@@ -4,11 +4,9 @@
 #include <compare/calibration_study.h>
 #include <fem_reference/mpi.h>
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
 
 #include <iostream>
 #include <memory>
-#include <optional>
 
 namespace cli {
 
@@ -24,12 +22,9 @@ void add_calibrate_command(CLI::App& app, Action& action) {
       const std::string dir = output_folder(*output, file, "calibrate");
       // Under MPI every rank solves the references and scores its share of the cases; rank 0
       // owns the folder and writes (compare/calibration_study.h).
-      const bool root = fem_reference::mpi_rank() == 0;
-      std::optional<workbench::StagedDirectory> staged;
-      fem_reference::mpi_collective([&] {
-        if (root) staged.emplace(dir, file.path());
-      });
-      compare::run_calibration(file, root ? staged->path() : std::filesystem::path(), progress_log());
+      std::filesystem::path path;
+      const auto staged = stage_on_rank_0(dir, file, path);
+      compare::run_calibration(file, path, progress_log());
       fem_reference::mpi_on_root([&] {
         staged->commit();
         std::cerr << "calibrate: wrote " << staged->target().string() << "\n";

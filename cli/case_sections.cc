@@ -61,6 +61,17 @@ int checked(const workbench::CaseFile& file, const std::string& subcommand) {
   return 0;
 }
 
+std::unique_ptr<workbench::StagedDirectory> stage_on_rank_0(const std::string& dir, const workbench::CaseFile& file,
+                                                            std::filesystem::path& path) {
+  const bool root = fem_reference::mpi_rank() == 0;
+  std::unique_ptr<workbench::StagedDirectory> staged;
+  fem_reference::mpi_collective([&] {
+    if (root) staged = std::make_unique<workbench::StagedDirectory>(dir, file.path());
+  });
+  path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
+  return staged;
+}
+
 std::ostream& progress_log() {
   static std::ostream nowhere(nullptr);  // a stream without a buffer drops what it is given
   return !fem_reference::started_by_launcher() || fem_reference::mpi_rank() == 0 ? std::cerr : nowhere;

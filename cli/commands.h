@@ -3,6 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <compare/case_sections.h>
 #include <workbench/case_file.h>
+#include <workbench/staged_directory.h>
+
+#include <filesystem>
 
 #include <functional>
 #include <iosfwd>
@@ -42,6 +45,11 @@ using Action = std::function<int()>;
 /// The subcommands that run distributed under mpirun (each rank runs the action; rank 0 writes);
 /// main() runs every other one on rank 0 alone.
 inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate"};
+
+/// The output folder `dir` staged by rank 0 (a collective step: a refusal ends every rank), null on
+/// the other ranks; `path` is set to the staging folder's path on every rank.
+std::unique_ptr<workbench::StagedDirectory> stage_on_rank_0(const std::string& dir, const workbench::CaseFile& file,
+                                                            std::filesystem::path& path);
 
 /// Where a distributed subcommand's progress goes: standard error on rank 0, nowhere on the others.
 std::ostream& progress_log();

@@ -12,7 +12,6 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
-#include <optional>
 
 namespace cli {
 
@@ -66,12 +65,8 @@ void add_compare_command(CLI::App& app, Action& action) {
       const std::string dir = output_folder(*output, file, "compare");
       // Rank 0 owns the staged folder; every rank solves the FEM and writes its VTU piece into it,
       // rank 0 alone the rest (compare_study.h).
-      const bool root = fem_reference::mpi_rank() == 0;
-      std::optional<workbench::StagedDirectory> staged;
-      fem_reference::mpi_collective([&] {
-        if (root) staged.emplace(dir, file.path());
-      });
-      const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
+      std::filesystem::path path;
+      const auto staged = stage_on_rank_0(dir, file, path);
       const auto outcome = compare::run_compare(file, path, progress_log());
       int code = 0;
       fem_reference::mpi_on_root([&] { code = finish(*staged, outcome, *junit); });

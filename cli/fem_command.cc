@@ -4,11 +4,9 @@
 #include <fem_reference/fem_case.h>
 #include <fem_reference/mpi.h>
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
 
 #include <iostream>
 #include <memory>
-#include <optional>
 
 namespace cli {
 
@@ -31,15 +29,10 @@ void add_fem_command(CLI::App& app, Action& action) {
       const std::string dir = output_folder(*output, file, "fem");
       // Rank 0 owns the staged folder; every rank writes its VTU piece into it. Steps that may fail
       // on rank 0 alone are collective: a failure ends every rank with the same message.
-      const bool root = fem_reference::mpi_rank() == 0;
-      std::optional<workbench::StagedDirectory> staged;
-      fem_reference::mpi_collective([&] {
-        if (root) staged.emplace(dir, file.path());
-      });
-      const std::string path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
+      std::filesystem::path path;
+      const auto staged = stage_on_rank_0(dir, file, path);
       const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
-      fem_reference::mpi_collective([&] {
-        if (!root) return;
+      fem_reference::mpi_on_root([&] {
         fem_reference::write_fem_csv(result, path);
         staged->commit();
         std::cerr << "fem: wrote " << staged->target().string() << "\n";

@@ -551,6 +551,40 @@ TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
   EXPECT_EQ(ml.solver, "cg+amg (ML)");
 }
 
+TEST(FemMultigrid, CoarserLevelIsTheCoarseMeshsOwnSolution) {
+  // FemOptions::coarser_level: the coarse mesh's solution from the multigrid hierarchy (its load
+  // restricted from the fine one) is the FE solution a separate solve on that mesh gives, for
+  // tractions; the fine solution started from it is the one started from zero; with a share the
+  // fine CG stops early, its residual at that share of where it started.
+  for (const char* degree : {"degree = 1", "degree = 2"}) {
+    auto p = problem_from_case(workbench::CaseFile(write_file("coarse0.toml", plate_case("rigid = [\"base\"]", degree))));
+    p.options.solver = fem_reference::SolverKind::Direct;
+    const auto coarse = solve_fem(p);
+    p.options.refine = 1;
+    p.options.solver = fem_reference::SolverKind::Mg;
+    const auto fine = solve_fem(p);
+    EXPECT_EQ(fine.coarser, nullptr);  // not asked for
+    p.options.coarser_level = true;
+    const auto nested = solve_fem(p);
+    ASSERT_NE(nested.coarser, nullptr) << degree;
+    auto without_reactions = coarse;
+    without_reactions.reactions.clear();
+    EXPECT_TRUE(nested.coarser->reactions.empty());
+    EXPECT_LT(relative_difference(without_reactions, *nested.coarser), 1e-8) << degree;
+    EXPECT_LT(relative_difference(fine, nested), 1e-8) << degree;
+    EXPECT_GT(nested.coarser_start_residual, 1e-3);  // the discretisation error shows in the residual
+    p.options.coarser_share = 1e-3;
+    const auto early = solve_fem(p);
+    EXPECT_LE(early.residual, 1e-3 * early.coarser_start_residual * (1 + 1e-6)) << degree;
+    EXPECT_LT(early.iterations, nested.iterations) << degree;
+    // A prescribed displacement has no zero lift on the coarse mesh: no coarser level.
+    auto moved = p;
+    moved.supports[0].kind = fem_reference::SupportKind::Displacement;
+    moved.supports[0].displacement = [](const double*, double* u) { u[0] = 0, u[1] = 1e-9; };
+    EXPECT_EQ(solve_fem(moved).coarser, nullptr);
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // Bad input: one clear line each.
 // ------------------------------------------------------------------------------------------------

@@ -26,6 +26,8 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
     const auto r = t.table("reference");
     o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
     if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
+    o.reference.algebraic_share =
+        r.number("algebraic_share", o.reference.algebraic_share, workbench::Range{0.0, 1.0, false, true});
     if (r.has("mesh")) {
       o.reference.mesh = r.path("mesh", std::nullopt);
       if (!fs::is_regular_file(o.reference.mesh)) r.fail("mesh", o.reference.mesh.string() + ": no such mesh file");

@@ -51,7 +51,14 @@ Reference solve_reference(const fem_reference::FemProblem& problem, const Refere
   Reference r;
   r.estimate = options.estimate();
   log << "compare: reference " << options.describe() << "\n";
-  r.fem = report::run_fem(reference_problem(problem, options, mesh.grid), dir, log, r.seconds);
+  auto reference = reference_problem(problem, options, mesh.grid);
+  // The estimate level is the multigrid's coarse mesh when the reference is refined once: solved
+  // from that hierarchy first, and the reference's CG starts from it (FemOptions::coarser_level).
+  if (options.refine == 1 && r.estimate.degree == options.degree && r.estimate.refine == 0) {
+    reference.options.coarser_level = true;
+    reference.options.coarser_share = options.algebraic_share;
+  }
+  r.fem = report::run_fem(reference, dir, log, r.seconds);
   r.fields = reference_on_grid(options, mesh, r.fem, problem.name, r.outside);
   return r;
 }
@@ -59,12 +66,19 @@ Reference solve_reference(const fem_reference::FemProblem& problem, const Refere
 void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
                               const agent::ImportedMesh& mesh, std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
-  fem_reference::FemProblem estimate_problem = reference_problem(problem, r.estimate, mesh.grid);
-  estimate_problem.options.write_vtu = false;
-  log << "compare: the reference's error estimate: against " << r.estimate.describe() << "\n";
-  const auto estimate = fem_reference::solve_fem(estimate_problem, {}, &log);
-  r.estimate_fields = reference_on_grid(r.estimate, mesh, estimate, problem.name, r.outside);
-  r.estimate_dofs = estimate.n_dofs;
+  if (r.fem.coarser) {  // solved with the reference, from its multigrid hierarchy
+    log << "compare: the reference's error estimate: against " << r.estimate.describe()
+        << " (the coarse level of the reference's multigrid)\n";
+    r.estimate_fields = reference_on_grid(r.estimate, mesh, *r.fem.coarser, problem.name, r.outside);
+    r.estimate_dofs = r.fem.coarser->n_dofs;
+  } else {
+    fem_reference::FemProblem estimate_problem = reference_problem(problem, r.estimate, mesh.grid);
+    estimate_problem.options.write_vtu = false;
+    log << "compare: the reference's error estimate: against " << r.estimate.describe() << "\n";
+    const auto estimate = fem_reference::solve_fem(estimate_problem, {}, &log);
+    r.estimate_fields = reference_on_grid(r.estimate, mesh, estimate, problem.name, r.outside);
+    r.estimate_dofs = estimate.n_dofs;
+  }
   r.estimate_seconds = report::seconds_since(start);
 
   if (!options.mesh.empty()) {  // the true geometry: FEM on the staircase at the reference's level

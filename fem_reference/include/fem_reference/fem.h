@@ -22,6 +22,7 @@
 #include <iosfwd>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,14 @@ struct FemOptions {
   int refine = 0;                       ///< global refinements of the gmsh mesh
   LoadKind load = LoadKind::Traction;   ///< how [[load]] acts: traction on the group or point force
   bool write_vtu = true;                ///< VTU/PVTU + PVD next to the CSV files
+  /// Also the solution on the mesh one refinement coarser (FemResult::coarser), taken from the
+  /// geometric multigrid's hierarchy: with refine = 1, the multigrid solver and supports that hold
+  /// zero displacement (else FemResult::coarser stays empty and the caller solves that level itself).
+  bool coarser_level = false;
+  /// With coarser_level: the CG on the fine mesh, started from the coarser solution, also stops
+  /// once its residual is this share of the one the coarser solution leaves there (0: tolerance
+  /// only), i.e. when its algebraic error is small beside the discretisation error the levels show.
+  double coarser_share = 0;
 };
 
 /// f(x, value): x has 3 entries (z = 0 in 2D), value has dim entries.
@@ -159,6 +168,13 @@ struct FemResult {
 
   /// Displacement (3 entries, z = 0 in 2D) at the mesh node nearest to x.
   std::array<double, 3> displacement_at(const std::array<double, 3>& x) const;
+
+  /// FemOptions::coarser_level: the same problem on the mesh one refinement coarser, solved from the
+  /// multigrid hierarchy; its fields on the same gmsh elements and nodes (no reactions, VTU or exact
+  /// errors).
+  /// `start_residual`: ||K P u0 - f|| / ||f|| on the fine mesh, where the fine CG started.
+  std::shared_ptr<const FemResult> coarser;
+  double coarser_start_residual = 0;
 };
 
 /// Solves; with `output_dir` non-empty and options.write_vtu, writes fem.pvd and fem_000.vtu

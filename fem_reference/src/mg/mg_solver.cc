@@ -33,11 +33,14 @@
 #include <deal.II/multigrid/mg_transfer_matrix_free.h>
 #include <deal.II/multigrid/multigrid.h>
 
+#include <immintrin.h>
+
 #include <cstdlib>
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <tuple>
 
 namespace fem_reference {
 
@@ -100,82 +103,45 @@ class ElasticOperator : public MatrixFreeOperators::Base<dim, LinearAlgebra::dis
   number lambda_ = 0, mu_ = 0;
 };
 
-/// A multigrid level operator from stored element matrices (single precision), applied cell by
-/// cell: gather, small dense product, scatter. Deal.II's MatrixFree runs without SIMD here
-/// (Debian's deal.II is configured with vectorization width 0), where sum factorisation on Q1/Q2
-/// cells is about three times slower than this. Cells of the same shape (to single precision)
-/// share one matrix, so a structured mesh stores a handful; boundary DoFs of the level get
-/// identity rows and columns.
-template <int dim>
+/// The elasticity operator from stored element matrices, applied cell by cell: gather, small dense
+/// product, scatter. On the multigrid levels in single precision, on the active mesh in double (the
+/// outer CG's operator). Deal.II's MatrixFree runs without SIMD here (Debian's deal.II is configured
+/// with vectorization width 0), where sum factorisation on Q1/Q2 cells is slower than this and its
+/// set-up alone costs as much as the V-cycles' operators. Cells of the same shape share one matrix,
+/// so a structured mesh stores a handful: the shape is keyed to 2^-22 of the cell size in single
+/// precision, to 2^-40 in double (below the rounding noise of gmsh's coordinates: no cell gets
+/// another's matrix). Constrained DoFs (the level's boundary, or the active mesh's homogeneous
+/// constraints) get identity rows and columns.
+template <int dim, typename Number>
 class CellMatrixOperator : public Subscriptor {
  public:
-  using VectorType = LinearAlgebra::distributed::Vector<float>;
+  using VectorType = LinearAlgebra::distributed::Vector<Number>;
 
+  /// A level's operator.
   void build(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const MGConstrainedDoFs& mg_constrained,
              unsigned level, double lambda, double mu) {
-    const auto& fe = dof.get_fe();
-    n_ = fe.n_dofs_per_cell();
     IndexSet relevant;
     DoFTools::extract_locally_relevant_level_dofs(dof, level, relevant);
-    partitioner_ = std::make_shared<Utilities::MPI::Partitioner>(dof.locally_owned_mg_dofs(level), relevant,
-                                                                 dof.get_communicator());
-    const IndexSet& boundary = mg_constrained.get_boundary_indices(level);
-    QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim> fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
-    std::vector<types::global_dof_index> dofs(n_);
-    std::vector<unsigned> comp(n_);
-    for (unsigned i = 0; i < n_; ++i) comp[i] = fe.system_to_component_index(i).first;
-    std::map<std::vector<float>, unsigned> shapes;  // shape (vertices - vertex 0) and boundary pattern
-    std::vector<float> key;
-    std::vector<Tensor<1, dim>> grads(n_);
-    for (const auto& cell : dof.mg_cell_iterators_on_level(level)) {
-      if (!cell->is_locally_owned_on_level()) continue;
-      cell->get_mg_dof_indices(dofs);
-      // Shape to about 1e-7 of the cell size (rounding noise of the mesh coordinates removed).
-      key.clear();
-      double scale = 0;
-      for (unsigned v = 1; v < cell->n_vertices(); ++v)
-        for (int a = 0; a < dim; ++a) scale = std::max(scale, std::abs(cell->vertex(v)[a] - cell->vertex(0)[a]));
-      key.push_back(float(scale));
-      for (unsigned v = 1; v < cell->n_vertices(); ++v)
-        for (int a = 0; a < dim; ++a)
-          key.push_back(float(std::round((cell->vertex(v)[a] - cell->vertex(0)[a]) / scale * 4194304.0)));
-      for (unsigned i = 0; i < n_; ++i) key.push_back(boundary.is_element(dofs[i]) ? 1.f : 0.f);
-      for (auto d : dofs) cell_dofs_.push_back(partitioner_->global_to_local(d));
-      auto [it, added] = shapes.emplace(key, unsigned(shapes.size()));
-      cell_matrix_.push_back(it->second);
-      if (!added) continue;
-      fe_values.reinit(cell);
-      std::vector<double> m(n_ * n_, 0.0);
-      for (unsigned q = 0; q < quadrature.size(); ++q) {
-        const double JxW = fe_values.JxW(q);
-        for (unsigned i = 0; i < n_; ++i) grads[i] = fe_values.shape_grad(i, q);
-        for (unsigned i = 0; i < n_; ++i)
-          for (unsigned j = 0; j < n_; ++j) {
-            const unsigned ci = comp[i], cj = comp[j];
-            m[i * n_ + j] += elastic_entry<dim>(grads[i], grads[j], ci, cj, lambda, mu) * JxW;
-          }
-      }
-      for (unsigned i = 0; i < n_; ++i)
-        for (unsigned j = 0; j < n_; ++j)
-          if (boundary.is_element(dofs[i]) || boundary.is_element(dofs[j])) m[i * n_ + j] = 0;
-      for (double v : m) matrices_.push_back(float(v));
-    }
-    for (auto i : boundary)
-      if (partitioner_->in_local_range(i)) constrained_.push_back(partitioner_->global_to_local(i));
+    build_cells(mapping, dof, dof.locally_owned_mg_dofs(level), relevant, mg_constrained.get_boundary_indices(level),
+                dof.mg_cell_iterators_on_level(level), lambda, mu, [](const auto& cell, auto& dofs) {
+                  if (!cell->is_locally_owned_on_level()) return false;
+                  cell->get_mg_dof_indices(dofs);
+                  return true;
+                });
+  }
 
-    // Diagonal: element diagonals summed, 1 on the boundary; inverted for the smoother.
-    diagonal_ = std::make_shared<DiagonalMatrix<VectorType>>();
-    VectorType& d = diagonal_->get_vector();
-    initialize_dof_vector(d);
-    for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
-      const float* m = &matrices_[std::size_t(cell_matrix_[c]) * n_ * n_];
-      for (unsigned i = 0; i < n_; ++i) d.local_element(cell_dofs_[c * n_ + i]) += m[i * n_ + i];
-    }
-    d.compress(VectorOperation::add);
-    for (auto i : constrained_) d.local_element(i) = 1;
-    for (unsigned i = 0; i < d.locally_owned_size(); ++i)
-      d.local_element(i) = d.local_element(i) > 0 ? 1.f / d.local_element(i) : 1.f;
+  /// The active mesh's operator; `constrained`: the DoFs of homogeneous constraint lines without
+  /// entries (no hanging nodes: the meshes are refined globally).
+  void build(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const IndexSet& constrained, double lambda,
+             double mu) {
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dof, relevant);
+    build_cells(mapping, dof, dof.locally_owned_dofs(), relevant, constrained, dof.active_cell_iterators(), lambda, mu,
+                [](const auto& cell, auto& dofs) {
+                  if (!cell->is_locally_owned()) return false;
+                  cell->get_dof_indices(dofs);
+                  return true;
+                });
   }
 
   std::shared_ptr<DiagonalMatrix<VectorType>> inverse_diagonal() const { return diagonal_; }
@@ -184,8 +150,8 @@ class CellMatrixOperator : public Subscriptor {
   types::global_dof_index m() const { return partitioner_->size(); }
   types::global_dof_index n() const { return partitioner_->size(); }
   /// Only the diagonal (PreconditionChebyshev's fallback when no preconditioner is given).
-  float el(types::global_dof_index i, types::global_dof_index) const { return 1.f / diagonal_->get_vector()(i); }
-  std::size_t shapes() const { return matrices_.size() / (std::size_t(n_) * n_); }
+  Number el(types::global_dof_index i, types::global_dof_index) const { return Number(1) / diagonal_->get_vector()(i); }
+  std::size_t shapes() const { return matrices_.size() / (std::size_t(n_) * stride_); }
 
   void vmult(VectorType& dst, const VectorType& src) const {
     dst = 0;
@@ -197,11 +163,14 @@ class CellMatrixOperator : public Subscriptor {
     const bool ghosted = src.has_ghost_elements();
     if (!ghosted) src.update_ghost_values();
     if (dst.has_ghost_elements()) dst.zero_out_ghost_values();
+    // With AVX2 and FMA where the processor has them (the build targets plain x86-64, whose SSE2
+    // needs four instructions for one 8-wide float FMA).
+    static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     switch (n_) {  // fixed sizes unrolled: Q1/Q2 in 2D and 3D
-      case 8: apply_cells<8>(dst, src); break;
-      case 18: apply_cells<18>(dst, src); break;
-      case 24: apply_cells<24>(dst, src); break;
-      case 81: apply_cells<81>(dst, src); break;
+      case 8: avx2 ? apply_cells_avx2<8>(dst, src) : apply_cells<8>(dst, src); break;
+      case 18: avx2 ? apply_cells_avx2<18>(dst, src) : apply_cells<18>(dst, src); break;
+      case 24: avx2 ? apply_cells_avx2<24>(dst, src) : apply_cells<24>(dst, src); break;
+      case 81: avx2 ? apply_cells_avx2<81>(dst, src) : apply_cells<81>(dst, src); break;
       default: apply_cells<0>(dst, src);
     }
     dst.compress(VectorOperation::add);
@@ -210,32 +179,144 @@ class CellMatrixOperator : public Subscriptor {
   }
 
  private:
+  // Matrix rows padded to whole SIMD registers (32 bytes), so that the product is register-wide
+  // multiply-adds of a broadcast x_j with matrix row j (the matrix is symmetric).
+  static constexpr unsigned kLanes = 32 / sizeof(Number);
+  static constexpr unsigned padded(unsigned n) { return (n + kLanes - 1) / kLanes * kLanes; }
+
+  template <typename Cells, typename CellDofs>
+  void build_cells(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const IndexSet& owned,
+                   const IndexSet& relevant, const IndexSet& constrained, const Cells& cells, double lambda, double mu,
+                   const CellDofs& cell_dofs) {
+    const auto& fe = dof.get_fe();
+    n_ = fe.n_dofs_per_cell();
+    stride_ = padded(n_);
+    partitioner_ = std::make_shared<Utilities::MPI::Partitioner>(owned, relevant, dof.get_communicator());
+    // Constrained flags by local index (IndexSet::is_element per DoF and cell costs a search).
+    std::vector<char> is_constrained(partitioner_->locally_owned_size() + partitioner_->n_ghost_indices(), 0);
+    for (auto i : constrained)
+      if (relevant.is_element(i)) is_constrained[partitioner_->global_to_local(i)] = 1;
+    QGauss<dim> quadrature(fe.degree + 1);
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> dofs(n_);
+    std::vector<unsigned> comp(n_);
+    for (unsigned i = 0; i < n_; ++i) comp[i] = fe.system_to_component_index(i).first;
+    const double quanta = std::is_same_v<Number, float> ? 4194304.0 : 1099511627776.0;  // 2^22, 2^40
+    std::map<std::vector<long long>, unsigned> shapes;  // shape (vertices - vertex 0) and constrained pattern
+    std::vector<long long> key;
+    std::vector<Tensor<1, dim>> grads(n_);
+    std::vector<unsigned> local(n_);
+    for (const auto& cell : cells) {
+      if (!cell_dofs(cell, dofs)) continue;
+      double scale = 0;
+      for (unsigned v = 1; v < cell->n_vertices(); ++v)
+        for (int a = 0; a < dim; ++a) scale = std::max(scale, std::abs(cell->vertex(v)[a] - cell->vertex(0)[a]));
+      int exponent = 0;
+      const double mantissa = std::frexp(scale, &exponent);
+      key.assign({exponent, std::llround(mantissa * quanta)});
+      for (unsigned v = 1; v < cell->n_vertices(); ++v)
+        for (int a = 0; a < dim; ++a) key.push_back(std::llround((cell->vertex(v)[a] - cell->vertex(0)[a]) / scale * quanta));
+      for (unsigned i = 0; i < n_; ++i) {
+        local[i] = partitioner_->global_to_local(dofs[i]);
+        key.push_back(is_constrained[local[i]]);
+        cell_dofs_.push_back(local[i]);
+      }
+      auto [it, added] = shapes.emplace(key, unsigned(shapes.size()));
+      cell_matrix_.push_back(it->second);
+      if (!added) continue;
+      fe_values.reinit(cell);
+      std::vector<double> m(std::size_t(n_) * stride_, 0.0);
+      for (unsigned q = 0; q < quadrature.size(); ++q) {
+        const double JxW = fe_values.JxW(q);
+        for (unsigned i = 0; i < n_; ++i) grads[i] = fe_values.shape_grad(i, q);
+        for (unsigned i = 0; i < n_; ++i)
+          for (unsigned j = 0; j < n_; ++j)
+            m[i * stride_ + j] += elastic_entry<dim>(grads[i], grads[j], comp[i], comp[j], lambda, mu) * JxW;
+      }
+      for (unsigned i = 0; i < n_; ++i)
+        for (unsigned j = 0; j < n_; ++j)
+          if (is_constrained[local[i]] || is_constrained[local[j]]) m[i * stride_ + j] = 0;
+      for (double v : m) matrices_.push_back(Number(v));
+    }
+    for (auto i : constrained)
+      if (partitioner_->in_local_range(i)) constrained_.push_back(partitioner_->global_to_local(i));
+
+    // Diagonal: element diagonals summed, 1 on the constrained DoFs; inverted for the smoother.
+    diagonal_ = std::make_shared<DiagonalMatrix<VectorType>>();
+    VectorType& d = diagonal_->get_vector();
+    initialize_dof_vector(d);
+    for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
+      const Number* m = &matrices_[std::size_t(cell_matrix_[c]) * n_ * stride_];
+      for (unsigned i = 0; i < n_; ++i) d.local_element(cell_dofs_[c * n_ + i]) += m[i * stride_ + i];
+    }
+    d.compress(VectorOperation::add);
+    for (auto i : constrained_) d.local_element(i) = 1;
+    for (unsigned i = 0; i < d.locally_owned_size(); ++i)
+      d.local_element(i) = d.local_element(i) > 0 ? Number(1) / d.local_element(i) : Number(1);
+  }
+
   template <unsigned N>
   void apply_cells(VectorType& dst, const VectorType& src) const {
+    apply_cells_inline<N>(dst, src);
+  }
+  /// The same product in AVX2 intrinsics: per matrix row one broadcast x_j and one FMA per register
+  /// (the compiler, left to itself, builds x in a register by inserts and permutes the matrix).
+  template <unsigned N>
+  __attribute__((target("avx2,fma"))) void apply_cells_avx2(VectorType& dst, const VectorType& src) const {
+    constexpr unsigned P = padded(N), R = P / kLanes;
+    alignas(32) Number y[P];
+    Number* out = dst.begin();
+    const Number* in = src.begin();
+    for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
+      const unsigned* dofs = &cell_dofs_[c * N];
+      const Number* m = &matrices_[std::size_t(cell_matrix_[c]) * N * P];
+      if constexpr (std::is_same_v<Number, float>) {
+        __m256 acc[R];
+        for (unsigned r = 0; r < R; ++r) acc[r] = _mm256_setzero_ps();
+        for (unsigned j = 0; j < N; ++j) {
+          const __m256 xj = _mm256_set1_ps(in[dofs[j]]);
+          for (unsigned r = 0; r < R; ++r) acc[r] = _mm256_fmadd_ps(_mm256_loadu_ps(m + j * P + r * kLanes), xj, acc[r]);
+        }
+        for (unsigned r = 0; r < R; ++r) _mm256_store_ps(y + r * kLanes, acc[r]);
+      } else {
+        __m256d acc[R];
+        for (unsigned r = 0; r < R; ++r) acc[r] = _mm256_setzero_pd();
+        for (unsigned j = 0; j < N; ++j) {
+          const __m256d xj = _mm256_set1_pd(in[dofs[j]]);
+          for (unsigned r = 0; r < R; ++r) acc[r] = _mm256_fmadd_pd(_mm256_loadu_pd(m + j * P + r * kLanes), xj, acc[r]);
+        }
+        for (unsigned r = 0; r < R; ++r) _mm256_store_pd(y + r * kLanes, acc[r]);
+      }
+      for (unsigned i = 0; i < N; ++i) out[dofs[i]] += y[i];
+    }
+  }
+  template <unsigned N>
+  __attribute__((always_inline)) inline void apply_cells_inline(VectorType& dst, const VectorType& src) const {
     const unsigned n = N > 0 ? N : n_;
-    float x[128], y[128];
-    float* out = dst.begin();
-    const float* in = src.begin();
+    constexpr unsigned P = padded(N > 0 ? N : 1);
+    const unsigned stride = N > 0 ? P : stride_;
+    alignas(32) Number y[N > 0 ? P : 256];
+    Number* out = dst.begin();
+    const Number* in = src.begin();
     for (std::size_t c = 0; c < cell_matrix_.size(); ++c) {
       const unsigned* dofs = &cell_dofs_[c * n];
-      const float* m = &matrices_[std::size_t(cell_matrix_[c]) * n * n];
-      for (unsigned i = 0; i < n; ++i) x[i] = in[dofs[i]];
-      // y = sum_j x_j m(:, j) (m is symmetric): each step an axpy over a contiguous row, which the
-      // compiler vectorises; the dot-product form (a float reduction) it may not reorder.
-      for (unsigned i = 0; i < n; ++i) y[i] = 0;
+      const Number* m = &matrices_[std::size_t(cell_matrix_[c]) * n * stride];
+      // y = sum_j x_j m(j, :): each step a multiply-add of a broadcast x_j over a padded row, which
+      // the compiler turns into whole-register FMAs (the dot-product form, a reduction, it may not).
+      for (unsigned i = 0; i < stride; ++i) y[i] = 0;
       for (unsigned j = 0; j < n; ++j) {
-        const float xj = x[j];
-        const float* row = m + j * n;
-        for (unsigned i = 0; i < n; ++i) y[i] += row[i] * xj;
+        const Number xj = in[dofs[j]];
+        const Number* row = m + j * stride;
+        for (unsigned i = 0; i < stride; ++i) y[i] += row[i] * xj;
       }
       for (unsigned i = 0; i < n; ++i) out[dofs[i]] += y[i];
     }
   }
 
-  unsigned n_ = 0;
+  unsigned n_ = 0, stride_ = 0;
   std::shared_ptr<const Utilities::MPI::Partitioner> partitioner_;
   std::vector<unsigned> cell_dofs_, cell_matrix_, constrained_;
-  std::vector<float> matrices_;
+  AlignedVector<Number> matrices_;
   std::shared_ptr<DiagonalMatrix<VectorType>> diagonal_;
 };
 
@@ -299,6 +380,40 @@ class CoarseSolver : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<
     }
   }
 
+  /// The coarse level's own problem K0 x = b to `tolerance` (relative residual): KLU, or CG with the
+  /// ML preconditioner. Returns the CG iterations (0 for KLU) and the relative residual.
+  std::pair<int, double> solve(LinearAlgebra::distributed::Vector<double>& x,
+                               const LinearAlgebra::distributed::Vector<double>& b, double tolerance,
+                               int max_iterations) const {
+    for (unsigned i = 0; i < b_.locally_owned_size(); ++i) b_.local_element(i) = b.local_element(i);
+    for (auto i : boundary_)
+      if (b_.in_local_range(i)) b_(i) = 0;
+    x_ = 0;
+    int iterations = 0;
+    if (direct_) {
+      direct_->solve(x_, b_);
+    } else {
+      struct BoundaryZeroAmg {  // the ML cycle with the level's boundary DoFs held at zero
+        const CoarseSolver* s;
+        void vmult(LinearAlgebra::distributed::Vector<double>& dst, const LinearAlgebra::distributed::Vector<double>& src) const {
+          s->amg_->vmult(dst, src);
+          for (auto i : s->boundary_)
+            if (dst.in_local_range(i)) dst(i) = 0;
+        }
+      };
+      SolverControl control(max_iterations, tolerance * b_.l2_norm(), false, false);
+      SolverCG<LinearAlgebra::distributed::Vector<double>> cg(control);
+      cg.solve(matrix_, x_, b_, BoundaryZeroAmg{this});
+      iterations = int(control.last_step());
+    }
+    LinearAlgebra::distributed::Vector<double> r(b_);
+    matrix_.vmult(r, x_);
+    r -= b_;
+    const double b_norm = b_.l2_norm();
+    for (unsigned i = 0; i < x.locally_owned_size(); ++i) x.local_element(i) = x_.local_element(i);
+    return {iterations, b_norm == 0 ? 0.0 : r.l2_norm() / b_norm};
+  }
+
   void operator()(const unsigned int, LevelVector& dst, const LevelVector& src) const override {
     for (unsigned i = 0; i < b_.locally_owned_size(); ++i) b_.local_element(i) = src.local_element(i);
     for (auto i : boundary_)
@@ -326,53 +441,51 @@ template <int dim, int degree>
 MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, const AffineConstraints<double>& constraints,
                           const MgBoundaries& boundaries, const TrilinosWrappers::MPI::Vector& rhs,
                           TrilinosWrappers::MPI::Vector& solution, const MgSettings& s,
-                          const std::function<void(const char*)>& profile) {
-  using SystemOperator = ElasticOperator<dim, degree, double>;
-  using LevelOperator = CellMatrixOperator<dim>;
+                          const std::function<void(const char*)>& profile, TrilinosWrappers::MPI::Vector* coarser) {
+  using SystemOperator = CellMatrixOperator<dim, double>;
+  using LevelOperator = CellMatrixOperator<dim, float>;
   using VectorType = LinearAlgebra::distributed::Vector<double>;
   using LevelVector = LinearAlgebra::distributed::Vector<float>;
 
-  profile("matrix-free operator");
-  // The active level: homogeneous version of the constraints.
+  profile("active operator");
+  // The active mesh's operator, on the homogeneous version of the constraints: zero lines only (the
+  // supports; a globally refined mesh has no hanging nodes).
   AffineConstraints<double> homogeneous;
+  IndexSet constrained(dof.n_dofs());
   {
     IndexSet relevant;
     DoFTools::extract_locally_relevant_dofs(dof, relevant);
     homogeneous.reinit(relevant);
     for (const auto& line : constraints.get_lines()) {
+      AssertThrow(line.entries.empty(), ExcMessage("the multigrid solver takes supports only, no hanging nodes"));
       homogeneous.add_line(line.index);
-      homogeneous.add_entries(line.index, line.entries);
+      constrained.add_index(line.index);
     }
     homogeneous.close();
+    constrained.compress();
   }
   SystemOperator system;
-  {
-    typename MatrixFree<dim, double>::AdditionalData data;
-    data.tasks_parallel_scheme = MatrixFree<dim, double>::AdditionalData::none;
-    data.mapping_update_flags = update_gradients | update_JxW_values;
-    auto mf = std::make_shared<MatrixFree<dim, double>>();
-    mf->reinit(mapping, dof, homogeneous, QGauss<1>(degree + 1), data);
-    system.initialize(mf);
-    system.set_coefficients(s.lambda, s.mu);
-  }
+  system.build(mapping, dof, constrained, s.lambda, s.mu);
 
   // The levels.
-  profile("multigrid levels");
+  profile("level DoFs");
   dof.distribute_mg_dofs();
   MGConstrainedDoFs mg_constrained;
   mg_constrained.initialize(dof);
   for (const auto& [ids, mask] : boundaries) mg_constrained.make_zero_boundary_constraints(dof, ids, mask);
   const unsigned n_levels = dof.get_triangulation().n_global_levels();
+  profile("level operators");
   MGLevelObject<LevelOperator> levels(0, n_levels - 1);
   std::vector<std::shared_ptr<const Utilities::MPI::Partitioner>> partitioners(n_levels);
   for (unsigned level = 0; level < n_levels; ++level) {
     levels[level].build(mapping, dof, mg_constrained, level, s.lambda, s.mu);
     partitioners[level] = levels[level].partitioner();
   }
+  profile("transfer");
   MGTransferMatrixFree<dim, float> transfer(mg_constrained);
   transfer.build(dof, partitioners);
 
-  profile("smoothers + coarse solver");
+  profile("smoothers");
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;
   mg::SmootherRelaxation<Smoother, LevelVector> smoother;
   MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
@@ -383,25 +496,54 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     smoother_data[level].preconditioner = levels[level].inverse_diagonal();
   }
   smoother.initialize(levels, smoother_data);
+  profile("coarse solver");
   std::string coarse_name;
   CoarseSolver<dim, degree> coarse(mapping, dof, mg_constrained, s, coarse_name);
   mg::Matrix<LevelVector> mg_matrix(levels);
   Multigrid<LevelVector> mg(mg_matrix, coarse, transfer, smoother, smoother);
   PreconditionMG<dim, LevelVector, MGTransferMatrixFree<dim, float>> preconditioner(dof, mg, transfer);
 
-  profile("CG");
   VectorType b, x;
   system.initialize_dof_vector(b);
   system.initialize_dof_vector(x);
   for (auto i : b.get_partitioner()->locally_owned_range()) b(i) = rhs(i);
   homogeneous.set_zero(b);
   const double b_norm = rhs.l2_norm();
-  SolverControl control(s.max_iterations, s.tolerance * b_norm, false, false);
+  MgOutcome out;
+  double stop = s.tolerance * b_norm;
+  if (coarser) {  // the coarse mesh's own solution, from this hierarchy, and the fine CG's start
+    profile("coarser level");
+    AssertThrow(n_levels == 2, ExcMessage("the coarser solution needs a mesh refined once"));
+    MGTransferMatrixFree<dim, double> embedding(mg_constrained);  // in double: the solution itself moves
+    embedding.build(dof);
+    MGLevelObject<VectorType> level(0, n_levels - 1);
+    embedding.copy_to_mg(dof, level, b);
+    level[0] = 0;
+    embedding.restrict_and_add(1, level[0], level[1]);
+    VectorType coarse_solution(level[0]);
+    std::tie(out.coarser_iterations, out.coarser_residual) =
+        coarse.solve(coarse_solution, level[0], s.tolerance, s.max_iterations);
+    out.coarser_dofs = dof.n_dofs(0);
+    embedding.prolongate(1, level[1], coarse_solution);
+    embedding.copy_from_mg(dof, x, level);
+    homogeneous.set_zero(x);
+    for (auto i : x.get_partitioner()->locally_owned_range()) (*coarser)(i) = x(i);
+    coarser->compress(VectorOperation::insert);
+    VectorType r;
+    r.reinit(x);
+    system.vmult(r, x);
+    r -= b;
+    homogeneous.set_zero(r);
+    const double start = r.l2_norm();
+    out.coarser_start_residual = b_norm == 0 ? 0.0 : start / b_norm;
+    stop = std::max(stop, s.coarser_share * start);
+  }
+  profile("CG");
+  SolverControl control(s.max_iterations, stop, false, false);
   SolverCG<VectorType> cg(control);
   cg.solve(system, x, b, preconditioner);
   profile(nullptr);
 
-  MgOutcome out;
   out.iterations = int(control.last_step());
   for (unsigned level = 0; level < n_levels; ++level) out.matrices_per_level.push_back(levels[level].shapes());
   {
@@ -425,17 +567,17 @@ template <int dim>
 MgOutcome solve_mg(const Mapping<dim>& mapping, DoFHandler<dim>& dof, const AffineConstraints<double>& constraints,
                    const MgBoundaries& boundaries, const TrilinosWrappers::MPI::Vector& rhs,
                    TrilinosWrappers::MPI::Vector& solution, const MgSettings& s,
-                   const std::function<void(const char*)>& profile) {
+                   const std::function<void(const char*)>& profile, TrilinosWrappers::MPI::Vector* coarser) {
   if (dof.get_fe().degree == 1)
-    return solve_mg_degree<dim, 1>(mapping, dof, constraints, boundaries, rhs, solution, s, profile);
-  return solve_mg_degree<dim, 2>(mapping, dof, constraints, boundaries, rhs, solution, s, profile);
+    return solve_mg_degree<dim, 1>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);
+  return solve_mg_degree<dim, 2>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);
 }
 
 template MgOutcome solve_mg<2>(const Mapping<2>&, DoFHandler<2>&, const AffineConstraints<double>&, const MgBoundaries&,
                                const TrilinosWrappers::MPI::Vector&, TrilinosWrappers::MPI::Vector&, const MgSettings&,
-                               const std::function<void(const char*)>&);
+                               const std::function<void(const char*)>&, TrilinosWrappers::MPI::Vector*);
 template MgOutcome solve_mg<3>(const Mapping<3>&, DoFHandler<3>&, const AffineConstraints<double>&, const MgBoundaries&,
                                const TrilinosWrappers::MPI::Vector&, TrilinosWrappers::MPI::Vector&, const MgSettings&,
-                               const std::function<void(const char*)>&);
+                               const std::function<void(const char*)>&, TrilinosWrappers::MPI::Vector*);
 
 }  // namespace fem_reference

@@ -32,6 +32,11 @@ struct MgSettings {
   long direct_limit = FemOptions{}.direct_limit;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
   int smoother_degree = 4;    ///< Chebyshev degree of pre- and post-smoothing
   ModeFrame mode_frame;       ///< of the rigid body modes of the coarse ML cycle
+  /// With a `coarser` vector (two levels, homogeneous constraints): the CG on the finest level also
+  /// stops once its residual is this share of the one the coarser solution leaves there (0: only
+  /// `tolerance`), so that its algebraic error is that small beside the discretisation error the
+  /// two levels estimate.
+  double coarser_share = 0;
 };
 
 struct MgOutcome {
@@ -39,6 +44,11 @@ struct MgOutcome {
   double residual = 0;  ///< ||K u - f|| / ||f|| of the condensed system
   std::string solver;
   std::vector<std::size_t> matrices_per_level;  ///< element matrices stored per level (the profile)
+  /// With a `coarser` vector: the coarse level's own CG (0 for KLU), its residual ||K0 u0 - R f|| /
+  /// ||R f|| and DoFs, and ||K P u0 - f|| / ||f|| on the finest level, where the fine CG starts.
+  int coarser_iterations = 0;
+  double coarser_residual = 0, coarser_start_residual = 0;
+  std::size_t coarser_dofs = 0;
 };
 
 /// Zero boundary conditions of the multigrid levels: boundary ids and the components they hold.
@@ -49,10 +59,17 @@ using MgBoundaries = std::vector<std::pair<std::set<dealii::types::boundary_id>,
 /// constraints `rhs` was condensed with; `solution` gets the homogeneous part (constrained entries
 /// zero; distribute the constraints afterwards). `profile(name)` starts the profiled phase `name`
 /// (ending the one before; nullptr ends the last). Throws SolverControl::NoConvergence.
+///
+/// `coarser` (two levels only: the mesh refined once; homogeneous constraints): the same problem on
+/// the coarse mesh from this hierarchy, solved first (its load R f restricted from the fine one,
+/// which for nested spaces is the coarse mesh's own load vector, and its matrix and coarse solver
+/// already built), to `tolerance`; `coarser` gets it embedded in the fine space (the coarse FE
+/// function itself), and the fine CG starts from it (nested iteration).
 template <int dim>
 MgOutcome solve_mg(const dealii::Mapping<dim>& mapping, dealii::DoFHandler<dim>& dof_handler,
                    const dealii::AffineConstraints<double>& constraints, const MgBoundaries& boundaries,
                    const dealii::TrilinosWrappers::MPI::Vector& rhs, dealii::TrilinosWrappers::MPI::Vector& solution,
-                   const MgSettings& settings, const std::function<void(const char*)>& profile);
+                   const MgSettings& settings, const std::function<void(const char*)>& profile,
+                   dealii::TrilinosWrappers::MPI::Vector* coarser = nullptr);
 
 }  // namespace fem_reference

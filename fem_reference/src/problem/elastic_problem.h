@@ -20,6 +20,7 @@
 // assembly, the solvers), and elastic_problem.cc, run() and all that follows the solution
 // (reactions, backward error, stresses, probes, errors, VTU) and solve_on_mesh.
 #include "amg/amg.h"
+#include "mg/mg_solver.h"
 #include "plain_mesh.h"
 
 #include <deal.II/base/conditional_ostream.h>
@@ -197,6 +198,12 @@ class ElasticProblem {
   dealii::AffineConstraints<double> constraints_;
   dealii::TrilinosWrappers::SparseMatrix matrix_;
   dealii::TrilinosWrappers::MPI::Vector rhs_, solution_, ghosted_;
+  // FemOptions::coarser_level: the coarse mesh's solution embedded in the fine space (empty when
+  // not solved) and the multigrid's account of it.
+  dealii::TrilinosWrappers::MPI::Vector coarser_;
+  MgOutcome coarser_outcome_;
+  /// FemResult::coarser: the post-processing of coarser_ (after the fine solution's own output).
+  std::shared_ptr<FemResult> coarser_result();
 
   // Groups: name -> index; every boundary id stands for one set of group indices.
   std::vector<std::string> groups_;

@@ -396,10 +396,17 @@ void ElasticProblem<dim>::solve() {
         if (carries(id, support_group_[k])) ids.insert(id);
       if (!ids.empty()) boundaries.emplace_back(ids, mask);
     }
+    s.coarser_share = o.coarser_share;
+    // The coarse mesh's own solution from the hierarchy (FemOptions::coarser_level): a mesh refined
+    // once, and constraints that are zero (a prescribed displacement would need its own lift).
+    const bool coarser = o.coarser_level && tria_->n_global_levels() == 2 &&
+                         std::none_of(problem_.supports.begin(), problem_.supports.end(),
+                                      [](const Support& p) { return p.kind == SupportKind::Displacement; });
+    if (coarser) coarser_.reinit(owned_, comm_);
     MgOutcome outcome;
     try {
       outcome = solve_mg(*mapping_, dof_handler_, constraints_, boundaries, rhs_, solution_, s,
-                         [&](const char* what) { phase(what); });
+                         [&](const char* what) { phase(what); }, coarser ? &coarser_ : nullptr);
     } catch (const SolverControl::NoConvergence& e) {
       require_finite(std::isfinite(e.last_residual), "CG residual");
       throw Error(no_convergence(problem_, "geometric multigrid", e));
@@ -412,6 +419,10 @@ void ElasticProblem<dim>::solve() {
     constraints_.distribute(solution_);
     result_.residual = outcome.residual;
     ghosted_ = solution_;
+    if (coarser) {
+      constraints_.distribute(coarser_);
+      coarser_outcome_ = outcome;
+    }
     return;
   } else if (direct_) {
     SolverControl control(1, 0);

@@ -22,14 +22,22 @@ struct ReferenceOptions {
   /// The true (smooth) geometry the agents' staircase was voxelized from (.geo or .msh with the same
   /// physical groups); empty: the agents' own mesh.
   std::filesystem::path mesh;
+  /// Where the estimate level comes from the reference's multigrid hierarchy (refine = 1): the
+  /// reference's CG, started from the estimate level's solution, stops once its residual is this
+  /// share of the one that solution leaves on the reference's mesh (or at fem.tolerance, if that
+  /// is higher): an algebraic error this small beside the discretisation error the two levels
+  /// show (docs/compare.md). 0: fem.tolerance alone.
+  double algebraic_share = 1e-7;
   /// These options with the default refinement resolved for a `dim`-dimensional mesh.
-  ReferenceOptions resolved(int dim) const { return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh}; }
+  ReferenceOptions resolved(int dim) const {
+    return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh, algebraic_share};
+  }
   /// The level beside the reference for its error estimate: one refinement coarser; on the
   /// unrefined mesh Q1 for Q2, and for Q1 itself one refinement finer.
   ReferenceOptions estimate() const {
-    if (refine > 0) return {degree, refine - 1, mesh};
-    if (degree == 2) return {1, 0, mesh};
-    return {1, 1, mesh};
+    if (refine > 0) return {degree, refine - 1, mesh, algebraic_share};
+    if (degree == 2) return {1, 0, mesh, algebraic_share};
+    return {1, 1, mesh, algebraic_share};
   }
   std::string describe() const;  ///< e.g. "FEM Q2, the agents' mesh refined 1 time"
 };

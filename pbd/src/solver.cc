@@ -29,12 +29,22 @@ void Solver::step(const StepSettings& s) {
 }
 
 void Solver::substep(double h, const StepSettings& s) {
+  const int threads = std::max(1, s.threads);
+  // One parallel region for the whole substep (prediction, sweeps, velocities): threads are woken
+  // once, and the only waits are the barriers between colours.
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    predict(h, s);
+    for (int it = 0; it < std::max(1, s.iterations); ++it) project(h, it == 0);
+    update_velocities(h, s);
+  }
+}
+
+void Solver::predict(double h, const StepSettings& s) {
   auto& P = model_.particles;
   const long n = long(P.size());
-  const int threads = std::max(1, s.threads);
-  const double keep = std::exp(-s.damping * h);
   // Prediction (seed step 3, gravity as an acceleration).
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096)
+#pragma omp for schedule(static)
   for (long i = 0; i < n; ++i) {
     P.x_prev[i] = P.x[i];
     if (P.w[i] == 0) {
@@ -44,16 +54,19 @@ void Solver::substep(double h, const StepSettings& s) {
     P.v[i] += h * (s.gravity + P.w[i] * s.node_force);
     P.x[i] += h * P.v[i];
   }
-  std::fill(lambda_distance_.begin(), lambda_distance_.end(), 0.0);
-  std::fill(lambda_angle_.begin(), lambda_angle_.end(), 0.0);
-  for (int it = 0; it < std::max(1, s.iterations); ++it) project(h, threads);
+}
+
+void Solver::update_velocities(double h, const StepSettings& s) {
+  auto& P = model_.particles;
+  const long n = long(P.size());
+  const double keep = std::exp(-s.damping * h);
   // Velocity from the position change, then damping.
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1 && n > 4096)
+#pragma omp for schedule(static)
   for (long i = 0; i < n; ++i)
     if (P.w[i] != 0) P.v[i] = (P.x[i] - P.x_prev[i]) * (keep / h);
 }
 
-void Solver::project(double h, int threads) {
+void Solver::project(double h, bool first) {
   auto& P = model_.particles;
   Vec3* x = P.x.data();
   const double* w = P.w.data();
@@ -65,36 +78,33 @@ void Solver::project(double h, int threads) {
   const Colouring& ac = model_.angle_colouring;
   double* ld = lambda_distance_.data();
   double* la = lambda_angle_.data();
+  // The XPBD multipliers start each substep at 0: set where the first sweep meets them (in parallel,
+  // and no pass of its own over them).
   auto distance = [&](long c) {
     const auto& d = D[c];
+    if (first) ld[c] = 0;
     project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, ld[c]);
   };
   auto bend = [&](long c) {
     const auto& a = A[c];
+    if (first) la[c] = 0;
     project_angle(x[a.best], x[a.k], x[a.i], w[a.best], w[a.k], w[a.i], a.rest_cos, a.rest_sin,
                   a.compliance * inv_h2, la[c], axis);
   };
-  if (threads <= 1) {
-    // Same order as the parallel path (the arrays are in colour-major block order), so results do
-    // not depend on the thread count.
-    for (long c = 0; c < long(model_.distances.size()); ++c) distance(c);
-    for (long c = 0; c < long(model_.angles.size()); ++c) bend(c);
-    return;
+  // The arrays are in colour-major block order: one thread goes through them in order, several
+  // split each colour's blocks, and as a colour's constraints share no node the results do not
+  // depend on the thread count.
+  for (std::size_t col = 0; col < dc.colours(); ++col) {
+    const long b = long(dc.colour_begin[col]), e = long(dc.colour_begin[col + 1]);
+#pragma omp for schedule(dynamic, 4)
+    for (long k = b; k < e; ++k)
+      for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) distance(c);
   }
-#pragma omp parallel num_threads(threads)
-  {
-    for (std::size_t col = 0; col < dc.colours(); ++col) {
-      const long b = long(dc.colour_begin[col]), e = long(dc.colour_begin[col + 1]);
+  for (std::size_t col = 0; col < ac.colours(); ++col) {
+    const long b = long(ac.colour_begin[col]), e = long(ac.colour_begin[col + 1]);
 #pragma omp for schedule(dynamic, 4)
-      for (long k = b; k < e; ++k)
-        for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) distance(c);
-    }
-    for (std::size_t col = 0; col < ac.colours(); ++col) {
-      const long b = long(ac.colour_begin[col]), e = long(ac.colour_begin[col + 1]);
-#pragma omp for schedule(dynamic, 4)
-      for (long k = b; k < e; ++k)
-        for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) bend(c);
-    }
+    for (long k = b; k < e; ++k)
+      for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) bend(c);
   }
 }
 

@@ -56,7 +56,11 @@ class Solver {
   static bool parallel_available();
 
  private:
-  void project(double h, int threads);
+  // The parts of a substep, each run by every thread of the substep's parallel region (or by one).
+  void predict(double h, const StepSettings& settings);
+  /// One Gauss-Seidel sweep; `first`: the substep's first, which starts the multipliers at 0.
+  void project(double h, bool first);
+  void update_velocities(double h, const StepSettings& settings);
   Model& model_;
   std::vector<double> lambda_distance_, lambda_angle_;
 };

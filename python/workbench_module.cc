@@ -540,6 +540,9 @@ PYBIND11_MODULE(workbench, m) {
       d["fitted"] = c.fitted;
       d["fit_min"] = c.fit_min;
       d["fit_max"] = c.fit_max;
+      py::list choices;  // a named choice's names (its value is the index); empty for a number
+      for (int i = 0; i < c.choice_count; ++i) choices.append(c.choices[i]);
+      d["choices"] = choices;
       out.append(d);
     }
     return out;

@@ -58,7 +58,7 @@ namespace {
 template <class Slots>
 void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k, double gamma,
            const std::vector<EntryLoad>& loads, std::vector<double>& faces, std::vector<std::int32_t>& generation,
-           Diagnostics& d) {
+           Diagnostics& d, double* shear, double* balance) {
   const Slots slots = layout;  // a local: its strides and flags stay in registers
   const int dim = g.dim, nd = 2 * dim, n = k.directions;
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
@@ -174,6 +174,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         kv = (-mv * suu + mu * suv) / det;
       }
       if (ku == 0 && kv == 0) return;
+      if (balance) balance[(a == 1 ? g.cells[0] : 0) + layer] += ku;  // 2D: the slope alone says it
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u) {
           const std::size_t cell = slot_of(layer, u, v);
@@ -188,6 +189,121 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         }
     };
 
+    // tau_xy of a packet of force F and lateral slope s: the ray's stress -F n n^T / A with n
+    // along (s, -1) for a march down y: +F s / A; marching up (or along +x), -F s / A.
+    const double tau_sign = forward ? -1.0 : 1.0, area_across = g.face_area(a);
+    // Rows of body along the march from `layer` in the entry's column: the depth the paths turn in.
+    auto depth_of_body = [&](int layer) {
+      int rows = 0;
+      for (; layer >= 0 && layer < g.cells[a] && !air(slot_of(layer, eu, 0)); layer += step) ++rows;
+      return rows * row;
+    };
+    // Turning paths (2D; docs/agent-model.md, "Turning paths"): packet k leaves the load at the
+    // fan's slope s_k and turns toward its target, the quantile of its weight in the fan mapped onto
+    // the body's width on its side: x_k(d) = x0 + L_k tanh(s_k d / L_k). Each row deposits every
+    // direction's force as a Gaussian about its path (variance diffusion_length x depth), its tails
+    // mirrored at the ends of the row's run of agents and normalised over the run, so each row
+    // carries the direction's force exactly. What leaves through a row's exit faces leaves the
+    // direction (reaction or passed out) and the rest goes on.
+    auto march_turning = [&](const EntryLoad& entry_load, double body_depth) {
+      const double hl = g.size[l0], x0 = (at_u[eu] + 0.5) * hl;
+      int lo = eu, hi = eu;
+      while (lo > 0 && !air(slot_of(entry[a], lo - 1, 0))) --lo;
+      while (hi < n0 - 1 && !air(slot_of(entry[a], hi + 1, 0))) ++hi;
+      const double width_low = x0 - at_u[lo] * hl, width_high = (at_u[hi] + 1) * hl - x0;
+      std::vector<double> turn(n), remaining(n), shares;
+      double below = 0;  // the fan's weight of the directions before k
+      for (int dir = 0; dir < n; ++dir) {
+        const double s = fan.slope[dir], q = below + 0.5 * fan.weight[dir];
+        below += fan.weight[dir];
+        double L = s < 0 ? -width_low * (1 - 2 * q) : width_high * (2 * q - 1);
+        if (!(s * L > 0)) L = std::copysign(1e-9 * hl, s);  // a target on the wrong side: straight down
+        // No farther out than its straight ray reaches at the body's far face (reach 1: not fitted).
+        turn[dir] = std::copysign(std::min(std::abs(L), std::abs(s) * body_depth), s);
+        remaining[dir] = entry_load.force * fan.weight[dir];
+      }
+      std::vector<int> run_lo(n0), run_hi(n0);
+      const double root2 = std::sqrt(2.0);
+      auto cdf = [&](double z) { return 0.5 * std::erfc(-z / root2); };
+      for (int layer = entry[a], depth = 0; layer >= 0 && layer < g.cells[a]; layer += step, ++depth) {
+        const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
+        for (int u = 0; u < n0;) {  // the row's runs of agents: a packet spreads over the run it is in
+          if (air(slot_of(layer, u, 0))) {
+            run_lo[u] = run_hi[u] = -1;
+            ++u;
+            continue;
+          }
+          int end = u;
+          while (end + 1 < n0 && !air(slot_of(layer, end + 1, 0))) ++end;
+          for (int w = u; w <= end; ++w) run_lo[w] = u, run_hi[w] = end;
+          u = end + 1;
+        }
+        const double depth_m = (depth + 0.5) * row;  // of the row's centre below the loaded face
+        const double spread = std::max(std::sqrt(k.diffusion_length * depth_m), 0.3 * hl);
+        bool any = false;
+        for (int dir = 0; dir < n; ++dir) {
+          double& force = remaining[dir];
+          if (force == 0) continue;
+          const double s = fan.slope[dir], L = turn[dir], t = std::tanh(s * depth_m / L);
+          const double x = x0 + L * t, slope = s * (1 - t * t);
+          const int iu = slot_at(l0, x / hl);
+          if (run_lo[iu] < 0) {  // the body ends under the path
+            d.passed_out += force;
+            force = 0;
+            continue;
+          }
+          const double edge_lo = at_u[run_lo[iu]] * hl, edge_hi = (at_u[run_hi[iu]] + 1) * hl;
+          const int from = std::max(run_lo[iu], slot_at(l0, (x - 6 * spread) / hl));
+          const int to = std::min(run_hi[iu], slot_at(l0, (x + 6 * spread) / hl));
+          shares.assign(std::size_t(to - from + 1), 0.0);
+          double total = 0;
+          for (int u = from; u <= to; ++u) {
+            const double xa = at_u[u] * hl, xb = xa + hl;
+            double share = 0;
+            for (const double c : {x, 2 * edge_lo - x, 2 * edge_hi - x}) share += cdf((xb - c) / spread) - cdf((xa - c) / spread);
+            shares[u - from] = share;
+            total += share;
+          }
+          if (!(total > 0)) {  // no share at all (cannot happen with the path inside the run): its agent
+            std::fill(shares.begin(), shares.end(), 0.0);
+            shares[iu - from] = total = 1;
+          }
+          double left = 0;  // leaves through the row's exit faces
+          for (int u = from; u <= to; ++u) {
+            const double f_u = force * shares[u - from] / total;
+            if (f_u == 0) continue;
+            const std::size_t cell = slot_of(layer, u, 0);
+            ++d.packet_moves;
+            const auto current = std::uint32_t(generation[cell]);
+            d.agents_generated += current == UINT32_MAX;
+            generation[cell] = std::int32_t(std::min(current, std::uint32_t(depth + std::abs(u - eu))));
+            double* f = faces.data() + cell * nd;
+            f[enter_face] += f_u;
+            row_force[u] += f_u;
+            if (shear) shear[cell] += tau_sign * f_u * slope / area_across;
+            if (last_layer || air(slot_of(layer + step, u, 0))) {
+              left += f_u;
+              if (rigid(cell, exit_face)) {
+                f[exit_face] += f_u;
+                d.rigid_reaction += f_u;
+              } else {
+                d.passed_out += f_u;
+              }
+            } else {
+              f[exit_face] += f_u;
+            }
+          }
+          force = last_layer ? 0.0 : force - left;
+          any = any || force != 0;
+        }
+        balance_row_moment(layer, last_layer, row_force);
+        if (!any) break;
+      }
+    };
+    if (dim == 2 && k.paths == Paths::Turning) {
+      march_turning(load, depth_of_body(entry[a]));
+      continue;
+    }
     for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
       const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
       // A packet piece arriving at lateral position (x, y) of the next row, in agents, with
@@ -253,6 +369,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
             double* f = faces.data() + cell * nd;
             f[enter_face] += force;
             row_force[u + std::size_t(n0) * v] += force;
+            if (shear) shear[cell] += tau_sign * force * su / area_across;
             f[2 * l0] += force * side_force_u;
             f[2 * l0 + 1] += force * side_force_u;
             if (dim == 3) {
@@ -298,15 +415,20 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
 
 void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                           const std::vector<EntryLoad>& loads, std::vector<double>& faces,
-                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics) {
-  with_slots(grid, [&](const auto& slots) { march(grid, slots, k, gamma, loads, faces, generation, diagnostics); });
+                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics, std::vector<double>& shear,
+                          std::vector<double>& balance) {
+  with_slots(grid, [&](const auto& slots) {
+    march(grid, slots, k, gamma, loads, faces, generation, diagnostics, shear.empty() ? nullptr : shear.data(),
+          balance.empty() ? nullptr : balance.data());
+  });
 }
 
 DirectionalTransfer::DirectionalTransfer(const Coefficients& k) : k_(k) { check_coefficients(k, RuleSet::Directional); }
 
 void DirectionalTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   out.clear_all();
-  directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics);
+  directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics, out.shear,
+                       out.balance);
 }
 
 }  // namespace agent

@@ -99,6 +99,15 @@ struct Diagnostics {
 struct TransferResults {
   std::vector<double> faces;
   std::vector<std::int32_t> generation;
+  /// 2D, the directional rule set: per slot, the packets' tau_xy [Pa] (sum over the packets of
+  /// force x lateral slope over the face area across their march, signed as tau_xy); 0 elsewhere.
+  /// agent_stress_components (agent/stress_components.h) reads it.
+  std::vector<double> shear;
+  /// 2D, the directional rule set: per march axis a and layer across it (cells[0] values for a = 0,
+  /// then cells[1] for a = 1), the slope k of the row moment balance's correction of the force
+  /// along a, k (u - mean u) [N] at an agent u agents from the box's lower side (in `faces` too);
+  /// its shear is read by vertical equilibrium.
+  std::vector<double> balance;
   Diagnostics diagnostics;
   /// Zero forces, every generation -1, no diagnostics: what a rule type without its own
   /// bookkeeping of what it wrote does before a solve.

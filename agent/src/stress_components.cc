@@ -20,27 +20,46 @@ double von_mises_3d(const double* s) {
 
 void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
   const int reach = std::max(1, int(std::ceil(4 * window)));
-  for (int j = 0; j < count; ++j) {
-    if (count < 3) {
-      slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
-      continue;
-    }
+  if (count < 3) {
+    for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
+    return;
+  }
+  // The slope is linear in the values: per entry, weights c_i = e1' M^-1 w_i p_i of its
+  // neighbours. Away from the ends every entry has the same weights: computed once.
+  auto weights = [&](int j, std::vector<double>& c, int& first) {
+    first = std::max(0, j - reach);
+    const int last = std::min(count - 1, j + reach);
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    for (int i = std::max(0, j - reach); i <= std::min(count - 1, j + reach); ++i) {
+    for (int i = first; i <= last; ++i) {
       const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
       const Eigen::Vector3d p(1, d, d * d);
       m += w * p * p.transpose();
-      rhs += w * values[i * stride] * p;
     }
-    // Too narrow a window for a quadratic (fewer than 3 weighted points): the nearest difference.
+    c.assign(std::size_t(last - first + 1), 0.0);
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
-    if (lu.rank() == 3) {
-      slope[j * stride] = lu.solve(rhs)[1];
-    } else {
+    if (lu.rank() < 3) {  // too narrow a window for a quadratic: the nearest difference
       const int lo = std::max(0, j - 1), hi = std::min(count - 1, j + 1);
-      slope[j * stride] = (values[hi * stride] - values[lo * stride]) / (hi - lo);
+      c[lo - first] -= 1.0 / (hi - lo);
+      c[hi - first] += 1.0 / (hi - lo);
+      return;
     }
+    const Eigen::Vector3d row = lu.inverse().row(1).transpose();
+    for (int i = first; i <= last; ++i) {
+      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      c[i - first] = w * (row[0] + row[1] * d + row[2] * d * d);
+    }
+  };
+  std::vector<double> inner, c;
+  int first = 0;
+  if (count > 2 * reach) weights(reach, inner, first);
+  for (int j = 0; j < count; ++j) {
+    const bool interior = j >= reach && j + reach < count && !inner.empty();
+    if (!interior) weights(j, c, first);
+    const std::vector<double>& use = interior ? inner : c;
+    const int from = interior ? j - reach : first;
+    double sum = 0;
+    for (std::size_t i = 0; i < use.size(); ++i) sum += use[i] * values[(from + i) * stride];
+    slope[j * stride] = sum;
   }
 }
 

@@ -47,9 +47,9 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
       transfer_(make_transfer(grid, material, k, rules, readings)) {
   out_.faces.assign(grid.count() * 2 * grid.dim, 0.0);
   out_.generation.assign(grid.count(), -1);
-  if (rules == RuleSet::Directional && grid.dim == 2) {  // the only rule type that writes them
-    out_.shear.assign(grid.count(), 0.0);
-    out_.balance.assign(std::size_t(grid.cells[0]) + grid.cells[1], 0.0);
+  if (rules == RuleSet::Directional) {  // the only rule type that writes them
+    out_.shear.assign(grid.count() * (grid.dim == 3 ? 3 : 1), 0.0);
+    out_.balance.assign(2 * balance_offset(grid, 3), 0.0);
   }
 }
 

@@ -71,7 +71,7 @@ TEST(Turning, AUniformSigmaYGivesNoShearAndNoTie) {
   const Grid g = steel_plate(8, 6, false);
   std::vector<double> normal(g.count() * 2, 0.0);
   for (std::size_t c = 0; c < g.count(); ++c) normal[2 * c + 1] = -1000.0;
-  const std::vector<double> no_shear(g.count(), 0.0), no_balance(8 + 6, 0.0);
+  const std::vector<double> no_shear(g.count(), 0.0), no_balance(2 * (8 + 6 + 1), 0.0);
   const auto s = agent_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
                                          {{g.index(4, 5, 0), direction(1, false), 1.0}});
   for (std::size_t c = 0; c < g.count(); ++c) {
@@ -89,7 +89,7 @@ TEST(Turning, TheTieIsHorizontalEquilibriumZeroAtTheFreeSides) {
   const int nx = 10, ny = 7;
   const Grid g = steel_plate(nx, ny, false);
   const double h = 5e-3, W = nx * h, c = 3e7;
-  std::vector<double> tau(g.count(), 0.0), no_balance(nx + ny, 0.0), normal(g.count() * 2, 0.0);
+  std::vector<double> tau(g.count(), 0.0), no_balance(2 * (nx + ny + 1), 0.0), normal(g.count() * 2, 0.0);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) tau[g.index(i, j, 0)] = c * (j + 0.5) * h * ((i + 0.5) * h - W / 2);
   const auto s = agent_stress_components(g, normal, tau, no_balance, DirectionalCoefficients{}, 0.3,
@@ -187,4 +187,49 @@ TEST(Turning, TheMirrorPathsCarryShearToo) {
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
       EXPECT_NEAR(f.stress.shear[g.index(i, j, 0)], -f.stress.shear[g.index(nx - 1 - i, j, 0)], 1e-9 * tau_max);
+}
+
+TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
+  // 3D: a square block, the load on the centre 2 x 2 agents of its top. Each layer passes on the
+  // load, the base returns it; sigma_x and sigma_z trade places under x <-> z; tau_xy is odd in x
+  // and even in z, tau_yz odd in z.
+  const int n = 10, ny = 8;
+  Grid g = Grid::box(3, {n, ny, n}, Eigen::Vector3d(4e-3, 4e-3, 4e-3));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  Coefficients k;
+  k.gamma = 0;
+  k.directional.directions = 8;
+  std::vector<EntryLoad> loads;
+  for (int i : {4, 5})
+    for (int kz : {4, 5}) loads.push_back({g.index(i, ny - 1, kz), direction(1, false), 0.5});
+  LoadTransfer m(g, kSteel, k, RuleSet::Directional);
+  m.solve(loads);
+  const auto& d = m.diagnostics();
+  EXPECT_NEAR(d.rigid_reaction, 2.0, 1e-13);
+  EXPECT_EQ(d.passed_out, 0.0);
+  for (int j = 0; j < ny; ++j) {
+    double through = 0;
+    for (int kz = 0; kz < n; ++kz)
+      for (int i = 0; i < n; ++i) through += m.face_forces()[g.index(i, j, kz) * 6 + kPlusY];
+    EXPECT_NEAR(through, 2.0, 1e-13) << "layer " << j;
+  }
+  const auto normal = agent_stresses(g, m.face_forces());
+  const auto s = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, kSteel.poisson, loads);
+  const double sx_max = largest_magnitude(s.sigma, 3, 0), txy_max = largest_magnitude(s.shear, 3, 0);
+  const double tyz_max = largest_magnitude(s.shear, 3, 1);
+  ASSERT_GT(sx_max, 0);
+  ASSERT_GT(txy_max, 0);
+  EXPECT_NEAR(tyz_max, txy_max, 1e-9 * txy_max);
+  for (int kz = 0; kz < n; ++kz)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = g.index(i, j, kz), swap = g.index(kz, j, i), mx = g.index(n - 1 - i, j, kz);
+        const std::size_t mz = g.index(i, j, n - 1 - kz);
+        EXPECT_NEAR(s.sigma[3 * c], s.sigma[3 * swap + 2], 1e-9 * sx_max) << i << "," << j << "," << kz;
+        EXPECT_NEAR(s.sigma[3 * c], s.sigma[3 * mx], 1e-9 * sx_max);
+        EXPECT_NEAR(s.shear[3 * c], -s.shear[3 * mx], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c], s.shear[3 * mz], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c + 1], -s.shear[3 * mz + 1], 1e-9 * txy_max);
+        EXPECT_EQ(s.shear[3 * c + 2], 0.0);  // tau_xz is not modelled
+      }
 }

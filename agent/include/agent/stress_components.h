@@ -1,8 +1,8 @@
 #pragma once
 // Every stress component of the agents, from what a transfer wrote: the normal stresses of the
-// face forces, and in 2D the directional rule set's shear flux and row moment balance (agent
+// face forces, and the directional rule set's shear and row moment balance (agent
 // TransferResults::shear, ::balance). With turning paths also sigma across the march by the tie
-// scan and the bonded rigid face's layer (docs/agent-model.md, "Stress components").
+// scan and the bonded rigid face's layer (docs/agent-model.md, "Turning paths").
 #include <agent/coefficients.h>
 #include <agent/grid.h>
 #include <agent/transfer.h>

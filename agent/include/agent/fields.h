@@ -23,7 +23,8 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
                                    const StressReadings& readings, int load_dir, double beta, double poisson);
 
 /// Normal strains per agent, 3 values (eps_x, eps_y, eps_z), by Hooke's law: plane stress in 2D
-/// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. Agents carry no shear.
+/// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. The shear strain is not here:
+/// node_displacements_marched takes gamma_xy from the shear stress.
 std::vector<double> agent_strains(const Grid& grid, const Material& material, const std::vector<double>& stresses);
 
 /// Where each displacement component is zero, per axis: a position along the axis in slots

@@ -250,6 +250,8 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   r["face_force"] = take(std::move(out.state.face_forces), {ssize(n), ssize(2 * dim)});
   r["generation"] = take(std::move(out.state.generation), {ssize(n)});
   r["stress"] = take(std::move(out.state.stress), {ssize(n), ssize(dim)});
+  r["shear"] = take(std::move(out.state.shear), {ssize(n), ssize(agent::shear_count(out.dim))});  // 2D tau_xy; 3D xy, yz, xz
+  r["von_mises"] = take(std::move(out.state.von_mises), {ssize(n)});
   r["strain"] = take(std::move(out.state.strain), {ssize(n), 3});
   const std::size_t nodes = out.state.displacement.size() / dim;
   r["displacement"] = take(std::move(out.state.displacement), {ssize(nodes), ssize(dim)});
@@ -540,6 +542,9 @@ PYBIND11_MODULE(workbench, m) {
       d["fitted"] = c.fitted;
       d["fit_min"] = c.fit_min;
       d["fit_max"] = c.fit_max;
+      py::list choices;  // a named choice's names (its value is the index); empty for a number
+      for (int i = 0; i < c.choice_count; ++i) choices.append(c.choices[i]);
+      d["choices"] = choices;
       out.append(d);
     }
     return out;

@@ -27,6 +27,11 @@ std::string CoefficientSpec::problem(double v) const {
   const bool inside = std::isfinite(v) && (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max) &&
                       (!integer || v == std::floor(v));
   if (inside) return "";
+  if (choices) {  // a named choice: its names, not its index
+    std::string names;
+    for (int i = 0; i < choice_count; ++i) names += std::string(i ? ", " : "") + "\"" + choices[i] + "\"";
+    return "must be one of " + names + " (got index " + shortest(v) + ")";
+  }
   std::string range;
   if (max >= 1e100)
     range = min_open ? "> " + shortest(min) : ">= " + shortest(min);

@@ -58,7 +58,7 @@ namespace {
 template <class Slots>
 void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k, double gamma,
            const std::vector<EntryLoad>& loads, std::vector<double>& faces, std::vector<std::int32_t>& generation,
-           Diagnostics& d) {
+           Diagnostics& d, double* shear, double* balance) {
   const Slots slots = layout;  // a local: its strides and flags stay in registers
   const int dim = g.dim, nd = 2 * dim, n = k.directions;
   const int directions = dim == 3 ? n * n : n;  // 3D: a fan along each lateral axis
@@ -174,6 +174,11 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         kv = (-mv * suu + mu * suv) / det;
       }
       if (ku == 0 && kv == 0) return;
+      if (balance) {  // the slopes alone say it
+        double* at_layer = balance + 2 * (balance_offset(g, a) + layer);
+        at_layer[0] += ku;
+        at_layer[1] += kv;
+      }
       for (int v = 0; v < n1; ++v)
         for (int u = 0; u < n0; ++u) {
           const std::size_t cell = slot_of(layer, u, v);
@@ -188,6 +193,186 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         }
     };
 
+    // tau_xy of a packet of force F and lateral slope s: the ray's stress -F n n^T / A with n
+    // along (s, -1) for a march down y: +F s / A; marching up (or along +x), -F s / A.
+    const double tau_sign = forward ? -1.0 : 1.0, area_across = g.face_area(a);
+    // The shear components of (march, lateral) in TransferResults::shear: 2D tau_xy; 3D xy, yz, xz.
+    const int shears = dim == 3 ? 3 : 1, pair_u = shear_pair(a, l0), pair_v = shear_pair(a, l1);
+    // Rows of body along the march from `layer` in the entry's column: the depth the paths turn in.
+    auto depth_of_body = [&](int layer) {
+      int rows = 0;
+      for (; layer >= 0 && layer < g.cells[a] && !air(slot_of(layer, eu, ev)); layer += step) ++rows;
+      return rows * row;
+    };
+    // Turning paths (docs/agent-model.md, "Turning paths"): packet k leaves the load at the fan's
+    // slope s_k and turns toward its target, the quantile of its weight in the fan mapped onto the
+    // body's width on its side: x_k(d) = x0 + L_k tanh(s_k d / L_k). Each row deposits every
+    // direction's force as a Gaussian about its path (variance diffusion_length x depth), its tails
+    // mirrored at the ends of the row's run of agents and normalised over the run, so each row
+    // carries the direction's force exactly. In 3D a packet is a pair of directions, one per lateral
+    // axis, its weight and its deposit the product of both axes': a row's force is the product of
+    // one distribution per axis (of the runs through the entry's lateral lines). What leaves through
+    // a row's exit faces (or lands on air) leaves the load; the rest goes on.
+    struct AxisPaths {  // one lateral axis: per direction its turn L_k and what it carries
+      int axis = 0, entry = 0;
+      double size = 1, x0 = 0;
+      std::vector<double> turn, mass;   // 2D: each direction's force; 3D: its weight (x the load's rest)
+      std::vector<double> force, shear; // a row's: sum over directions of mass x share (x slope)
+      int from = 0, to = -1;            // the agents they cover
+    };
+    const double root2 = std::sqrt(2.0);
+    auto cdf = [root2](double z) { return 0.5 * std::erfc(-z / root2); };
+    // The run of agents along lateral axis `which` (0: l0, 1: l1) through (layer, u, v).
+    auto run_of = [&](int layer, int which, int u, int v, int& lo, int& hi) {
+      auto is_air = [&](int i) { return which == 0 ? air(slot_of(layer, i, v)) : air(slot_of(layer, u, i)); };
+      const int n_w = which == 0 ? n0 : n1;
+      lo = hi = which == 0 ? u : v;
+      while (lo > 0 && !is_air(lo - 1)) --lo;
+      while (hi < n_w - 1 && !is_air(hi + 1)) ++hi;
+    };
+    auto march_turning = [&](const EntryLoad& entry_load, double body_depth) {
+      std::array<AxisPaths, 2> axes;
+      for (int which = 0; which < (dim == 3 ? 2 : 1); ++which) {
+        AxisPaths& p = axes[which];
+        p.axis = which == 0 ? l0 : l1;
+        p.entry = which == 0 ? eu : ev;
+        p.size = g.size[p.axis];
+        const double* pos = at[p.axis].data();
+        p.x0 = (pos[p.entry] + 0.5) * p.size;
+        int lo = 0, hi = 0;
+        run_of(entry[a], which, eu, ev, lo, hi);
+        const double width_low = p.x0 - pos[lo] * p.size, width_high = (pos[hi] + 1) * p.size - p.x0;
+        double below = 0;  // the fan's weight of the directions before k
+        for (int dir = 0; dir < n; ++dir) {
+          const double s = fan.slope[dir], q = below + 0.5 * fan.weight[dir];
+          below += fan.weight[dir];
+          double L = s < 0 ? -width_low * (1 - 2 * q) : width_high * (2 * q - 1);
+          if (!(s * L > 0)) L = std::copysign(1e-9 * p.size, s);  // a target on the wrong side: straight down
+          // No farther out than its straight ray reaches at the body's far face (reach 1: not fitted).
+          p.turn.push_back(std::copysign(std::min(std::abs(L), std::abs(s) * body_depth), s));
+          p.mass.push_back(fan.weight[dir] * (dim == 2 ? entry_load.force : 1.0));
+        }
+      }
+      double rest = dim == 3 ? entry_load.force : 1.0;  // 3D: the load still in the body
+      std::vector<double> shares;
+      // Row `layer`'s distribution along one lateral axis. 2D: each direction over the run its path
+      // lies in (a path over air passes out), its force leaving where the row's agents exit. 3D:
+      // over the run through the entry's lateral line (false if the entry's line is air there).
+      auto distribute = [&](AxisPaths& p, int which, int layer, bool last_layer, double depth_m) {
+        const double* pos = at[p.axis].data();
+        const double spread = std::max(std::sqrt(k.diffusion_length * depth_m), 0.3 * p.size);
+        const int n_w = which == 0 ? n0 : n1;
+        int lo = 0, hi = 0;
+        if (dim == 3) {
+          if (air(slot_of(layer, eu, ev))) return false;
+          run_of(layer, which, eu, ev, lo, hi);
+        }
+        p.force.assign(std::size_t(n_w), 0.0);
+        p.shear.assign(std::size_t(n_w), 0.0);
+        p.from = n_w;
+        p.to = -1;
+        for (int dir = 0; dir < n; ++dir) {
+          if (p.mass[dir] == 0) continue;
+          const double s = fan.slope[dir], L = p.turn[dir], t = std::tanh(s * depth_m / L);
+          double x = p.x0 + L * t;
+          const double slope = s * (1 - t * t);
+          if (dim == 2) {
+            const int iu = slot_at(p.axis, x / p.size);
+            if (air(slot_of(layer, iu, 0))) {  // the body ends under the path
+              d.passed_out += p.mass[dir];
+              p.mass[dir] = 0;
+              continue;
+            }
+            run_of(layer, 0, iu, 0, lo, hi);
+          }
+          const double edge_lo = pos[lo] * p.size, edge_hi = (pos[hi] + 1) * p.size;
+          x = std::min(std::max(x, edge_lo), edge_hi);
+          const int from = std::max(lo, slot_at(p.axis, (x - 6 * spread) / p.size));
+          const int to = std::min(hi, slot_at(p.axis, (x + 6 * spread) / p.size));
+          shares.assign(std::size_t(to - from + 1), 0.0);
+          double total = 0;
+          for (int i = from; i <= to; ++i) {
+            const double xa = pos[i] * p.size, xb = xa + p.size;
+            double share = 0;
+            for (const double c : {x, 2 * edge_lo - x, 2 * edge_hi - x}) share += cdf((xb - c) / spread) - cdf((xa - c) / spread);
+            shares[i - from] = share;
+            total += share;
+          }
+          if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
+            std::fill(shares.begin(), shares.end(), 0.0);
+            shares[std::min(std::max(slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
+          }
+          double exits = 0;
+          for (int i = from; i <= to; ++i) {
+            const double m = p.mass[dir] * shares[i - from] / total;
+            p.force[i] += m;
+            p.shear[i] += m * slope;
+            if (dim == 2 && (last_layer || air(slot_of(layer + step, i, 0)))) exits += m;
+          }
+          if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
+          p.from = std::min(p.from, from);
+          p.to = std::max(p.to, to);
+        }
+        return true;
+      };
+      AxisPaths& pu = axes[0];
+      AxisPaths& pv = axes[1];
+      if (dim == 2) {  // one lateral line: a single agent across l1
+        pv.force.assign(1, 1.0);
+        pv.shear.assign(1, 0.0);
+        pv.from = pv.to = 0;
+      }
+      for (int layer = entry[a], depth = 0; layer >= 0 && layer < g.cells[a]; layer += step, ++depth) {
+        const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
+        const double depth_m = (depth + 0.5) * row;  // of the row's centre below the loaded face
+        if (!distribute(pu, 0, layer, last_layer, depth_m) || (dim == 3 && !distribute(pv, 1, layer, last_layer, depth_m))) {
+          d.passed_out += rest;  // 3D: the body ends under the load's line
+          return;
+        }
+        double left = 0;  // 3D: leaves through the row's exit faces or lands on air
+        for (int v = pv.from; v <= pv.to; ++v)
+          for (int u = pu.from; u <= pu.to; ++u) {
+            const double f_uv = rest * pu.force[u] * pv.force[v];
+            if (f_uv == 0) continue;
+            const std::size_t cell = slot_of(layer, u, v);
+            if (air(cell)) {  // 3D: the body is not a box across the two runs
+              left += f_uv;
+              d.passed_out += f_uv;
+              continue;
+            }
+            ++d.packet_moves;
+            const auto current = std::uint32_t(generation[cell]);
+            d.agents_generated += current == UINT32_MAX;
+            generation[cell] = std::int32_t(std::min(current, std::uint32_t(depth + std::abs(u - eu) + std::abs(v - ev))));
+            double* f = faces.data() + cell * nd;
+            f[enter_face] += f_uv;
+            row_force[u + std::size_t(n0) * v] += f_uv;
+            if (shear) {
+              shear[cell * shears + pair_u] += tau_sign * rest * pu.shear[u] * pv.force[v] / area_across;
+              if (dim == 3) shear[cell * shears + pair_v] += tau_sign * rest * pu.force[u] * pv.shear[v] / area_across;
+            }
+            if (last_layer || air(slot_of(layer + step, u, v))) {
+              left += f_uv;
+              if (rigid(cell, exit_face)) {
+                f[exit_face] += f_uv;
+                d.rigid_reaction += f_uv;
+              } else {
+                d.passed_out += f_uv;
+              }
+            } else {
+              f[exit_face] += f_uv;
+            }
+          }
+        if (dim == 3) rest = last_layer ? 0.0 : rest - left;
+        balance_row_moment(layer, last_layer, row_force);
+        const bool any = dim == 3 ? rest != 0 : std::any_of(pu.mass.begin(), pu.mass.end(), [](double m) { return m != 0; });
+        if (!any) break;
+      }
+    };
+    if (k.paths == Paths::Turning) {
+      march_turning(load, depth_of_body(entry[a]));
+      continue;
+    }
     for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
       const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
       // A packet piece arriving at lateral position (x, y) of the next row, in agents, with
@@ -253,6 +438,10 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
             double* f = faces.data() + cell * nd;
             f[enter_face] += force;
             row_force[u + std::size_t(n0) * v] += force;
+            if (shear) {
+              shear[cell * shears + pair_u] += tau_sign * force * su / area_across;
+              if (dim == 3) shear[cell * shears + pair_v] += tau_sign * force * sv / area_across;
+            }
             f[2 * l0] += force * side_force_u;
             f[2 * l0 + 1] += force * side_force_u;
             if (dim == 3) {
@@ -298,15 +487,20 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
 
 void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                           const std::vector<EntryLoad>& loads, std::vector<double>& faces,
-                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics) {
-  with_slots(grid, [&](const auto& slots) { march(grid, slots, k, gamma, loads, faces, generation, diagnostics); });
+                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics, std::vector<double>& shear,
+                          std::vector<double>& balance) {
+  with_slots(grid, [&](const auto& slots) {
+    march(grid, slots, k, gamma, loads, faces, generation, diagnostics, shear.empty() ? nullptr : shear.data(),
+          balance.empty() ? nullptr : balance.data());
+  });
 }
 
 DirectionalTransfer::DirectionalTransfer(const Coefficients& k) : k_(k) { check_coefficients(k, RuleSet::Directional); }
 
 void DirectionalTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   out.clear_all();
-  directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics);
+  directional_transfer(grid, k_.directional, k_.gamma, loads, out.faces, out.generation, out.diagnostics, out.shear,
+                       out.balance);
 }
 
 }  // namespace agent

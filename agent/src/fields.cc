@@ -171,4 +171,78 @@ std::vector<double> node_displacements(const Grid& grid, const std::vector<doubl
   return u;
 }
 
+std::vector<double> node_displacements_marched(const Grid& grid, const std::vector<double>& strains,
+                                               const std::vector<double>& shear, const Material& material,
+                                               const Datums& datums, int a) {
+  auto u = node_displacements(grid, strains, datums);
+  const int l = 1 - a;
+  if (grid.dim != 2 || grid.tiled() || shear.size() != grid.count()) return u;
+  const int n_l = grid.cells[l], n_a = grid.cells[a];
+  const bool base_low = datums[a] == 0;
+  if (!base_low && datums[a] != n_a) return u;
+  for (std::size_t c = 0; c < grid.count(); ++c)
+    if (grid.is_air(c)) return u;
+  // (i along l, k agents or nodes counted from the rigid face along a)
+  auto agent = [&](int i, int k) {
+    std::array<int, 3> c{0, 0, 0};
+    c[l] = i;
+    c[a] = base_low ? k : n_a - 1 - k;
+    return grid.index(c[0], c[1], c[2]);
+  };
+  auto node = [&](int i, int k) {
+    std::array<int, 3> c{0, 0, 0};
+    c[l] = i;
+    c[a] = base_low ? k : n_a - k;
+    return grid.node_index(c[0], c[1], c[2]);
+  };
+  const double h_l = grid.size[l], h_a = (base_low ? 1 : -1) * grid.size[a];
+  const double shear_modulus = material.young / (2 * (1 + material.poisson));
+  // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at its nodes.
+  std::vector<double> march((n_l + 1) * std::size_t(n_a + 1), 0.0), line(march.size(), 0.0);
+  auto at = [&](int i, int k) { return std::size_t(i) + std::size_t(n_l + 1) * k; };
+  for (int i = 0; i < n_l; ++i) {
+    double carried = 0;
+    for (int k = 0; k < n_a; ++k) {
+      auto mid = [&](int column) { return 0.5 * (u[node(column, k) * 2 + a] + u[node(column, k + 1) * 2 + a]); };
+      const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
+      carried += (shear[agent(i, k)] / shear_modulus - dua_dl) * h_a;
+      const double share = 0.5;  // a node between two columns takes the mean of both
+      march[at(i, k + 1)] += (i == 0 ? 1.0 : share) * carried;
+      march[at(i + 1, k + 1)] += (i + 1 == n_l ? 1.0 : share) * carried;
+    }
+  }
+  // eps_l integrated along each row of nodes (a node row's strain: the mean of the agent rows beside it).
+  for (int k = 0; k <= n_a; ++k) {
+    const int below = std::max(k - 1, 0), above = std::min(k, n_a - 1);
+    double carried = 0, offset = 0;
+    for (int i = 0; i < n_l; ++i) {
+      carried += 0.5 * (strains[3 * agent(i, below) + l] + strains[3 * agent(i, above) + l]) * h_l;
+      line[at(i + 1, k)] = carried;
+    }
+    for (int i = 0; i <= n_l; ++i) offset += march[at(i, k)] - line[at(i, k)];
+    offset /= n_l + 1;
+    for (int i = 0; i <= n_l; ++i) u[node(i, k) * 2 + l] = line[at(i, k)] + offset;
+  }
+  return u;
+}
+
+void hold_rigid_faces(const Grid& grid, std::vector<double>& u) {
+  const int dim = grid.dim;
+  for (const auto& f : grid.boundary_faces()) {
+    if (grid.boundary(f.side, f.cell) != Boundary::Rigid) continue;
+    const int a = axis_of(f.side), l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;
+    auto c = grid.coords(f.cell);
+    c[a] += is_positive(f.side) ? 1 : 0;
+    for (int d1 = 0; d1 < (dim == 3 ? 2 : 1); ++d1)
+      for (int d0 = 0; d0 < 2; ++d0) {
+        std::array<int, 3> p = c;
+        p[l0] += d0;
+        p[l1] += d1;
+        const std::size_t n = grid.node_index(p[0], p[1], p[2]);
+        if (n == Grid::npos) continue;
+        for (int x = 0; x < dim; ++x) u[n * dim + x] = 0.0;
+      }
+  }
+}
+
 }  // namespace agent

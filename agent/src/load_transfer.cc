@@ -36,6 +36,8 @@ std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(cons
 void TransferResults::clear_all() {
   std::fill(faces.begin(), faces.end(), 0.0);
   std::fill(generation.begin(), generation.end(), -1);
+  std::fill(shear.begin(), shear.end(), 0.0);
+  std::fill(balance.begin(), balance.end(), 0.0);
   diagnostics = Diagnostics{};
 }
 
@@ -45,10 +47,14 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
       transfer_(make_transfer(grid, material, k, rules, readings)) {
   out_.faces.assign(grid.count() * 2 * grid.dim, 0.0);
   out_.generation.assign(grid.count(), -1);
+  if (rules == RuleSet::Directional) {  // the only rule type that writes them
+    out_.shear.assign(grid.count() * (grid.dim == 3 ? 3 : 1), 0.0);
+    out_.balance.assign(2 * balance_offset(grid, 3), 0.0);
+  }
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
-  return out_.faces.capacity() * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) +
+  return (out_.faces.capacity() + out_.shear.capacity() + out_.balance.capacity()) * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) +
          grid_.flags.capacity() + grid_.tiles.memory_bytes() +
          std::visit([](const auto& t) { return t.memory_bytes(); }, transfer_);
 }

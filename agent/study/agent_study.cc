@@ -40,6 +40,12 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   // Every coefficient from the one table (agent/coefficients.h), at the library's defaults.
   for (const auto& c : agent::kCoefficients) {
     if (c.optional && !t.has(c.name)) continue;  // unset: poisson_decay follows alpha2
+    if (c.choices) {  // a named choice (paths): the name in the file, its index in the table
+      const std::vector<std::string> names(c.choices, c.choices + c.choice_count);
+      const auto name = t.text(c.name, names[std::size_t(c.default_value())], names);
+      c.set(k, double(std::find(names.begin(), names.end(), name) - names.begin()));
+      continue;
+    }
     if (c.integer) {
       c.set(k, t.integer(c.name, int(c.default_value()), int(c.min), int(c.max)));
       continue;
@@ -175,12 +181,23 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
   s.face_forces = model.face_forces();
   s.generation = model.generation();
   s.diagnostics = model.diagnostics();
-  s.stress = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
-                                  model.coefficients().beta, model.material().poisson);
+  const auto normal = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
+                                           model.coefficients().beta, model.material().poisson);
+  // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
+  auto parts = agent::agent_stress_components(grid, normal, model.shear_flux(), model.balance_force(),
+                                              model.coefficients().directional, model.material().poisson, loads);
+  s.stress = std::move(parts.sigma);
+  s.shear = std::move(parts.shear);
+  s.von_mises = std::move(parts.von_mises);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
-  s.displacement = agent::node_displacements(grid, s.strain, agent::choose_datums(grid, loads));
+  const auto datums = agent::choose_datums(grid, loads);
+  s.displacement = model.shear_flux().empty()
+                       ? agent::node_displacements(grid, s.strain, datums)
+                       : agent::node_displacements_marched(grid, s.strain, s.shear, model.material(), datums,
+                                                           agent::axis_of(loads.front().dir));
+  agent::hold_rigid_faces(grid, s.displacement);
   // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
-  for (auto* field : {&s.stress, &s.strain, &s.displacement})
+  for (auto* field : {&s.stress, &s.shear, &s.von_mises, &s.strain, &s.displacement})
     for (double& v : *field) v += 0.0;
   return s;
 }
@@ -209,6 +226,8 @@ namespace {
 
 /// The faces of an agent in face_forces order: the face force components.
 const char* kDirections[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+/// The shears of AgentState::shear, in its order (2D: the first).
+const char* kShearNames[3] = {"tau_xy", "tau_yz", "tau_xz"};
 
 /// Cell fields in mesh element order, named with their units (ParaView shows the names).
 std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentState& s) {
@@ -219,12 +238,17 @@ std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentSt
   fields.push_back({"generation [-]", 1, {}, {}, {}});
   fields.push_back({"face_force [N]", nd, {}, std::vector<std::string>(kDirections, kDirections + nd), {}});
   for (int a = 0; a < dim; ++a) fields.push_back({std::string("sigma_") + char('x' + a) + " [Pa]", 1, {}, {}, {}});
+  const int shears = agent::shear_count(dim);
+  for (int t = 0; t < shears; ++t) fields.push_back({std::string(kShearNames[t]) + " [Pa]", 1, {}, {}, {}});
+  fields.push_back({"von_mises [Pa]", 1, {}, {}, {}});
   fields.push_back({"strain [-]", 3, {}, {"x", "y", "z"}, {}});
   for (std::size_t cell : order) {
     fields[0].values.push_back(s.generation[cell]);
     for (int f = 0; f < nd; ++f) fields[1].values.push_back(s.face_forces[cell * nd + f]);
     for (int a = 0; a < dim; ++a) fields[2 + a].values.push_back(s.stress[cell * dim + a]);
-    for (int a = 0; a < 3; ++a) fields[2 + dim].values.push_back(s.strain[cell * 3 + a]);
+    for (int t = 0; t < shears; ++t) fields[2 + dim + t].values.push_back(s.shear[cell * shears + t]);
+    fields[2 + dim + shears].values.push_back(s.von_mises[cell]);
+    for (int a = 0; a < 3; ++a) fields[3 + dim + shears].values.push_back(s.strain[cell * 3 + a]);
   }
   return fields;
 }
@@ -251,7 +275,9 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
   out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",generation";
   for (int f = 0; f < nd; ++f) out << ",f_" << kDirections[f] << " [N]";
   for (int a = 0; a < dim; ++a) out << ",sigma_" << char('x' + a) << " [Pa]";
-  out << ",eps_x [-],eps_y [-],eps_z [-]\n";
+  const int shears = agent::shear_count(dim);
+  for (int t = 0; t < shears; ++t) out << ',' << kShearNames[t] << " [Pa]";
+  out << ",von_mises [Pa],eps_x [-],eps_y [-],eps_z [-]\n";
   for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
     const std::size_t cell = study.mesh.cell_of_element[e];
     const Eigen::Vector3d x = grid.centre(cell);
@@ -260,6 +286,8 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
     out << ',' << s.generation[cell];
     for (int f = 0; f < nd; ++f) out << ',' << s.face_forces[cell * nd + f];
     for (int a = 0; a < dim; ++a) out << ',' << s.stress[cell * dim + a];
+    for (int t = 0; t < shears; ++t) out << ',' << s.shear[cell * shears + t];
+    out << ',' << s.von_mises[cell];
     for (int a = 0; a < 3; ++a) out << ',' << s.strain[cell * 3 + a];
     out << '\n';
   }
@@ -348,6 +376,8 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
     states.push_back(evaluate(study, model, factor));
     const auto& state = states.back();
     check_finite(state.face_forces, "face force");
+    check_finite(state.stress, "stress");
+    check_finite(state.shear, "shear stress");
     check_finite(state.displacement, "displacement");
     char name[64];
     std::snprintf(name, sizeof name, "agent_step_%03d.vtu", k);

@@ -3,6 +3,7 @@
 #include <agent/fields.h>
 #include <agent/load_transfer.h>
 #include <agent/mesh_import.h>
+#include <agent/stress_components.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
 #include <workbench/study_setup.h>
@@ -56,7 +57,9 @@ AgentStudy load_agent_study(const workbench::CaseFile& file);
 struct AgentState {
   std::vector<double> face_forces;   ///< 2*dim per agent, grid order [N]
   std::vector<std::int32_t> generation;
-  std::vector<double> stress;        ///< dim per agent [Pa]
+  std::vector<double> stress;        ///< dim normal stresses per agent [Pa]
+  std::vector<double> shear;         ///< per agent: 2D tau_xy, 3D tau_xy, tau_yz, tau_xz [Pa]
+  std::vector<double> von_mises;     ///< per agent [Pa]
   std::vector<double> strain;        ///< 3 per agent
   std::vector<double> displacement;  ///< dim per node [m]
   agent::Diagnostics diagnostics;

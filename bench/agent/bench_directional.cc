@@ -3,10 +3,15 @@
 //   taskset -c 1 build/bench/directional_bench --benchmark_counters_tabular=true
 //
 // Directional2D/n: one load into the top of an n x n plate of 1 mm agents on a rigid base, the
-// default (calibrated) coefficients, 32 directions; Directional3D/n: an n^3 block, 16 x 16
-// directions. Counters: moves/s (packets moved per second: the cost is agents reached times
-// directions), reached (agents), moves per agent reached.
+// default (calibrated) coefficients, 32 directions, turning paths (the default);
+// Directional2DMirror/n: the same on mirrored straight paths; Directional3D/n: an n^3 block,
+// 16 x 16 directions. Counters: moves/s (packets moved per second; turning paths: deposits of a
+// direction into an agent; the cost is agents reached times directions), reached (agents), moves
+// per agent reached. Directional2DStress/n: the turning plate's stress components alone (the
+// shear, the tie scan, the base layer: agent_stress_components), per agent.
+#include <agent/fields.h>
 #include <agent/load_transfer.h>
+#include <agent/stress_components.h>
 
 #include <benchmark/benchmark.h>
 
@@ -14,12 +19,13 @@ using namespace agent;
 
 namespace {
 
-void directional(benchmark::State& state, int dim, int directions) {
+void directional(benchmark::State& state, int dim, int directions, Paths paths = Paths::Turning) {
   const int n = int(state.range(0));
   Grid g = Grid::box(dim, {n, n, dim == 3 ? n : 1}, Eigen::Vector3d::Constant(1e-3), 1e-3);
   g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
   Coefficients k;
   k.directional.directions = directions;
+  k.directional.paths = paths;
   LoadTransfer m(g, {206e9, 0.3}, k, RuleSet::Directional);
   const std::vector<EntryLoad> loads{
       {g.index(n / 2, n - 1, dim == 3 ? n / 2 : 0), direction(1, false), 1.0}};
@@ -34,10 +40,29 @@ void directional(benchmark::State& state, int dim, int directions) {
 }
 
 void Directional2D(benchmark::State& state) { directional(state, 2, 32); }
+void Directional2DMirror(benchmark::State& state) { directional(state, 2, 32, Paths::Mirror); }
 void Directional3D(benchmark::State& state) { directional(state, 3, 16); }
+
+void Directional2DStress(benchmark::State& state) {
+  const int n = int(state.range(0));
+  Grid g = Grid::box(2, {n, n, 1}, Eigen::Vector3d::Constant(1e-3), 1e-3);
+  g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
+  const Coefficients k;
+  LoadTransfer m(g, {206e9, 0.3}, k, RuleSet::Directional);
+  const std::vector<EntryLoad> loads{{g.index(n / 2, n - 1, 0), direction(1, false), 1.0}};
+  m.solve(loads);
+  const auto normal = agent_stresses(g, m.face_forces());
+  for (auto _ : state) {
+    const auto s = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, 0.3, loads);
+    benchmark::DoNotOptimize(s.sigma.data());
+  }
+  state.counters["agents/s"] = benchmark::Counter(double(g.count()), benchmark::Counter::kIsIterationInvariantRate);
+}
 
 }  // namespace
 
-BENCHMARK(Directional2D)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Directional2D)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Directional2DMirror)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Directional2DStress)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Directional3D)->Arg(32)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -16,9 +16,11 @@ namespace {
 
 const double kPi = std::acos(-1.0);
 
-/// Two packets of equal weight with slopes -+0.3, no diffusion.
+/// Two packets of equal weight with slopes -+0.3, no diffusion, on straight paths mirrored by the
+/// free sides (the path law these hand-checked positions follow).
 Coefficients two_packets() {
   Coefficients k;
+  k.directional.paths = Paths::Mirror;
   k.gamma = 0;
   k.directional.directions = 2;
   k.directional.fan_angle = 2 * std::atan(0.3) * 180 / kPi;  // the angles are -+fan_angle / 2
@@ -143,6 +145,7 @@ TEST(Directional, TheSpreadGrowsLinearlyWithDepth) {
   Grid g = Grid::box(2, {w, h, 1}, Eigen::Vector3d(1, 1, 1), 1.0);
   g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
   Coefficients k;
+  k.directional.paths = Paths::Mirror;  // straight rays (turning paths turn: not linear by design)
   k.directional.diffusion_length = 0;
   k.directional.fan_angle = 60;  // keeps the fan inside the plate down to the base
   const Fan fan = entry_fan(k.directional, 2);

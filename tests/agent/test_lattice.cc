@@ -95,8 +95,10 @@ TEST(CompressedLattice, TwoSquares1e10ApartAreThreeByThreeSlotsAtTheirTruePlaces
     EXPECT_DOUBLE_EQ(both.diagnostics().applied, 5.0);
     // Memory: 9 slots of 4 face forces (8 B), a generation (4 B) and a flag (1 B) = 333 B, the
     // four per-layer scratch arrays of at most 3 doubles (96 B), and the touched-layer list: one
-    // entry (24 B) per load and row it reaches, 2 here.
-    EXPECT_LE(both.memory_bytes(), 333u + 96u + 2u * 24u);
+    // entry (24 B) per load and row it reaches, 2 here. The directional rule set: a shear per slot
+    // (8 B) and two moment-balance slopes per layer across each axis (2 x (3 + 3 + 1) x 8 B)
+    // instead of the scratch.
+    EXPECT_LE(both.memory_bytes(), rules == RuleSet::Directional ? 333u + 9u * 8u + 14u * 8u : 333u + 96u + 2u * 24u);
   }
 }
 

@@ -127,12 +127,13 @@ TEST(Slots, MemoryBytesCountsTheTileTable) {
   const Grid tiled = tile(dense);
   ASSERT_TRUE(tiled.tiled());
   const LoadTransfer m(tiled, kMaterial, Coefficients{}, RuleSet::Directional);
-  // Directional holds no scratch: results (4 forces, a generation) and a flag per slot, and the
-  // table: 5 x 19 tiles of 4 B, and 3 ints per stored tile.
+  // Directional holds no scratch: results (4 forces, a shear, a generation) and a flag per slot, two
+  // moment-balance slopes per layer across each axis of the box (300 + 300 + 1), and the table: 5 x 19 tiles of 4 B, and 3
+  // ints per stored tile.
   const std::size_t slots = tiled.count();
   EXPECT_EQ(tiled.tiles.number.size(), 5u * 19u);
   const Tiles& t = m.grid().tiles;
-  EXPECT_EQ(m.memory_bytes(), slots * (4 * 8 + 4 + 1) + t.number.capacity() * 4 + t.first.capacity() * 12);
+  EXPECT_EQ(m.memory_bytes(), slots * (5 * 8 + 4 + 1) + 2 * (300 + 300 + 1) * 8 + t.number.capacity() * 4 + t.first.capacity() * 12);
 }
 
 }  // namespace

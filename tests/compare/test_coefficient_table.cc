@@ -21,6 +21,7 @@ const std::string kSource = WORKBENCH_SOURCE_DIR;
 /// A valid value of the row other than its default (a quarter of the way to a fit bound).
 double other_value(const agent::CoefficientSpec& c) {
   const double d = c.default_value();
+  if (c.choices) return d + 1 < c.choice_count ? d + 1 : 0;  // the next name
   if (c.integer) return d + 2 <= c.max ? d + 2 : d - 2;
   return c.fit_max > d ? d + 0.25 * (c.fit_max - d) : d - 0.25 * (d - c.fit_min);
 }
@@ -34,7 +35,9 @@ std::string case_text() {
     << "[agent]\nrule_set = \"patent\"\n";
   for (const auto& c : agent::kCoefficients) {
     s << c.name << " = ";
-    if (c.integer)
+    if (c.choices)
+      s << '"' << c.choice_name(other_value(c)) << "\"\n";
+    else if (c.integer)
       s << int(other_value(c)) << "\n";
     else
       s << std::showpoint << other_value(c) << std::noshowpoint << "\n";

@@ -256,6 +256,8 @@ class CoefficientTable(unittest.TestCase):
     @staticmethod
     def other_value(c):
         d = c["default"]
+        if c["choices"]:
+            return (d + 1) % len(c["choices"])
         if c["integer"]:
             return d + 2
         return d + 0.25 * (c["fit_max"] - d) if c["fit_max"] > d else d - 0.25 * (d - c["fit_min"])
@@ -265,7 +267,7 @@ class CoefficientTable(unittest.TestCase):
         self.assertEqual(len({c["name"] for c in table}), len(table))
         for c in table:
             v = self.other_value(c)
-            value = int(v) if c["integer"] else v
+            value = c["choices"][int(v)] if c["choices"] else int(v) if c["integer"] else v
             case = plate(**{"rule_set": c["rule_sets"][0], c["name"]: value})
             r = workbench.run_agent(workbench.Case.from_dict(case))
             self.assertEqual(r["coefficients"][c["name"]], v, c["name"])
@@ -287,6 +289,11 @@ class CoefficientTable(unittest.TestCase):
         for name, (_, kind, unit, default, meaning) in rows.items():
             c = table[name]
             self.assertEqual(unit, c["unit"], name)
+            if c["choices"]:  # a named choice: its names, the default by name
+                self.assertEqual(default, f'"{c["choices"][int(c["default"])]}"', name)
+                for choice in c["choices"]:
+                    self.assertIn(f'"{choice}"', kind, name)
+                continue
             if name != "poisson_decay":  # its default is "alpha2" (it follows alpha2 until set)
                 self.assertEqual(float(default), c["default"], name)
             lo, hi = f"{c['min']:g}", f"{c['max']:g}"

@@ -27,6 +27,12 @@ constexpr const char* rule_set_name(RuleSet r) {
   return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : "directional";
 }
 
+/// How the directional rule set's packets go (docs/agent-model.md, "Paths"): turning toward the
+/// place where they belong once the load fills the width (sigma_x from the tie scan), or straight
+/// rays mirrored by the free sides (the first rule set). Named in kPathNames, in this order.
+enum class Paths { Turning, Mirror };
+inline constexpr const char* kPathNames[] = {"turning", "mirror"};
+
 /// Coefficients of the directional rule set. The defaults are the calibrated ones
 /// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
 struct DirectionalCoefficients {
@@ -38,6 +44,13 @@ struct DirectionalCoefficients {
   double fan_power_3d = 3.99;
   /// Lateral diffusion length [m]: each row adds diffusion_length * row height [m^2] of variance
   double diffusion_length = 2e-3;
+  Paths paths = Paths::Turning;
+  /// Turning paths: height of the bonded rigid face's layer (sigma_x = nu sigma_y on the face)
+  /// as a share of the width of the pressure on that face
+  double base_layer = 0.25;
+  /// Turning paths: Gaussian window [m] of the local quadratic fit that takes d/d(depth) of the
+  /// shear for the tie scan (docs/research/stress-components.md)
+  double window_length = 5e-3;
 };
 
 struct Coefficients {
@@ -79,11 +92,19 @@ struct CoefficientSpec {
   double fit_min, fit_max;  ///< a calibration's default bounds (fitted coefficients)
   bool integer;          ///< an integer (directions)
   bool optional;         ///< absent from a case, it stays unset (poisson_decay: then it follows alpha2)
-  double (*get)(const Coefficients&);  ///< the value in effect
+  double (*get)(const Coefficients&);  ///< the value in effect (a named choice: its index)
   void (*set)(Coefficients&, double);
+  /// A choice among names (a case file gives the name, summaries the index): `choice_count` names;
+  /// nullptr for a number. A choice is an integer in [0, choice_count - 1].
+  const char* const* choices = nullptr;
+  int choice_count = 0;
   /// The library's default (in effect: poisson_decay's is alpha2's).
   double default_value() const { return get(Coefficients{}); }
   bool used_by(RuleSet r) const { return rules & rule_bit(r); }
+  /// The name of choice `v` ("" for a number or an index out of range).
+  const char* choice_name(double v) const {
+    return choices && v >= 0 && v < choice_count && v == int(v) ? choices[int(v)] : "";
+  }
   /// "" when `v` is admissible, else why not ("must be in [0, 1] (got 2)").
   std::string problem(double v) const;
 };
@@ -94,7 +115,7 @@ constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
 }  // namespace detail
 
 /// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector.
-inline constexpr std::array<CoefficientSpec, 11> kCoefficients{{
+inline constexpr std::array<CoefficientSpec, 14> kCoefficients{{
     {"alpha1", "", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)",
      rule_bit(RuleSet::Patent), 0, 1, false, false, true, 0.0, 1.0, false, false,
      [](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }},
@@ -126,6 +147,14 @@ inline constexpr std::array<CoefficientSpec, 11> kCoefficients{{
      rule_bit(RuleSet::Directional), 0, 1, false, false, true, 0.0, 0.02, false, false,
      [](const Coefficients& k) { return k.directional.diffusion_length; },
      [](Coefficients& k, double v) { k.directional.diffusion_length = v; }},
+    {"base_layer", "", "turning paths: the bonded rigid face's layer (eps_x = 0 there), as a share of its pressure's width",
+     rule_bit(RuleSet::Directional), 0, 10, false, false, true, 0.0, 1.0, false, false,
+     [](const Coefficients& k) { return k.directional.base_layer; },
+     [](Coefficients& k, double v) { k.directional.base_layer = v; }},
+    {"window_length", "m", "turning paths: window of the fit that takes the shear's derivative along the march",
+     rule_bit(RuleSet::Directional), 0, 1, true, false, true, 1e-3, 0.02, false, false,
+     [](const Coefficients& k) { return k.directional.window_length; },
+     [](Coefficients& k, double v) { k.directional.window_length = v; }},
     {"poisson_decay", "", "factor per agent on a sideways (Poisson) push as it is passed on; unset: alpha2",
      detail::kSeedRules, 0, 1, false, false, false, 0.0, 1.0, false, true,
      [](const Coefficients& k) { return k.decay(); },
@@ -134,6 +163,10 @@ inline constexpr std::array<CoefficientSpec, 11> kCoefficients{{
      rule_bit(RuleSet::Directional), 2, 256, false, false, false, 2, 256, true, false,
      [](const Coefficients& k) { return double(k.directional.directions); },
      [](Coefficients& k, double v) { k.directional.directions = int(v); }},
+    {"paths", "", "how packets go: \"turning\" toward where they belong (sigma_x from the tie) or \"mirror\" (straight, mirrored by free sides)",
+     rule_bit(RuleSet::Directional), 0, 1, false, false, false, 0, 1, true, false,
+     [](const Coefficients& k) { return double(k.directional.paths); },
+     [](Coefficients& k, double v) { k.directional.paths = Paths(int(v)); }, kPathNames, 2},
 }};
 
 /// How many coefficients a calibration can fit: the first rows of kCoefficients.

@@ -24,10 +24,14 @@ Fan entry_fan(const DirectionalCoefficients& k, int dim);
 /// dropped; packets are not: a threshold per packet cuts the tails of the spreading fan, 62 % of
 /// the load on the seed plate at 5 mm agents with gamma = 1e-3 N) to `faces` (2*dim per agent),
 /// `generation` and `diagnostics`. Packets are moved, split and reflected whole, so nothing is
-/// lost on the way (diagnostics.lost stays 0).
+/// lost on the way (diagnostics.lost stays 0). Also the packets' shear per slot and the row moment
+/// balance's slopes per march axis and layer (TransferResults::shear, ::balance; left alone when
+/// empty). Paths::Turning: the turning paths, deposited row by row (docs/agent-model.md, "Turning
+/// paths"); Paths::Mirror: straight rays mirrored by the free sides.
 void directional_transfer(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                           const std::vector<EntryLoad>& loads, std::vector<double>& faces,
-                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics);
+                          std::vector<std::int32_t>& generation, Diagnostics& diagnostics, std::vector<double>& shear,
+                          std::vector<double>& balance);
 
 /// The directional rule set as a LoadTransfer rule type: it reads gamma and the directional
 /// coefficients only, and takes no reading.

@@ -23,7 +23,8 @@ std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& 
                                    const StressReadings& readings, int load_dir, double beta, double poisson);
 
 /// Normal strains per agent, 3 values (eps_x, eps_y, eps_z), by Hooke's law: plane stress in 2D
-/// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. Agents carry no shear.
+/// (eps_z from the in-plane stresses), uniaxial-free 3D Hooke in 3D. The shear strain is not here:
+/// node_displacements_marched takes gamma_xy from the shear stress.
 std::vector<double> agent_strains(const Grid& grid, const Material& material, const std::vector<double>& stresses);
 
 /// Where each displacement component is zero, per axis: a position along the axis in slots
@@ -42,5 +43,18 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
 /// the columns that share the node.
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
                                        const Datums& datums);
+
+/// 2D with a shear (agent_stress_components: `shear`, tau_xy per slot [Pa]) and loads marching
+/// along `march_axis` onto a rigid face: u along the march as node_displacements gives it (zero at
+/// the rigid face), u across it integrated along each row of nodes, the row's constant the mean
+/// over the row of the marches from the rigid face, du_l/da = gamma_xy - du_a/dl
+/// (docs/agent-model.md, "Displacement"). Other grids (3D, tiled, air in the box, a datum along
+/// the march that is not a whole side of the box): node_displacements as it is.
+std::vector<double> node_displacements_marched(const Grid& grid, const std::vector<double>& strains,
+                                               const std::vector<double>& shear, const Material& material,
+                                               const Datums& datums, int march_axis);
+
+/// Every node of a rigid face holds zero displacement: the face imposes it.
+void hold_rigid_faces(const Grid& grid, std::vector<double>& u);
 
 }  // namespace agent

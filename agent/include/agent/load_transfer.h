@@ -54,6 +54,10 @@ class LoadTransfer {
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
   const std::vector<std::int32_t>& generation() const { return out_.generation; }
   const Diagnostics& diagnostics() const { return out_.diagnostics; }
+  /// TransferResults::shear and ::balance (empty but for the directional rule set): the packets'
+  /// shear stresses per slot [Pa], the row moment balance's slopes per march axis and layer.
+  const std::vector<double>& shear_flux() const { return out_.shear; }
+  const std::vector<double>& balance_force() const { return out_.balance; }
   /// Bytes held for the grid's slots (results, the grid's flags and tile table, the rule type's
   /// scratch between solves).
   std::size_t memory_bytes() const;

@@ -94,11 +94,30 @@ struct Diagnostics {
   double unfinished = 0;
 };
 
+/// The place of the shear between axes a != b in a 3D triple (xy, yz, xz); tau_xy is the 2D one.
+constexpr int shear_pair(int a, int b) { return a + b == 1 ? 0 : a + b == 3 ? 1 : 2; }
+/// Where the layers across axis a start in TransferResults::balance (2 values per layer).
+inline std::size_t balance_offset(const Grid& g, int a) {
+  std::size_t offset = 0;
+  for (int b = 0; b < a; ++b) offset += std::size_t(g.cells[b]);
+  return offset;
+}
+
 /// What a solve writes, indexed by slot id: 2*dim compressive face forces per slot [N] (by
 /// direction), the generation (-1 where no load arrived) and the load balance.
 struct TransferResults {
   std::vector<double> faces;
   std::vector<std::int32_t> generation;
+  /// The directional rule set: per slot, the packets' shear stresses [Pa] (sum over the packets
+  /// of force x lateral slope over the face area across their march, signed as the stress), 1 in
+  /// 2D (tau_xy), 3 in 3D (xy, yz, xz: shear_pair); empty for the other rule sets.
+  /// agent_stress_components (agent/stress_components.h) reads it.
+  std::vector<double> shear;
+  /// The directional rule set: per march axis a and layer across it (balance_offset), the two
+  /// slopes (along l0, l1 of lateral_axes(a)) of the row moment balance's correction of the force
+  /// along a: k0 (u - mean u) + k1 (v - mean v) [N] at an agent u, v agents from the box's lower
+  /// sides (in `faces` too); its shear is read by vertical equilibrium.
+  std::vector<double> balance;
   Diagnostics diagnostics;
   /// Zero forces, every generation -1, no diagnostics: what a rule type without its own
   /// bookkeeping of what it wrote does before a solve.

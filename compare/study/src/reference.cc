@@ -20,7 +20,12 @@ GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState&
   out.stress.assign(grid.count() * kStressSlots, 0.0);
   for (std::size_t cell = 0; cell < grid.count(); ++cell) {
     double* s = &out.stress[kStressSlots * cell];
-    for (int a = 0; a < grid.dim; ++a) s[a] = state.stress[cell * grid.dim + a];  // normal stresses; no shear
+    for (int a = 0; a < grid.dim; ++a) s[a] = state.stress[cell * grid.dim + a];
+    if (grid.dim == 2) {
+      s[kTauXY] = state.shear[cell];
+    } else {
+      for (int t = 0; t < 3; ++t) s[kTauXY + t] = state.shear[cell * 3 + t];  // xy, yz, xz: the slots' order
+    }
     s[kVonMises] = von_mises(s);
   }
   out.u = state.displacement;

@@ -19,8 +19,8 @@ struct AgentState;  // agent_study.h; the reference itself needs no study glue
 namespace compare {
 
 /// An agent state in the same layout: its normal stresses (in 2D sigma_z = 0, plane stress, as the
-/// agents' strains), no shear (the agents carry none: their tau is 0, the zero model's), and the
-/// von Mises stress of those.
+/// agents' strains), its shears (the directional rule set's; the others carry none: tau 0, the zero
+/// model's), and the von Mises stress of those.
 GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state);
 
 /// `problem` set to the level `options`: its degree and refinement, and with options.mesh (the true

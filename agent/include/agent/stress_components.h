@@ -1,0 +1,50 @@
+#pragma once
+// Every stress component of the agents, from what a transfer wrote: the normal stresses of the
+// face forces, and the directional rule set's shear and row moment balance (agent
+// TransferResults::shear, ::balance). With turning paths also sigma across the march by the tie
+// scan and the bonded rigid face's layer (docs/agent-model.md, "Turning paths").
+#include <agent/coefficients.h>
+#include <agent/grid.h>
+#include <agent/transfer.h>
+
+#include <vector>
+
+namespace agent {
+
+struct StressComponents {
+  std::vector<double> sigma;      ///< dim normal stresses per agent [Pa] (slot order)
+  std::vector<double> shear;      ///< per agent: 2D tau_xy; 3D tau_xy, tau_yz, tau_xz [Pa]
+  std::vector<double> von_mises;  ///< per agent [Pa] (plane stress in 2D)
+};
+
+/// The shears in a slot of StressComponents::shear: 1 in 2D, 3 in 3D.
+constexpr int shear_count(int dim) { return dim == 3 ? 3 : 1; }
+
+/// The von Mises stress of a plane-stress state (2D) or of the six components (3D: xx, yy, zz,
+/// xy, yz, xz).
+double von_mises_2d(double sx, double sy, double txy);
+double von_mises_3d(const double* s);
+
+/// The stress components of one solve. `normal` is agent_stresses' (dim per slot). `shear_flux`
+/// and `balance` are the transfer's (TransferResults::shear, ::balance; empty: no shear, as every
+/// rule set but the directional one in 2D). Per march axis a of the 2D directional rule set:
+///   tau_xy = the packets' shear_flux + the balance's shear (vertical equilibrium scanned along each row,
+///            its derivative along a from a local quadratic fit over k.window_length);
+/// and with k.paths == Paths::Turning
+///   sigma across a += the tie: horizontal equilibrium scanned along each run of agents from its
+///            lower end (0 there), what is left at the upper end taken out linearly;
+///   the layer on a bonded rigid face the loads march onto: sigma across a += nu sigma_a
+///            max(0, 1 - y / ell) (1 - exp(-d_side / y)), ell = k.base_layer x the width of the
+///            pressure on that face, and its shear by horizontal equilibrium.
+/// `loads` give each march axis its direction (which end the rigid face of the layer is at).
+StressComponents agent_stress_components(const Grid& grid, const std::vector<double>& normal,
+                                         const std::vector<double>& shear_flux, const std::vector<double>& balance,
+                                         const DirectionalCoefficients& k, double poisson,
+                                         const std::vector<EntryLoad>& loads);
+
+/// d F / d(index) at every entry of a line of `count` values (stride `stride`), from the slope of a
+/// least-squares quadratic about each entry with Gaussian weights of standard deviation `window`
+/// entries (entries within 4 windows). Two entries: their difference; one: 0.
+void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope);
+
+}  // namespace agent

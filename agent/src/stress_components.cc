@@ -1,0 +1,253 @@
+// Every stress component of the agents: the shear of the packets and of the row moment balance,
+// the tie scan and the bonded face's layer (agent/stress_components.h).
+#include <agent/stress_components.h>
+#include <agent/slots.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace agent {
+
+double von_mises_2d(double sx, double sy, double txy) {
+  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3 * txy * txy));
+}
+
+double von_mises_3d(const double* s) {
+  const double dxy = s[0] - s[1], dyz = s[1] - s[2], dzx = s[2] - s[0];
+  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+}
+
+void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
+  const int reach = std::max(1, int(std::ceil(4 * window)));
+  if (count < 3) {
+    for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
+    return;
+  }
+  // The slope is linear in the values: per entry, weights c_i = e1' M^-1 w_i p_i of its
+  // neighbours. Away from the ends every entry has the same weights: computed once.
+  auto weights = [&](int j, std::vector<double>& c, int& first) {
+    first = std::max(0, j - reach);
+    const int last = std::min(count - 1, j + reach);
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (int i = first; i <= last; ++i) {
+      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      const Eigen::Vector3d p(1, d, d * d);
+      m += w * p * p.transpose();
+    }
+    c.assign(std::size_t(last - first + 1), 0.0);
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(m);
+    if (lu.rank() < 3) {  // too narrow a window for a quadratic: the nearest difference
+      const int lo = std::max(0, j - 1), hi = std::min(count - 1, j + 1);
+      c[lo - first] -= 1.0 / (hi - lo);
+      c[hi - first] += 1.0 / (hi - lo);
+      return;
+    }
+    const Eigen::Vector3d row = lu.inverse().row(1).transpose();
+    for (int i = first; i <= last; ++i) {
+      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      c[i - first] = w * (row[0] + row[1] * d + row[2] * d * d);
+    }
+  };
+  std::vector<double> inner, c;
+  int first = 0;
+  if (count > 2 * reach) weights(reach, inner, first);
+  for (int j = 0; j < count; ++j) {
+    const bool interior = j >= reach && j + reach < count && !inner.empty();
+    if (!interior) weights(j, c, first);
+    const std::vector<double>& use = interior ? inner : c;
+    const int from = interior ? j - reach : first;
+    double sum = 0;
+    for (std::size_t i = 0; i < use.size(); ++i) sum += use[i] * values[(from + i) * stride];
+    slope[j * stride] = sum;
+  }
+}
+
+namespace {
+
+/// Calls f(run) for each run of agents along axis b (slot ids in order along b).
+template <class F>
+void runs_along(const Grid& g, int b, F&& f) {
+  const LateralAxes lat = lateral_axes(b);
+  std::vector<std::size_t> run;
+  for (int w = 0; w < g.cells[lat.l1]; ++w)
+    for (int v = 0; v < g.cells[lat.l0]; ++v) {
+      run.clear();
+      for (int i = 0; i <= g.cells[b]; ++i) {
+        std::size_t cell = Grid::npos;
+        if (i < g.cells[b]) {
+          std::array<int, 3> c{0, 0, 0};
+          c[b] = i;
+          c[lat.l0] = v;
+          c[lat.l1] = w;
+          cell = g.index(c[0], c[1], c[2]);
+          if (cell != Grid::npos && g.is_air(cell)) cell = Grid::npos;
+        }
+        if (cell != Grid::npos) {
+          run.push_back(cell);
+        } else if (!run.empty()) {
+          f(run);
+          run.clear();
+        }
+      }
+    }
+}
+
+/// An agent's lower side along axis `a`, in agents from the box's lower side (the transfer's
+/// lateral positions: collapsed air planes keep their true distance).
+double position(const Grid& g, std::size_t cell, int a) {
+  return std::round((g.centre(cell)[a] - g.origin[a]) / g.size[a] - 0.5);
+}
+
+/// d/d(position along a) [per m] of a per-agent field (stride `stride`, offset `at`), fitted along
+/// each run of agents along a.
+std::vector<double> derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at,
+                                     double window) {
+  std::vector<double> out(g.count(), 0.0), values, slopes;
+  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+    const int count = int(run.size());
+    values.resize(run.size());
+    slopes.resize(run.size());
+    for (int j = 0; j < count; ++j) values[j] = field[run[j] * stride + at];
+    fitted_slope(values.data(), 1, count, window, slopes.data());
+    for (int j = 0; j < count; ++j) out[run[j]] = slopes[j] / g.size[a];
+  });
+  return out;
+}
+
+/// The bonded rigid face's layer for loads marching along a toward `exit_side`, its part across
+/// lateral axis l: adds it to sigma_l and its shear to `shear` (stride, component).
+void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
+                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component) {
+  const int dim = g.dim;
+  const double h_a = g.size[a], h_l = g.size[l];
+  const bool up = is_positive(exit_side);
+  // Per agent: its height above a rigid exit face at the end of its run along a (-1: none).
+  std::vector<double> height(g.count(), -1.0);
+  double weight = 0, mean = 0, square = 0, lo = 1e300, hi = -1e300;
+  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+    const std::size_t count = run.size(), end = up ? run.back() : run.front();
+    if (g.boundary(exit_side, end) != Boundary::Rigid) return;
+    for (std::size_t j = 0; j < count; ++j) height[run[j]] = double(up ? count - 1 - j : j) * h_a + 0.5 * h_a;
+    // The pressure on the face: its width along l is sqrt(12 variance) (a uniform one's width).
+    const double w = std::abs(normal[end * dim + a]), x = g.centre(end)[l];
+    weight += w;
+    mean += w * x;
+    square += w * x * x;
+    lo = std::min(lo, x - 0.5 * h_l);
+    hi = std::max(hi, x + 0.5 * h_l);
+  });
+  if (!(weight > 0)) return;
+  mean /= weight;
+  const double variance = std::max(0.0, square / weight - mean * mean);
+  const double ell = ell_share * std::min(std::sqrt(12 * variance), hi - lo);
+  if (!(ell > 0)) return;
+  std::vector<double> layer(g.count(), 0.0), gradient(g.count(), 0.0);
+  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+    const int count = int(run.size());
+    for (int i = 0; i < count; ++i) {
+      const double y = height[run[i]];
+      if (y < 0) continue;
+      const double side = std::min(i + 0.5, count - i - 0.5) * h_l;
+      layer[run[i]] = nu * normal[run[i] * dim + a] * std::max(0.0, 1 - y / ell) * (1 - std::exp(-side / y));
+    }
+    for (int i = 0; i < count; ++i) {  // d layer / d(position along l)
+      const int p = std::max(0, i - 1), q = std::min(count - 1, i + 1);
+      if (q > p) gradient[run[i]] = (layer[run[q]] - layer[run[p]]) / ((q - p) * h_l);
+    }
+  });
+  for (std::size_t c = 0; c < layer.size(); ++c) sigma[c * dim + l] += layer[c];
+  // d tau / d(along a) = -d layer / d(along l), tau = 0 at the run's end away from the face.
+  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+    const int count = int(run.size());
+    double sum = 0;
+    for (int n = 0; n < count; ++n) {
+      const std::size_t c = run[up ? n : count - 1 - n];  // from the far end toward the face
+      const double step = gradient[c] * h_a;
+      shear[c * stride + component] += up ? -(sum + 0.5 * step) : sum + 0.5 * step;
+      sum += step;
+    }
+  });
+}
+
+}  // namespace
+
+StressComponents agent_stress_components(const Grid& g, const std::vector<double>& normal,
+                                         const std::vector<double>& shear_flux, const std::vector<double>& balance,
+                                         const DirectionalCoefficients& k, double poisson,
+                                         const std::vector<EntryLoad>& loads) {
+  const int dim = g.dim, shears = shear_count(dim);
+  const std::size_t n = g.count();
+  StressComponents out;
+  out.sigma = normal;
+  out.shear.assign(n * shears, 0.0);
+  if (!shear_flux.empty()) {
+    std::copy(shear_flux.begin(), shear_flux.end(), out.shear.begin());  // the packets'
+    // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
+    const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
+    std::vector<double> field(n, 0.0), sum_layer, count_layer;
+    for (int a = 0; a < dim; ++a) {
+      const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
+      if (load == loads.end()) continue;  // no load marches along a: nothing written for it
+      const LateralAxes lat = lateral_axes(a);
+      const double area = g.face_area(a), window = k.window_length / g.size[a];
+      const double* slopes = balance.data() + 2 * balance_offset(g, a);
+      for (int which = 0; which < dim - 1; ++which) {
+        const int l = which == 0 ? lat.l0 : lat.l1, component = dim == 3 ? shear_pair(a, l) : 0;
+        const double h_l = g.size[l];
+        // The balance's shear: tau = -d Q / d(along a), Q its sigma_a integrated along l; its force
+        // at an agent is slope x (position - the layer's mean position), in agents (as the transfer).
+        sum_layer.assign(std::size_t(g.cells[a]), 0.0);
+        count_layer.assign(std::size_t(g.cells[a]), 0.0);
+        for (std::size_t c = 0; c < n; ++c)
+          if (!g.is_air(c)) {
+            const int j = g.coords(c)[a];
+            sum_layer[j] += position(g, c, l);
+            count_layer[j] += 1;
+          }
+        std::fill(field.begin(), field.end(), 0.0);
+        runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+          const int j = g.coords(run.front())[a];
+          const double slope = slopes[2 * j + which];
+          if (slope == 0) return;
+          double q = 0;
+          for (std::size_t c : run) {
+            const double s = -slope * (position(g, c, l) - sum_layer[j] / count_layer[j]) / area * h_l;
+            field[c] = q + 0.5 * s;
+            q += s;
+          }
+        });
+        const auto balance_shear = derivative_along(g, a, field, 1, 0, window);
+        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= balance_shear[c];
+        if (k.paths != Paths::Turning) continue;
+        // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
+        // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
+        const auto dtau = derivative_along(g, a, out.shear, shears, component, window);
+        std::vector<double> faces;
+        runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+          const std::size_t count = run.size();
+          faces.assign(count + 1, 0.0);
+          for (std::size_t i = 0; i < count; ++i) faces[i + 1] = faces[i] - h_l * dtau[run[i]];
+          const double rest = faces[count];  // the round-off of an unbalanced row: taken out linearly
+          for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
+          for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
+        });
+        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component);
+      }
+    }
+  }
+  out.von_mises.assign(n, 0.0);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (dim == 2) {
+      out.von_mises[c] = von_mises_2d(out.sigma[2 * c], out.sigma[2 * c + 1], out.shear[c]);
+    } else {
+      const double s[6] = {out.sigma[3 * c], out.sigma[3 * c + 1], out.sigma[3 * c + 2],
+                           out.shear[3 * c], out.shear[3 * c + 1], out.shear[3 * c + 2]};
+      out.von_mises[c] = von_mises_3d(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace agent

@@ -1,0 +1,235 @@
+// The directional rule set's turning paths and its stress components (agent/stress_components.h):
+// closed forms of the tie scan, each row's force conserved, the load balance, the symmetry of a
+// centred load, and the rigid face holding zero displacement.
+#include <agent/directional.h>
+#include <agent/fields.h>
+#include <agent/load_transfer.h>
+#include <agent/stress_components.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../support/agent_fixtures.h"
+
+using namespace agent;
+using namespace test_support;  // plate, face, kMaterial, the face directions
+
+namespace {
+
+/// The seed plate's shape at test size: nx x ny agents of 5 mm, 2 mm thick, steel, rigid base.
+Grid steel_plate(int nx, int ny, bool rigid_base = true) {
+  Grid g = Grid::box(2, {nx, ny, 1}, Eigen::Vector3d(5e-3, 5e-3, 5e-3), 2e-3);
+  if (rigid_base) g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  return g;
+}
+
+const Material kSteel{206e9, 0.3};
+
+/// Everything the agents give for `loads` (as agent_study::evaluate does, the readings off).
+struct Fields {
+  LoadTransfer model;
+  StressComponents stress;
+  std::vector<double> u;
+};
+
+Fields solve(const Grid& g, const Coefficients& k, const std::vector<EntryLoad>& loads) {
+  LoadTransfer m(g, kSteel, k, RuleSet::Directional);
+  m.solve(loads);
+  const auto normal = agent_stresses(g, m.face_forces());
+  auto stress = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, kSteel.poisson, loads);
+  const auto strain = agent_strains(g, kSteel, stress.sigma);
+  auto u = node_displacements_marched(g, strain, stress.shear, kSteel, choose_datums(g, loads), 1);
+  hold_rigid_faces(g, u);
+  return {std::move(m), std::move(stress), std::move(u)};
+}
+
+double largest_magnitude(const std::vector<double>& v, int stride, int offset) {
+  double m = 0;
+  for (std::size_t i = offset; i < v.size(); i += stride) m = std::max(m, std::abs(v[i]));
+  return m;
+}
+
+}  // namespace
+
+TEST(Turning, TurningIsTheDefaultPathLaw) {
+  EXPECT_EQ(Coefficients{}.directional.paths, Paths::Turning);
+  EXPECT_STREQ(find_coefficient("paths")->choice_name(double(Paths::Mirror)), "mirror");
+}
+
+TEST(Turning, FittedSlopeIsExactOnAQuadratic) {
+  // A least-squares quadratic reproduces a quadratic: slope 3 + 2 x 0.5 j at every entry, ends included.
+  std::vector<double> f(9), slope(9);
+  for (int j = 0; j < 9; ++j) f[j] = 1 + 3 * j + 0.5 * j * j;
+  fitted_slope(f.data(), 1, 9, 2.5, slope.data());
+  for (int j = 0; j < 9; ++j) EXPECT_NEAR(slope[j], 3 + j, 1e-10) << j;
+}
+
+TEST(Turning, AUniformSigmaYGivesNoShearAndNoTie) {
+  // No shear flux and no balance: equilibrium needs no tau and no sigma_x (no rigid face: no layer).
+  const Grid g = steel_plate(8, 6, false);
+  std::vector<double> normal(g.count() * 2, 0.0);
+  for (std::size_t c = 0; c < g.count(); ++c) normal[2 * c + 1] = -1000.0;
+  const std::vector<double> no_shear(g.count(), 0.0), no_balance(2 * (8 + 6 + 1), 0.0);
+  const auto s = agent_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
+                                         {{g.index(4, 5, 0), direction(1, false), 1.0}});
+  for (std::size_t c = 0; c < g.count(); ++c) {
+    EXPECT_EQ(s.shear[c], 0.0);
+    EXPECT_EQ(s.sigma[2 * c], 0.0);
+    EXPECT_EQ(s.sigma[2 * c + 1], -1000.0);
+    EXPECT_NEAR(s.von_mises[c], 1000.0, 1e-9);  // uniaxial
+  }
+}
+
+TEST(Turning, TheTieIsHorizontalEquilibriumZeroAtTheFreeSides) {
+  // tau = c y (x - W / 2): d tau / dy = c (x - W / 2), so sigma_x(x) = -int_0^x c (x' - W/2) dx'
+  // = c (W x / 2 - x^2 / 2): zero at both free sides (x = 0 and W, the row's force balanced), an
+  // agent the mean of its faces. The fit reproduces a linear tau exactly.
+  const int nx = 10, ny = 7;
+  const Grid g = steel_plate(nx, ny, false);
+  const double h = 5e-3, W = nx * h, c = 3e7;
+  std::vector<double> tau(g.count(), 0.0), no_balance(2 * (nx + ny + 1), 0.0), normal(g.count() * 2, 0.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) tau[g.index(i, j, 0)] = c * (j + 0.5) * h * ((i + 0.5) * h - W / 2);
+  const auto s = agent_stress_components(g, normal, tau, no_balance, DirectionalCoefficients{}, 0.3,
+                                         {{g.index(4, ny - 1, 0), direction(1, false), 1.0}});
+  auto at_face = [&](double x) { return c * (W * x / 2 - x * x / 2); };
+  for (int j = 0; j < ny; ++j) {
+    double row_force = 0;
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t cell = g.index(i, j, 0);
+      EXPECT_NEAR(s.shear[cell], c * (j + 0.5) * h * ((i + 0.5) * h - W / 2), 1e-6) << i << "," << j;
+      EXPECT_NEAR(s.sigma[2 * cell], 0.5 * (at_face(i * h) + at_face((i + 1) * h)), 1e-6) << i << "," << j;
+      row_force += s.sigma[2 * cell];
+    }
+    // The free sides' agents hold half their inner face's stress (the side face is 0).
+    EXPECT_NEAR(s.sigma[2 * g.index(0, j, 0)], 0.5 * at_face(h), 1e-6);
+    EXPECT_NEAR(s.sigma[2 * g.index(nx - 1, j, 0)], 0.5 * at_face((nx - 1) * h), 1e-6);
+  }
+}
+
+TEST(Turning, EveryRowCarriesTheLoadAndTheBaseReturnsIt) {
+  // A load off centre on a plate: every row's agents pass on exactly the load (the deposit is
+  // normalised over the row and the moment balance adds nothing net), and the base returns it.
+  const Grid g = steel_plate(24, 18);
+  Coefficients k;
+  k.gamma = 0;
+  const double load = 2.0;
+  const auto f = solve(g, k, {{g.index(6, 17, 0), direction(1, false), load}});
+  const auto& d = f.model.diagnostics();
+  for (int j = 0; j < 18; ++j) {
+    double through = 0;
+    for (int i = 0; i < 24; ++i) through += face(f.model, i, j, kPlusY);
+    EXPECT_NEAR(through, load, 1e-13 * load) << "row " << j;
+  }
+  EXPECT_EQ(d.applied, load);
+  EXPECT_NEAR(d.rigid_reaction, load, 1e-13 * load);
+  EXPECT_EQ(d.passed_out, 0.0);
+  EXPECT_EQ(d.lost, 0.0);
+  // No packet reaches a free side mirrored: the free sides carry no sigma_x face force.
+  for (int j = 0; j < 18; ++j) EXPECT_EQ(face(f.model, 0, j, kMinusX), 0.0);
+}
+
+TEST(Turning, ACentredLoadGivesSymmetricSigmaXAndAntisymmetricShearAndUx) {
+  const int nx = 20, ny = 16;
+  const Grid g = steel_plate(nx, ny);
+  Coefficients k;
+  const auto f = solve(g, k, {{g.index(9, ny - 1, 0), direction(1, false), 1.0}, {g.index(10, ny - 1, 0), direction(1, false), 1.0}});
+  const double sx_max = largest_magnitude(f.stress.sigma, 2, 0), tau_max = largest_magnitude(f.stress.shear, 1, 0);
+  const double ux_max = largest_magnitude(f.u, 2, 0), uy_max = largest_magnitude(f.u, 2, 1);
+  ASSERT_GT(sx_max, 0);
+  ASSERT_GT(tau_max, 0);
+  ASSERT_GT(ux_max, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0), m = g.index(nx - 1 - i, j, 0);
+      EXPECT_NEAR(f.stress.sigma[2 * c], f.stress.sigma[2 * m], 1e-9 * sx_max) << i << "," << j;
+      EXPECT_NEAR(f.stress.sigma[2 * c + 1], f.stress.sigma[2 * m + 1], 1e-9 * largest_magnitude(f.stress.sigma, 2, 1));
+      EXPECT_NEAR(f.stress.shear[c], -f.stress.shear[m], 1e-9 * tau_max) << i << "," << j;
+    }
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const std::size_t n = g.node_index(i, j, 0), m = g.node_index(nx - i, j, 0);
+      EXPECT_NEAR(f.u[2 * n], -f.u[2 * m], 1e-9 * ux_max) << i << "," << j;
+      EXPECT_NEAR(f.u[2 * n + 1], f.u[2 * m + 1], 1e-9 * uy_max) << i << "," << j;
+    }
+  // Under the load the turning packets pull the load line apart: tension at mid-depth, as FEM.
+  EXPECT_GT(f.stress.sigma[2 * g.index(10, ny / 2, 0)], 0.0);
+  // The plate bulges: the right side moves out (+x), the left one in mirror, above the base.
+  EXPECT_GT(f.u[2 * g.node_index(nx, ny / 2, 0)], 0.0);
+}
+
+TEST(Turning, TheRigidFaceHoldsZeroDisplacement) {
+  const Grid g = steel_plate(16, 12);
+  Coefficients k;
+  for (const Paths paths : {Paths::Turning, Paths::Mirror}) {
+    k.directional.paths = paths;
+    const auto f = solve(g, k, {{g.index(5, 11, 0), direction(1, false), 2.0}});
+    for (int i = 0; i <= 16; ++i) {
+      EXPECT_EQ(f.u[2 * g.node_index(i, 0, 0)], 0.0) << i;
+      EXPECT_EQ(f.u[2 * g.node_index(i, 0, 0) + 1], 0.0) << i;
+    }
+    EXPECT_LT(f.u[2 * g.node_index(5, 12, 0) + 1], 0.0);  // the loaded face moves down
+  }
+}
+
+TEST(Turning, TheMirrorPathsCarryShearToo) {
+  // The mirror's packets carry their shear flux as well (tau = F s / A per packet): a centred
+  // load gives an antisymmetric tau, and a free side none across it only in the mean.
+  const int nx = 12, ny = 10;
+  const Grid g = steel_plate(nx, ny);
+  Coefficients k;
+  k.directional.paths = Paths::Mirror;
+  const auto f = solve(g, k, {{g.index(5, ny - 1, 0), direction(1, false), 1.0}, {g.index(6, ny - 1, 0), direction(1, false), 1.0}});
+  const double tau_max = largest_magnitude(f.stress.shear, 1, 0);
+  ASSERT_GT(tau_max, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      EXPECT_NEAR(f.stress.shear[g.index(i, j, 0)], -f.stress.shear[g.index(nx - 1 - i, j, 0)], 1e-9 * tau_max);
+}
+
+TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
+  // 3D: a square block, the load on the centre 2 x 2 agents of its top. Each layer passes on the
+  // load, the base returns it; sigma_x and sigma_z trade places under x <-> z; tau_xy is odd in x
+  // and even in z, tau_yz odd in z.
+  const int n = 10, ny = 8;
+  Grid g = Grid::box(3, {n, ny, n}, Eigen::Vector3d(4e-3, 4e-3, 4e-3));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  Coefficients k;
+  k.gamma = 0;
+  k.directional.directions = 8;
+  std::vector<EntryLoad> loads;
+  for (int i : {4, 5})
+    for (int kz : {4, 5}) loads.push_back({g.index(i, ny - 1, kz), direction(1, false), 0.5});
+  LoadTransfer m(g, kSteel, k, RuleSet::Directional);
+  m.solve(loads);
+  const auto& d = m.diagnostics();
+  EXPECT_NEAR(d.rigid_reaction, 2.0, 1e-13);
+  EXPECT_EQ(d.passed_out, 0.0);
+  for (int j = 0; j < ny; ++j) {
+    double through = 0;
+    for (int kz = 0; kz < n; ++kz)
+      for (int i = 0; i < n; ++i) through += m.face_forces()[g.index(i, j, kz) * 6 + kPlusY];
+    EXPECT_NEAR(through, 2.0, 1e-13) << "layer " << j;
+  }
+  const auto normal = agent_stresses(g, m.face_forces());
+  const auto s = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, kSteel.poisson, loads);
+  const double sx_max = largest_magnitude(s.sigma, 3, 0), txy_max = largest_magnitude(s.shear, 3, 0);
+  const double tyz_max = largest_magnitude(s.shear, 3, 1);
+  ASSERT_GT(sx_max, 0);
+  ASSERT_GT(txy_max, 0);
+  EXPECT_NEAR(tyz_max, txy_max, 1e-9 * txy_max);
+  for (int kz = 0; kz < n; ++kz)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = g.index(i, j, kz), swap = g.index(kz, j, i), mx = g.index(n - 1 - i, j, kz);
+        const std::size_t mz = g.index(i, j, n - 1 - kz);
+        EXPECT_NEAR(s.sigma[3 * c], s.sigma[3 * swap + 2], 1e-9 * sx_max) << i << "," << j << "," << kz;
+        EXPECT_NEAR(s.sigma[3 * c], s.sigma[3 * mx], 1e-9 * sx_max);
+        EXPECT_NEAR(s.shear[3 * c], -s.shear[3 * mx], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c], s.shear[3 * mz], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c + 1], -s.shear[3 * mz + 1], 1e-9 * txy_max);
+        EXPECT_EQ(s.shear[3 * c + 2], 0.0);  // tau_xz is not modelled
+      }
+}

@@ -45,7 +45,7 @@ CalibrationOptions options() {
   for (int i = 0; i < 5; ++i) o.parameters[i] = {agent::kCoefficients[i].name, i >= 1 && i <= 3, start[i], 0.0, 1.0};
   o.parameters[1].lo = 0.05;
   o.parameters[4].hi = 1e-8;
-  o.weights.sigma_x = 1.0;
+  o.weights.field[compare::field_index("sigma_x")] = 1.0;
   o.starts = 4;
   o.seed = 7;
   o.max_evaluations = 600;
@@ -91,6 +91,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   // objective), so with all three free the fit must improve and come near, not hit the truth.
   agent::Coefficients truth;
   truth.gamma = 1e-9;
+  truth.threshold = agent::Threshold::Absolute;
   truth.directional.fan_angle = 50;
   truth.directional.fan_power = 1.5;
   truth.directional.diffusion_length = 0.004;
@@ -98,7 +99,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   const std::vector<CalibrationCase> cases{agent_target("0.1", truth, rules), agent_target("0.05", truth, rules)};
   CalibrationOptions o = options();
   o.rules = rules;
-  o.weights.sigma_x = 0;
+  o.weights.field[compare::field_index("sigma_x")] = 0;
   o.weights.keep_load = true;  // the directional rule set loses nothing
   const agent::Coefficients defaults;
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
@@ -246,10 +247,10 @@ TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
     if (near.cells[cell]) c.reference.stress[kStressSlots * cell + kSigmaY] *= 2;
   std::vector<Score> far, body;
   objective({c}, truth, agent::RuleSet::Conserving, w, &far);
-  EXPECT_LT(far[0].sigma_y, 1e-12);
+  EXPECT_LT(far[0].field("sigma_y"), 1e-12);
   w.far = false;
   objective({c}, truth, agent::RuleSet::Conserving, w, &body);
-  EXPECT_GT(body[0].sigma_y, 0.1);
+  EXPECT_GT(body[0].field("sigma_y"), 0.1);
 }
 
 TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
@@ -270,8 +271,8 @@ TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
   auto w = options().weights;
   std::vector<Score> without, with;
   objective({c}, truth, agent::RuleSet::Patent, w, &without);
-  EXPECT_GT(without[0].sigma_y, 0.05);
-  EXPECT_GT(without[0].sigma_x, 0.5);  // tension against compression
+  EXPECT_GT(without[0].field("sigma_y"), 0.05);
+  EXPECT_GT(without[0].field("sigma_x"), 0.5);  // tension against compression
   c.study.readings = all;
   objective({c}, truth, agent::RuleSet::Patent, w, &with);
   EXPECT_LT(with[0].objective, 1e-20);
@@ -323,7 +324,7 @@ TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
   o.parameters[4].lo = o.parameters[4].hi = o.parameters[4].start = 1e-3;  // gamma held
   o.parameters[3].free = false;                                            // beta held at 0.5
   o.parameters[2].hi = o.parameters[1].hi = 0.95;
-  o.weights.sigma_x = 0.0;
+  o.weights.field[compare::field_index("sigma_x")] = 0.0;
   o.max_evaluations = 300;
   std::vector<Score> scores;
   EXPECT_LT(objective(cases, truth, o.rules, o.weights, &scores), 1e-20);

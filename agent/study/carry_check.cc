@@ -59,9 +59,11 @@ std::string LoadCarry::describe(const AgentStudy& study) const {
   std::ostringstream s;
   s << "load[" << load << "] (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
     << kSides[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits " << 1e6 * exits.free << " mm^2";
-  if (refused())
+  if (refused()) {
     s << ": cannot carry: no rigid face ahead of the loaded face (march " << kSides[march] << "); the "
       << agent::rule_set_name(study.rules) << " rule set passes it out through free faces";
+    if (!across.empty()) s << " (rigid faces lie ahead along " << across << ": reached by bending, which no rule set here carries)";
+  }
   else
     s << ": carries (rigid share of the exits " << exits.rigid / (exits.rigid + exits.free) << ")";
   return s.str();
@@ -81,6 +83,10 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
       LoadCarry c;
       c.load = i, c.group = spec.group, c.march = march;
       c.exits = exits_ahead(grid, cells, march, widen);
+      if (c.refused())  // where a load path by shear and bending would go: the axes with a rigid face ahead
+        for (int d = 0; d < 2 * grid.dim; ++d)
+          if (agent::axis_of(d) != agent::axis_of(march) && exits_ahead(grid, cells, d, widen).rigid > 0)
+            c.across += std::string(c.across.empty() ? "" : ", ") + kSides[d];
       out.push_back(c);
     }
   }

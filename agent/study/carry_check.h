@@ -29,6 +29,8 @@ struct LoadCarry {
   std::string group;
   int march = 0;         ///< the direction the rule set marches (the loaded face's inward normal)
   Exits exits;
+  /// When refused: the directions across the march along which rigid faces lie ahead ("-x"), else "".
+  std::string across;
   /// The rule set cannot carry it: no rigid face ahead of the loaded face.
   bool refused() const { return !(exits.rigid > 0); }
   /// "load[0] (group "tip", 2 N, march -y): rigid exits 0 mm^2, free 22 mm^2: ..." (one line).

@@ -382,7 +382,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
       json["carry_check"].push_back({{"load", c.load}, {"group", c.group}, {"march", kSideNames[c.march]},
                                      {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
                                      {"carries", !c.refused()}, {"said", c.describe(in.study)}});
-    for (const auto& r : outcome.refused) outcome.warnings.push_back("agent: cannot carry " + r);
+    for (const auto& r : outcome.refused) outcome.warnings.push_back("agent: carry check: " + r);
     std::vector<std::string> notes{
         "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
             " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +

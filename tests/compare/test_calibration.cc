@@ -337,3 +337,42 @@ TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
   EXPECT_NEAR(r.best.alpha2, 0.42, 0.02);
   EXPECT_NEAR(r.best.alpha3, 0.3, 0.02);
 }
+
+// Every field of compare::kFields is weighted on its own: against the agent fields negated, each
+// field the agents carry has the error ||a - (-a)|| / ||-a|| = 2 in every scope, so the objective
+// is 4 x the sum of the weights of those fields; an unweighted field is reported, not scored.
+TEST(Calibration, WeighsEveryFieldOfTheFieldTable) {
+  const agent::Coefficients k;
+  auto c = agent_target("0.1", k);
+  for (double& v : c.reference.stress) v = -v;
+  for (double& v : c.reference.u) v = -v;
+  const std::vector<CalibrationCase> cases{c};
+  for (const char* scope : {"body", "far", "lines"}) {
+    SCOPED_TRACE(scope);
+    ObjectiveWeights w;
+    w.far = std::string(scope) == "far";
+    w.lines = std::string(scope) == "lines";
+    w.field.fill(0.0);
+    w.field[field_index("sigma_x")] = 1.0;
+    w.field[field_index("u_y")] = 0.5;
+    w.field[field_index("von_mises")] = 0.25;
+    w.field[field_index("u_x")] = 0.125;
+    std::vector<Score> per_case;
+    EXPECT_NEAR(objective(cases, k, agent::RuleSet::Conserving, w, &per_case), 4 * (1 + 0.5 + 0.25 + 0.125), 1e-12);
+    for (const char* f : {"sigma_x", "sigma_y", "displacement", "von_mises", "u_x", "u_y"})
+      EXPECT_NEAR(per_case[0].field(f), 2.0, 1e-14) << f;
+    EXPECT_EQ(per_case[0].field("u_z"), 0.0);  // not compared in 2D
+  }
+}
+
+// [calibrate.objective] has a key per field of the table, read by name; a name that is no field is refused.
+TEST(Calibration, ReadsAWeightPerFieldFromTheCalibrationFile) {
+  write_file("plate.toml", plate_case());
+  std::string text = "[calibrate]\nrule_set = \"conserving\"\n[[calibrate.case]]\nfile = \"plate.toml\"\n[calibrate.objective]\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k) text += std::string(kFields[k].name) + " = " + std::to_string(k + 1) + "\n";
+  workbench::CaseFile file(write_file("calibrate.toml", text));
+  const auto plan = read_calibration_plan(file);
+  for (std::size_t k = 0; k < kFieldCount; ++k) EXPECT_EQ(plan.options.weights.field[k], double(k + 1)) << kFields[k].name;
+  EXPECT_NE(error_of("[calibrate]\n[[calibrate.case]]\nfile = \"plate.toml\"\n[calibrate.objective]\ntau = 1\n").find("tau"),
+            std::string::npos);
+}

@@ -31,10 +31,11 @@ agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coe
   for (std::size_t i = 0; i < kCoefficientCount; ++i)
     if (held[i]) agent::kCoefficients[i].set(k, agent::kCoefficients[i].get(own));
   k.poisson_decay = own.poisson_decay;  // a case's own value is held; unset, it follows alpha2
-  // The threshold is the case's own unless the calibration gives gamma (free or a start): then
-  // the fitted absolute gamma acts. gamma_relative is not fitted: always the case's own.
+  // The threshold is the case's own when gamma is held from it; else the fitted point's (a
+  // calibration that gives gamma, free or as a start, sets it: the absolute threshold acts).
+  // gamma_relative is not fitted: always the case's own.
   static const std::size_t gamma = std::size_t(agent::find_coefficient("gamma") - agent::kCoefficients.data());
-  k.threshold = held[gamma] ? own.threshold : agent::Threshold::Absolute;
+  if (held[gamma]) k.threshold = own.threshold;
   k.gamma_relative = own.gamma_relative;
   k.directional.directions = own.directional.directions;  // an integer: not fitted
   return k;

@@ -127,8 +127,9 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
 /// rest): poisson_decay is left to follow alpha2, the directional `directions` at its default.
 agent::Coefficients coefficients_from(const CoefficientValues& values);
 
-/// A case's coefficients: the fitted ones, with those `held` (and poisson_decay, directions) taken
-/// from the case's `own`.
+/// A case's coefficients: the fitted ones, with those `held` (and poisson_decay, directions,
+/// gamma_relative) taken from the case's `own`; the threshold (agent::Threshold) is the case's own
+/// when gamma is held, else the fitted point's (coefficients_from sets gamma: absolute).
 agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
                              const std::array<bool, kCoefficientCount>& held);
 

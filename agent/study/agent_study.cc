@@ -241,7 +241,9 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
     if (l.force < 0) pulls.back().force = -l.force;
     all.push_back(l.force < 0 ? pulls.back() : l);
   }
-  const double entering = entering_load(study, factor);
+  // The relative threshold is a share of the case's full load, the same at every load step: the
+  // steps then grow the reached region as the seed's do, and the rule type is built once.
+  const double entering = entering_load(study, 1.0);
   const auto datums = agent::choose_datums(study.mesh.grid, all);
   AgentState s = carried(study, model, pulls.empty() ? pushes : pulls, entering, datums);
   if (pushes.empty()) {  // only pulls: the pushed state negated, to the bit

@@ -80,7 +80,8 @@ inline agent::LoadTransfer transfer_model(const AgentStudy& study) {
 }
 
 /// The magnitude of the load entering the body at `factor` [N]: the sum over the entry loads,
-/// pushes and pulls alike (the relative threshold's base, Coefficients::gamma_for).
+/// pushes and pulls alike. At factor 1 (the full load) it is the relative threshold's base
+/// (Coefficients::gamma_for) at every load step.
 double entering_load(const AgentStudy& study, double factor);
 
 /// Solves with the loads scaled by `factor` (a load step); throws TransferDidNotEnd at the cyclic

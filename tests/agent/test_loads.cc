@@ -100,12 +100,15 @@ TEST(Tension, PushAndPullTogetherSuperpose) {
 }
 
 // The default threshold is relative to the load entering: the conserving rule set on a 60 mm
-// patch at 2 N carries the whole load to the base (the seed's absolute 1e-3 N drops most of it),
-// and the transfer is then homogeneous: twice the load gives twice every field, to the bit.
+// patch at 2 N carries the whole load to the base (the seed's absolute 1e-3 N drops all of it),
+// and the transfer is then homogeneous: a case with twice the load gives twice every face force,
+// to the bit.
 TEST(Threshold, RelativeDefaultCarriesAWidePatchAndScales) {
   const auto relative = study_of("wide.toml", plate("conserving", "-y", "", "0.002", "0.06"));
   EXPECT_EQ(relative.coefficients.threshold, agent::Threshold::Relative);
-  const auto full = solved(relative), half = solved(relative, 0.5);
+  auto one_newton = plate("conserving", "-y", "", "0.002", "0.06");
+  one_newton.replace(one_newton.find("force = 2.0"), 11, "force = 1.0");
+  const auto full = solved(relative), half = solved(study_of("half.toml", one_newton));
   // Nothing is lost: what does not reach the base leaves by the free sides (friction chains).
   const auto& d = full.diagnostics;
   EXPECT_NEAR(d.rigid_reaction + d.passed_out + d.dropped, 2.0, 1e-12);

@@ -399,15 +399,20 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
 /// with any optimiser (scipy.optimize in notebooks/calibration_scipy.ipynb).
 class Objective {
  public:
-  Objective(const std::vector<Case>& cases, const std::string& rule_set, double w_sigma_x, double w_sigma_y,
-            double w_displacement, const py::object& progress) {
+  /// `weights`: field name (a row of compare::kFields) -> weight; the rest at the calibration's defaults.
+  Objective(const std::vector<Case>& cases, const std::string& rule_set, const std::map<std::string, double>& weights,
+            const py::object& progress) {
     const auto named = agent::rule_set_named(rule_set);
     if (!named)
       throw workbench::Error("rule_set: must be \"patent\", \"conserving\" or \"directional\", not \"" + rule_set + "\"");
     rules_ = *named;
-    weights_.sigma_x = w_sigma_x;
-    weights_.sigma_y = w_sigma_y;
-    weights_.displacement = w_displacement;
+    for (const auto& [name, value] : weights) {
+      const auto* f = std::find_if(std::begin(compare::kFields), std::end(compare::kFields),
+                                   [&](const auto& x) { return name == x.name; });
+      if (f == std::end(compare::kFields)) throw workbench::Error("weights: unknown field \"" + name + "\" (compare::kFields)");
+      if (!(value >= 0 && std::isfinite(value))) throw workbench::Error("weights: " + name + " must be >= 0");
+      weights_.field[std::size_t(f - compare::kFields)] = value;
+    }
     cases_ = with_progress(progress, [&](std::ostream& log) {
       std::vector<compare::CalibrationCase> out;
       for (const auto& c : cases) {
@@ -435,9 +440,8 @@ class Objective {
     for (std::size_t i = 0; i < per_case.size(); ++i) {
       py::dict d;
       d["case"] = cases_[i].name;
-      d["sigma_x"] = per_case[i].sigma_x;
-      d["sigma_y"] = per_case[i].sigma_y;
-      d["displacement"] = per_case[i].displacement;
+      for (std::size_t k = 0; k < compare::kFieldCount; ++k)  // every field compared in the case's dimension
+        if (compare::kFields[k].in(cases_[i].study.mesh.grid.dim)) d[compare::kFields[k].name] = per_case[i].error[k];
       out.append(d);
     }
     return out;
@@ -470,9 +474,16 @@ class Objective {
 
 void bind_objective(py::module_& m) {
   py::class_<Objective>(m, "Objective", "The calibration objective over study cases (FEM solved once per case)")
-      .def(py::init<const std::vector<Case>&, const std::string&, double, double, double, const py::object&>(),
-           py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("sigma_x") = 0.0, py::arg("sigma_y") = 1.0,
-           py::arg("displacement") = 1.0, py::arg("progress") = py::none())
+      .def(py::init([](const std::vector<Case>& cases, const std::string& rule_set, const py::object& progress,
+                       const py::kwargs& fields) {
+             // Each keyword names a field of compare::kFields: sigma_x=1.0, tau_xy=0.5, ...
+             std::map<std::string, double> weights;
+             for (const auto& [name, value] : fields) weights[py::cast<std::string>(name)] = py::cast<double>(value);
+             return new Objective(cases, rule_set, weights, progress);
+           }),
+           py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("progress") = py::none(),
+           "weights per field as keywords (compare::kFields: sigma_x, sigma_y, displacement, tau_xy, von_mises, u_x, "
+           "...; default sigma_y = displacement = 1, the rest 0)")
       .def(
           "__call__", [](const Objective& o, const std::array<double, 5>& v) { return o(Objective::seed_coefficients(v)); },
           py::arg("coefficients"), "J at [alpha1, alpha2, alpha3, beta, gamma]")

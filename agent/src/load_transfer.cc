@@ -13,10 +13,15 @@ void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
-// The rule type of (rule set, readings), each checking its own coefficients.
+Coefficients with_gamma(Coefficients k, double gamma);
+
+// The rule type of (rule set, readings) at the absolute threshold `gamma`, each checking its own coefficients.
 std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(const Grid& grid, const Material& material,
-                                                                           const Coefficients& k, RuleSet rules,
+                                                                           const Coefficients& case_k, double gamma,
+                                                                           RuleSet rules,
                                                                            const TransferReadings& readings) {
+  check_coefficients(case_k, rules);  // as the case gave them: a bad gamma_relative is named as such
+  const Coefficients k = with_gamma(case_k, gamma);
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
   check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
   check(material.young > 0 && std::isfinite(material.young), "young must be > 0");
@@ -31,6 +36,11 @@ std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(cons
   if (readings.cyclic()) return CyclicTransfer(grid, material, k, readings);
   return LayerSweep(grid, material, k, rules, readings);
 }
+// The rule types read the absolute threshold: `k` with gamma set to the one in effect.
+Coefficients with_gamma(Coefficients k, double gamma) {
+  k.gamma = gamma;
+  return k;
+}
 }  // namespace
 
 void TransferResults::clear_all() {
@@ -43,8 +53,8 @@ void TransferResults::clear_all() {
 
 LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules,
                            TransferReadings readings)
-    : grid_(grid), material_(material), k_(k), rules_(rules), readings_(readings),
-      transfer_(make_transfer(grid, material, k, rules, readings)) {
+    : grid_(grid), material_(material), k_(k), rules_(rules), readings_(readings), gamma_(k.gamma_for(1.0)),
+      transfer_(make_transfer(grid, material, k, gamma_, rules, readings)) {
   out_.faces.assign(grid.count() * 2 * grid.dim, 0.0);
   out_.generation.assign(grid.count(), -1);
   if (rules == RuleSet::Directional) {  // the only rule type that writes them
@@ -60,11 +70,24 @@ std::size_t LoadTransfer::memory_bytes() const {
 }
 
 void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {
+  double entering = 0;
+  for (const auto& load : loads) entering += load.force;
+  solve(loads, entering);
+}
+
+void LoadTransfer::solve(const std::vector<EntryLoad>& loads, double entering) {
   for (const auto& load : loads) {
     check(load.cell < grid_.count() && !grid_.is_air(load.cell),
           "entry load outside the body (cell " + std::to_string(load.cell) + ")");
     check(load.dir >= 0 && load.dir < 2 * grid_.dim, "entry load direction out of range");
     check(load.force >= 0 && std::isfinite(load.force), "entry load force must be finite and >= 0");
+  }
+  // A relative threshold scales with the load entering: the rule type is rebuilt when it changes
+  // (each load step), and then knows nothing of what its last solve wrote.
+  if (const double g = k_.gamma_for(entering); entering > 0 && g != gamma_) {
+    transfer_ = make_transfer(grid_, material_, k_, g, rules_, readings_);
+    gamma_ = g;
+    out_.clear_all();
   }
   std::visit([&](auto& t) { t.solve(grid_, loads, out_); }, transfer_);
 }

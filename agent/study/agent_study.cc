@@ -38,6 +38,7 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   const auto t = root.table("agent");
   rules = read_rule_set(t, agent::RuleSet::Patent);
   // Every coefficient from the one table (agent/coefficients.h), at the library's defaults.
+  const agent::CoefficientSpec* named_threshold = nullptr;
   for (const auto& c : agent::kCoefficients) {
     if (c.optional && !t.has(c.name)) continue;  // unset: poisson_decay follows alpha2
     if (c.choices) {  // a named choice (paths): the name in the file, its index in the table
@@ -45,6 +46,13 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
       const auto name = t.text(c.name, names[std::size_t(c.default_value())], names);
       c.set(k, double(std::find(names.begin(), names.end(), name) - names.begin()));
       continue;
+    }
+    if (c.acts) {  // a threshold's key selects its kind: only a named one is read
+      if (!t.has(c.name)) continue;
+      if (named_threshold)
+        t.fail(c.name, std::string("name one threshold: ") + named_threshold->name + " is given too (" +
+                           named_threshold->name + " or " + c.name + ", docs/case-file.md)");
+      named_threshold = &c;
     }
     if (c.integer) {
       c.set(k, t.integer(c.name, int(c.default_value()), int(c.min), int(c.max)));
@@ -151,26 +159,47 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
     if (faces.empty()) throw Error(file.path().string() + ": " + key + ".group: group '" + spec.group + "' has no faces");
     double area = 0;
     for (const auto& f : faces) area += grid.face_area(agent::axis_of(f.side));
-    for (const auto& f : faces)
-      study.loads.push_back({f.cell, agent::direction(spec.axis, spec.sign > 0),
-                             spec.force * grid.face_area(agent::axis_of(f.side)) / area});
+    // A load along a face's normal marches inward (docs/agent-model.md, "Tension"): a push with its
+    // force, a pull with the force negated (evaluate() carries it as the push and negates). A load
+    // along the face (tangential) marches in its own direction.
+    const int dir = agent::direction(spec.axis, spec.sign > 0);
+    for (const auto& f : faces) {
+      const double share = spec.force * grid.face_area(agent::axis_of(f.side)) / area;
+      const bool pull = dir == f.side;  // the load points out of the body through its face
+      study.loads.push_back({f.cell, pull ? agent::opposite(dir) : dir, pull ? -share : share});
+    }
   }
   check_readings_fit_loads(study, root.table("agent"));
   if (study.readings.cyclic()) {  // the cyclic transfer must end: gamma > 0, every factor below 1
+    auto k = study.coefficients;
+    k.gamma = k.gamma_for(entering_load(study, 1.0));  // the threshold the transfer drops loads by
     try {
-      agent::check_cyclic(grid, {study.setup.young, study.setup.poisson}, study.coefficients);
+      agent::check_cyclic(grid, {study.setup.young, study.setup.poisson}, k);
     } catch (const std::invalid_argument& e) {
-      root.table("agent").fail(study.coefficients.gamma > 0 ? "readings" : "gamma", e.what());
+      root.table("agent").fail(k.gamma > 0                                         ? "readings"
+                               : k.threshold == agent::Threshold::Absolute ? "gamma"
+                                                                            : "gamma_relative",
+                               e.what());
     }
   }
   return study;
 }
 
-AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
-  std::vector<agent::EntryLoad> loads = study.loads;
-  for (auto& l : loads) l.force *= factor;
+double entering_load(const AgentStudy& study, double factor) {
+  double sum = 0;
+  for (const auto& l : study.loads) sum += std::abs(factor * l.force);
+  return sum;
+}
+
+namespace {
+
+/// The state of `pushes` (forces >= 0, marching inward) alone: the transfer and every field from
+/// it. `entering` is the whole load's magnitude (the relative threshold's base), `datums` those of
+/// the whole load, so that a pull's state is its push's to the bit.
+AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const std::vector<agent::EntryLoad>& pushes,
+                   double entering, const agent::Datums& datums) {
   try {
-    model.solve(loads);
+    model.solve(pushes, entering);
   } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
     throw TransferDidNotEnd(study.case_file.string() + ": agent.gamma: " + e.what() +
                 "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
@@ -185,17 +214,79 @@ AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double 
                                            model.coefficients().beta, model.material().poisson);
   // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
   auto parts = agent::agent_stress_components(grid, normal, model.shear_flux(), model.balance_force(),
-                                              model.coefficients().directional, model.material().poisson, loads);
+                                              model.coefficients().directional, model.material().poisson, pushes);
   s.stress = std::move(parts.sigma);
   s.shear = std::move(parts.shear);
   s.von_mises = std::move(parts.von_mises);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
-  const auto datums = agent::choose_datums(grid, loads);
   s.displacement = model.shear_flux().empty()
                        ? agent::node_displacements(grid, s.strain, datums)
                        : agent::node_displacements_marched(grid, s.strain, s.shear, model.material(), datums,
-                                                           agent::axis_of(loads.front().dir));
+                                                           agent::axis_of(pushes.front().dir));
   agent::hold_rigid_faces(grid, s.displacement);
+  return s;
+}
+
+/// The von Mises stress of every agent from its normal stresses and shears.
+void set_von_mises(AgentState& s, int dim) {
+  const int shears = agent::shear_count(dim);
+  for (std::size_t c = 0; c < s.von_mises.size(); ++c) {
+    const double* n = &s.stress[c * std::size_t(dim)];
+    const double* t = s.shear.empty() ? nullptr : &s.shear[c * std::size_t(shears)];
+    if (dim == 2) {
+      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t ? t[0] : 0.0);
+    } else {
+      const double six[6] = {n[0], n[1], n[2], t ? t[0] : 0.0, t ? t[1] : 0.0, t ? t[2] : 0.0};
+      s.von_mises[c] = agent::von_mises_3d(six);
+    }
+  }
+}
+
+/// `a` - `b` in every field (a push state less a pull's; von Mises of the difference); generations the earlier, balances added
+/// (the balance tallies magnitudes: a pull carried to a rigid face is a rigid reaction).
+void subtract(AgentState& a, const AgentState& b, int dim) {
+  for (auto [x, y] : {std::pair{&a.face_forces, &b.face_forces}, std::pair{&a.stress, &b.stress},
+                      std::pair{&a.shear, &b.shear}, std::pair{&a.strain, &b.strain},
+                      std::pair{&a.displacement, &b.displacement}})
+    for (std::size_t i = 0; i < x->size(); ++i) (*x)[i] -= (*y)[i];
+  set_von_mises(a, dim);
+  for (std::size_t i = 0; i < a.generation.size(); ++i)
+    a.generation[i] = std::int32_t(std::min(std::uint32_t(a.generation[i]), std::uint32_t(b.generation[i])));
+  auto& d = a.diagnostics;
+  const auto& e = b.diagnostics;
+  d.agents_generated = std::size_t(std::count_if(a.generation.begin(), a.generation.end(), [](auto g) { return g >= 0; }));
+  d.agent_updates += e.agent_updates, d.packet_moves += e.packet_moves, d.applied += e.applied;
+  d.rigid_reaction += e.rigid_reaction, d.passed_out += e.passed_out, d.dropped += e.dropped, d.lost += e.lost;
+  d.lateral_reaction += e.lateral_reaction, d.lateral_passed_out += e.lateral_passed_out;
+  d.lateral_dropped += e.lateral_dropped, d.returned_rigid += e.returned_rigid, d.returned_free += e.returned_free;
+  d.unfinished += e.unfinished;
+}
+
+}  // namespace
+
+AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
+  // Linear elasticity is odd in the load: the pulls are carried as the same pushes and subtracted
+  // (docs/agent-model.md, "Tension"). Every rule set marches inward either way.
+  std::vector<agent::EntryLoad> pushes, pulls, all;
+  for (auto l : study.loads) {
+    l.force *= factor;
+    (l.force < 0 ? pulls : pushes).push_back(l);
+    if (l.force < 0) pulls.back().force = -l.force;
+    all.push_back(l.force < 0 ? pulls.back() : l);
+  }
+  // The relative threshold is a share of the case's full load, the same at every load step: the
+  // steps then grow the reached region as the seed's do, and the rule type is built once.
+  const double entering = entering_load(study, 1.0);
+  const auto datums = agent::choose_datums(study.mesh.grid, all);
+  AgentState s = carried(study, model, pulls.empty() ? pushes : pulls, entering, datums);
+  if (pushes.empty()) {  // only pulls: the pushed state negated, to the bit (von Mises is even)
+    for (auto* field : {&s.face_forces, &s.stress, &s.shear, &s.strain, &s.displacement})
+      for (double& v : *field) v = -v;
+  } else if (!pulls.empty()) {
+    AgentState pushed = carried(study, model, pushes, entering, datums);
+    subtract(pushed, s, study.mesh.grid.dim);
+    s = std::move(pushed);
+  }
   // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
   for (auto* field : {&s.stress, &s.shear, &s.von_mises, &s.strain, &s.displacement})
     for (double& v : *field) v += 0.0;
@@ -342,6 +433,8 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   j["rule_set"] = agent::rule_set_name(study.rules);
   j["readings"] = names_of(study.readings);
   for (const auto& [name, value] : coefficient_values(study.coefficients)) j["coefficients"][name] = value;
+  j["threshold"] = {{"kind", agent::threshold_name(study.coefficients.threshold)},
+                    {"gamma_in_effect", study.coefficients.gamma_for(entering_load(study, 1.0))}};
   j["load_vector"] = std::vector<double>(v.data(), v.data() + dim);
   j["load_balance"] = {{"applied", d.applied}, {"rigid_reaction", d.rigid_reaction}, {"passed_out", d.passed_out},
                        {"dropped", d.dropped}, {"lost", d.lost}, {"reaction_share", d.applied > 0 ? d.rigid_reaction / d.applied : 0.0},

@@ -24,7 +24,9 @@ struct AgentStudy {
   agent::Coefficients coefficients;
   agent::RuleSet rules = agent::RuleSet::Patent;
   agent::Readings readings;  ///< [agent] readings
-  std::vector<agent::EntryLoad> loads;  ///< one per loaded face, at the full load
+  /// One per loaded face, at the full load, marching inward: a pull has the inward direction and a
+  /// negative force (evaluate() carries it as a push and negates).
+  std::vector<agent::EntryLoad> loads;
 };
 
 /// `rule_set` of a table (one of the names of agent::kRuleSets), `fallback` when absent.
@@ -80,8 +82,15 @@ inline agent::LoadTransfer transfer_model(const AgentStudy& study) {
   return transfer_model(study, study.coefficients, study.rules);
 }
 
+/// The magnitude of the load entering the body at `factor` [N]: the sum over the entry loads,
+/// pushes and pulls alike. At factor 1 (the full load) it is the relative threshold's base
+/// (Coefficients::gamma_for) at every load step.
+double entering_load(const AgentStudy& study, double factor);
+
 /// Solves with the loads scaled by `factor` (a load step); throws TransferDidNotEnd at the cyclic
-/// transfer's cap.
+/// transfer's cap. Pulls (negative entry forces) are carried as the same pushes and the state
+/// negated: with pushes and pulls mixed, the pushes' state less the pulls' (docs/agent-model.md,
+/// "Tension").
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
 
 /// A run whose rigid faces return less than this share of the applied load warns (on the log and

@@ -25,6 +25,7 @@ void Cyclic(benchmark::State& state) {
   g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
   Coefficients k;
   k.gamma = std::pow(10.0, -double(state.range(1)));
+  k.threshold = agent::Threshold::Absolute;
   if (state.range(2)) {
     k.alpha1 = 0.53;
     k.alpha2 = 0.49;

@@ -34,6 +34,7 @@ EntryLoad top_centre(const Grid& g) {
 Coefficients coefficients(double gamma) {
   Coefficients k;
   k.gamma = gamma;
+  k.threshold = agent::Threshold::Absolute;  // the seed's absolute threshold
   return k;
 }
 

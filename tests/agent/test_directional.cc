@@ -22,6 +22,7 @@ Coefficients two_packets() {
   Coefficients k;
   k.directional.paths = Paths::Mirror;
   k.gamma = 0;
+  k.threshold = Threshold::Absolute;
   k.directional.directions = 2;
   k.directional.fan_angle = 2 * std::atan(0.3) * 180 / kPi;  // the angles are -+fan_angle / 2
   k.directional.fan_power = 0;

@@ -496,6 +496,7 @@ Coefficients pinned_coefficients() {
   k.alpha3 = 0.2;
   k.beta = 0.35;
   k.gamma = 1e-3;  // bites: some transfers are dropped
+  k.threshold = Threshold::Absolute;
   k.poisson_decay = 0.45;
   return k;
 }

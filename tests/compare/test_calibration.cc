@@ -45,7 +45,7 @@ CalibrationOptions options() {
   for (int i = 0; i < 5; ++i) o.parameters[i] = {agent::kCoefficients[i].name, i >= 1 && i <= 3, start[i], 0.0, 1.0};
   o.parameters[1].lo = 0.05;
   o.parameters[4].hi = 1e-8;
-  o.weights.sigma_x = 1.0;
+  o.weights.field[compare::field_index("sigma_x")] = 1.0;
   o.starts = 4;
   o.seed = 7;
   o.max_evaluations = 600;
@@ -91,6 +91,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   // objective), so with all three free the fit must improve and come near, not hit the truth.
   agent::Coefficients truth;
   truth.gamma = 1e-9;
+  truth.threshold = agent::Threshold::Absolute;
   truth.directional.fan_angle = 50;
   truth.directional.fan_power = 1.5;
   truth.directional.diffusion_length = 0.004;
@@ -98,7 +99,7 @@ TEST(Calibration, FitsTheDirectionalCoefficients) {
   const std::vector<CalibrationCase> cases{agent_target("0.1", truth, rules), agent_target("0.05", truth, rules)};
   CalibrationOptions o = options();
   o.rules = rules;
-  o.weights.sigma_x = 0;
+  o.weights.field[compare::field_index("sigma_x")] = 0;
   o.weights.keep_load = true;  // the directional rule set loses nothing
   const agent::Coefficients defaults;
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
@@ -246,10 +247,10 @@ TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
     if (near.cells[cell]) c.reference.stress[kStressSlots * cell + kSigmaY] *= 2;
   std::vector<Score> far, body;
   objective({c}, truth, agent::RuleSet::Conserving, w, &far);
-  EXPECT_LT(far[0].sigma_y, 1e-12);
+  EXPECT_LT(far[0].field("sigma_y"), 1e-12);
   w.far = false;
   objective({c}, truth, agent::RuleSet::Conserving, w, &body);
-  EXPECT_GT(body[0].sigma_y, 0.1);
+  EXPECT_GT(body[0].field("sigma_y"), 0.1);
 }
 
 TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
@@ -270,8 +271,8 @@ TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
   auto w = options().weights;
   std::vector<Score> without, with;
   objective({c}, truth, agent::RuleSet::Patent, w, &without);
-  EXPECT_GT(without[0].sigma_y, 0.05);
-  EXPECT_GT(without[0].sigma_x, 0.5);  // tension against compression
+  EXPECT_GT(without[0].field("sigma_y"), 0.05);
+  EXPECT_GT(without[0].field("sigma_x"), 0.5);  // tension against compression
   c.study.readings = all;
   objective({c}, truth, agent::RuleSet::Patent, w, &with);
   EXPECT_LT(with[0].objective, 1e-20);
@@ -323,7 +324,7 @@ TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
   o.parameters[4].lo = o.parameters[4].hi = o.parameters[4].start = 1e-3;  // gamma held
   o.parameters[3].free = false;                                            // beta held at 0.5
   o.parameters[2].hi = o.parameters[1].hi = 0.95;
-  o.weights.sigma_x = 0.0;
+  o.weights.field[compare::field_index("sigma_x")] = 0.0;
   o.max_evaluations = 300;
   std::vector<Score> scores;
   EXPECT_LT(objective(cases, truth, o.rules, o.weights, &scores), 1e-20);
@@ -335,4 +336,43 @@ TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
   EXPECT_LT(r.objective_best, 1e-3 * r.objective_start);
   EXPECT_NEAR(r.best.alpha2, 0.42, 0.02);
   EXPECT_NEAR(r.best.alpha3, 0.3, 0.02);
+}
+
+// Every field of compare::kFields is weighted on its own: against the agent fields negated, each
+// field the agents carry has the error ||a - (-a)|| / ||-a|| = 2 in every scope, so the objective
+// is 4 x the sum of the weights of those fields; an unweighted field is reported, not scored.
+TEST(Calibration, WeighsEveryFieldOfTheFieldTable) {
+  const agent::Coefficients k;
+  auto c = agent_target("0.1", k);
+  for (double& v : c.reference.stress) v = -v;
+  for (double& v : c.reference.u) v = -v;
+  const std::vector<CalibrationCase> cases{c};
+  for (const char* scope : {"body", "far", "lines"}) {
+    SCOPED_TRACE(scope);
+    ObjectiveWeights w;
+    w.far = std::string(scope) == "far";
+    w.lines = std::string(scope) == "lines";
+    w.field.fill(0.0);
+    w.field[field_index("sigma_x")] = 1.0;
+    w.field[field_index("u_y")] = 0.5;
+    w.field[field_index("von_mises")] = 0.25;
+    w.field[field_index("u_x")] = 0.125;
+    std::vector<Score> per_case;
+    EXPECT_NEAR(objective(cases, k, agent::RuleSet::Conserving, w, &per_case), 4 * (1 + 0.5 + 0.25 + 0.125), 1e-12);
+    for (const char* f : {"sigma_x", "sigma_y", "displacement", "von_mises", "u_x", "u_y"})
+      EXPECT_NEAR(per_case[0].field(f), 2.0, 1e-14) << f;
+    EXPECT_EQ(per_case[0].field("u_z"), 0.0);  // not compared in 2D
+  }
+}
+
+// [calibrate.objective] has a key per field of the table, read by name; a name that is no field is refused.
+TEST(Calibration, ReadsAWeightPerFieldFromTheCalibrationFile) {
+  write_file("plate.toml", plate_case());
+  std::string text = "[calibrate]\nrule_set = \"conserving\"\n[[calibrate.case]]\nfile = \"plate.toml\"\n[calibrate.objective]\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k) text += std::string(kFields[k].name) + " = " + std::to_string(k + 1) + "\n";
+  workbench::CaseFile file(write_file("calibrate.toml", text));
+  const auto plan = read_calibration_plan(file);
+  for (std::size_t k = 0; k < kFieldCount; ++k) EXPECT_EQ(plan.options.weights.field[k], double(k + 1)) << kFields[k].name;
+  EXPECT_NE(error_of("[calibrate]\n[[calibrate.case]]\nfile = \"plate.toml\"\n[calibrate.objective]\ntau = 1\n").find("tau"),
+            std::string::npos);
 }

@@ -26,14 +26,21 @@ double other_value(const agent::CoefficientSpec& c) {
   return c.fit_max > d ? d + 0.25 * (c.fit_max - d) : d - 0.25 * (d - c.fit_min);
 }
 
-/// The seed plate at coarse agents with every coefficient of the table at other_value.
-std::string case_text() {
+/// Whether the case names row `c`: every row but the thresholds not chosen (a case names one
+/// threshold: agent::Threshold).
+bool named(const agent::CoefficientSpec& c, const agent::CoefficientSpec* threshold) {
+  return !c.acts || &c == threshold;
+}
+
+/// The seed plate at coarse agents with every coefficient of the table it names at other_value.
+std::string case_text(const agent::CoefficientSpec* threshold) {
   std::ostringstream s;
   s.precision(17);
   s << "[mesh]\nfile = \"" << kSource << "/meshes/plate2d.geo\"\n[mesh.parameters]\nh = 0.02\nlw = 0.04\n"
     << "[material]\nthickness = 0.002\n[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\nforce = 2.0\n"
     << "[agent]\nrule_set = \"patent\"\n";
   for (const auto& c : agent::kCoefficients) {
+    if (!named(c, threshold)) continue;
     s << c.name << " = ";
     if (c.choices)
       s << '"' << c.choice_name(other_value(c)) << "\"\n";
@@ -69,11 +76,15 @@ TEST(CoefficientTable, NamesAreUniqueAndDefaultsAdmissible) {
 }
 
 TEST(CoefficientTable, EveryRowReachesTheReaderTheCalibrationAndTheSummaries) {
-  const auto file_path = test_support::write_file("plate.toml", case_text());
+  for (const auto& threshold : agent::kCoefficients) {
+    if (!threshold.acts) continue;  // once per threshold a case can name
+    SCOPED_TRACE(threshold.name);
+  const auto file_path = test_support::write_file("plate.toml", case_text(&threshold));
   workbench::CaseFile file(file_path);
   const auto study = agent_study::load_agent_study(file);
+  EXPECT_TRUE(threshold.acts_in(study.coefficients));
   for (const auto& c : agent::kCoefficients)
-    EXPECT_EQ(c.get(study.coefficients), other_value(c)) << c.name << ": the case reader";
+    if (named(c, &threshold)) EXPECT_EQ(c.get(study.coefficients), other_value(c)) << c.name << ": the case reader";
 
   // The calibrated case file writes every real coefficient, and reads back the same.
   std::ifstream in(file_path);
@@ -82,7 +93,8 @@ TEST(CoefficientTable, EveryRowReachesTheReaderTheCalibrationAndTheSummaries) {
   const auto calibrated = compare::with_coefficients(text.str(), kSource, study.coefficients, study.rules);
   workbench::CaseFile again(calibrated, "calibrated.toml");
   const auto reread = agent_study::load_agent_study(again);
-  for (const auto& c : agent::kCoefficients) EXPECT_EQ(c.get(reread.coefficients), other_value(c)) << c.name;
+  for (const auto& c : agent::kCoefficients)
+    if (named(c, &threshold)) EXPECT_EQ(c.get(reread.coefficients), other_value(c)) << c.name;
 
   // The calibration's plan: every fitted row is a [calibrate.<name>] table with its start and bounds.
   std::ostringstream plan_text;
@@ -103,14 +115,16 @@ TEST(CoefficientTable, EveryRowReachesTheReaderTheCalibrationAndTheSummaries) {
 
   // Both summaries record every coefficient in effect.
   std::ostringstream log;
-  const auto dir = test_support::scratch_folder() / "compare";
+  const auto dir = test_support::scratch_folder() / (std::string("compare_") + threshold.name);
   std::filesystem::create_directories(dir);
   compare::run_compare(file, dir, log);
   const auto agent_summary = read_json(dir / "agent" / "agent_summary.json");
   const auto summary = read_json(dir / "summary.json");
   for (const auto& c : agent::kCoefficients) {
+    if (!named(c, &threshold)) continue;
     EXPECT_EQ(agent_summary["coefficients"][c.name].get<double>(), other_value(c)) << c.name << ": agent_summary.json";
     EXPECT_EQ(summary["agent"]["coefficients"][c.name].get<double>(), other_value(c)) << c.name << ": summary.json";
+  }
   }
 }
 

@@ -25,7 +25,8 @@ def plate(**agent):
         "material": {"young": 206e9, "poisson": 0.3, "thickness": 0.002},
         "boundary": {"rigid": ["base"]},
         "load": [{"group": "load", "direction": "-y", "force": 2.0}],
-        "agent": {"rule_set": "conserving", "gamma": 1e-6, **agent},
+        # one threshold: the absolute 1e-6 N unless the caller names the relative one
+        "agent": {"rule_set": "conserving", **({} if "gamma_relative" in agent else {"gamma": 1e-6}), **agent},
         "steps": {"count": 3},
     }
 

@@ -24,6 +24,7 @@ inline agent::Coefficients coefficients(double a1, double a2, double a3, double 
   k.alpha3 = a3;
   k.beta = beta;
   k.gamma = gamma;
+  k.threshold = agent::Threshold::Absolute;  // the seed's absolute threshold
   k.poisson_decay = 0.5;
   return k;
 }

@@ -53,12 +53,25 @@ struct DirectionalCoefficients {
   double window_length = 5e-3;
 };
 
+/// Which threshold a transfer drops loads by (docs/agent-model.md, "The threshold"): the seed's
+/// absolute gamma [N], or gamma_relative, a share of the load entering the body. A case names one
+/// of the two keys; naming neither gives the relative one (it carries the load at any scale).
+enum class Threshold { Absolute, Relative };
+/// "absolute" (gamma) or "relative" (gamma_relative): summaries say which acts.
+constexpr const char* threshold_name(Threshold t) { return t == Threshold::Absolute ? "absolute" : "relative"; }
+
 struct Coefficients {
   double alpha1 = 0.5;         ///< entry coefficient (seed: P1 = alpha1 P0)
   double alpha2 = 0.5;         ///< passing on in the load direction (P2 = alpha2 P1)
   double alpha3 = 0.25;        ///< friction to each side neighbour (P3 = alpha3 P0)
   double beta = 0.5;           ///< share of the Poisson expansion an agent keeps; 1 - beta is pushed out
-  double gamma = 1e-3;         ///< threshold [N]: a load at or below it is not passed on
+  double gamma = 1e-3;         ///< absolute threshold [N]: a load at or below it is not passed on
+  /// Relative threshold: gamma_relative x the load entering the body [N] (sum of the entry loads'
+  /// magnitudes, pushes and pulls) is the gamma of the solve.
+  double gamma_relative = 1e-9;
+  Threshold threshold = Threshold::Relative;  ///< which of gamma, gamma_relative is in effect
+  /// The absolute threshold [N] a solve whose loads enter with `entering` N in all drops loads by.
+  double gamma_for(double entering) const { return threshold == Threshold::Absolute ? gamma : gamma_relative * entering; }
   /// Factor per agent on a sideways (Poisson) push as it is passed on; unset, it follows alpha2
   /// ("the same rule set turned 90 degrees", docs/agent-model.md). Read it through decay().
   std::optional<double> poisson_decay;
@@ -93,11 +106,15 @@ struct CoefficientSpec {
   bool integer;          ///< an integer (directions)
   bool optional;         ///< absent from a case, it stays unset (poisson_decay: then it follows alpha2)
   double (*get)(const Coefficients&);  ///< the value in effect (a named choice: its index)
+  /// Sets the value; a threshold's key also selects its kind (gamma: absolute, gamma_relative: relative).
   void (*set)(Coefficients&, double);
   /// A choice among names (a case file gives the name, summaries the index): `choice_count` names;
   /// nullptr for a number. A choice is an integer in [0, choice_count - 1].
   const char* const* choices = nullptr;
   int choice_count = 0;
+  /// Whether the value acts in `k` (nullptr: always); a case file lists only what acts.
+  bool (*acts)(const Coefficients&) = nullptr;
+  bool acts_in(const Coefficients& k) const { return !acts || acts(k); }
   /// The library's default (in effect: poisson_decay's is alpha2's).
   double default_value() const { return get(Coefficients{}); }
   bool used_by(RuleSet r) const { return rules & rule_bit(r); }
@@ -115,7 +132,7 @@ constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
 }  // namespace detail
 
 /// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector.
-inline constexpr std::array<CoefficientSpec, 14> kCoefficients{{
+inline constexpr std::array<CoefficientSpec, 15> kCoefficients{{
     {"alpha1", "", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)",
      rule_bit(RuleSet::Patent), 0, 1, false, false, true, 0.0, 1.0, false, false,
      [](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }},
@@ -128,9 +145,11 @@ inline constexpr std::array<CoefficientSpec, 14> kCoefficients{{
     {"beta", "", "share of its Poisson expansion an agent keeps; 1 - beta is pushed out sideways",
      detail::kSeedRules, 0, 1, false, false, true, 0.0, 1.0, false, false,
      [](const Coefficients& k) { return k.beta; }, [](Coefficients& k, double v) { k.beta = v; }},
-    {"gamma", "N", "threshold: a load at or below it is not passed on",
+    {"gamma", "N", "absolute threshold: a load at or below it is not passed on (names the absolute threshold)",
      detail::kAllRules, 0, 1e100, false, false, true, 0.0, 1e-2, false, false,
-     [](const Coefficients& k) { return k.gamma; }, [](Coefficients& k, double v) { k.gamma = v; }},
+     [](const Coefficients& k) { return k.gamma; },
+     [](Coefficients& k, double v) { k.gamma = v, k.threshold = Threshold::Absolute; }, nullptr, 0,
+     [](const Coefficients& k) { return k.threshold == Threshold::Absolute; }},
     {"fan_angle", "degrees", "half-opening of the entry fan",
      rule_bit(RuleSet::Directional), 0, 90, true, true, true, 20.0, 89.0, false, false,
      [](const Coefficients& k) { return k.directional.fan_angle; },
@@ -159,6 +178,11 @@ inline constexpr std::array<CoefficientSpec, 14> kCoefficients{{
      detail::kSeedRules, 0, 1, false, false, false, 0.0, 1.0, false, true,
      [](const Coefficients& k) { return k.decay(); },
      [](Coefficients& k, double v) { k.poisson_decay = v; }},
+    {"gamma_relative", "", "relative threshold: gamma = gamma_relative x the load entering the body (the default)",
+     detail::kAllRules, 0, 1, false, true, false, 0.0, 1e-3, false, false,
+     [](const Coefficients& k) { return k.gamma_relative; },
+     [](Coefficients& k, double v) { k.gamma_relative = v, k.threshold = Threshold::Relative; }, nullptr, 0,
+     [](const Coefficients& k) { return k.threshold == Threshold::Relative; }},
     {"directions", "", "slopes in the fan per lateral axis, even (an odd fan has a straight-down packet)",
      rule_bit(RuleSet::Directional), 2, 256, false, false, false, 2, 256, true, false,
      [](const Coefficients& k) { return double(k.directional.directions); },

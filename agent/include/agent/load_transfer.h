@@ -43,6 +43,12 @@ class LoadTransfer {
   /// and cyclic rule types clear every slot first. Under readings 2 or 6 throws
   /// agent::CyclicCapReached if the work-list's cap is reached.
   void solve(const std::vector<EntryLoad>& loads);
+  /// The same with the relative threshold taken as a share of `entering` [N] (the load entering
+  /// the body) rather than of these loads' sum: a study that solves its pushes and its pulls apart
+  /// gives both the threshold of the whole load. Under the absolute threshold `entering` is not read.
+  void solve(const std::vector<EntryLoad>& loads, double entering);
+  /// The absolute threshold the last solve dropped loads by [N] (Coefficients::gamma_for).
+  double gamma_in_effect() const { return gamma_; }
 
   const Grid& grid() const { return grid_; }
   const Material& material() const { return material_; }
@@ -69,6 +75,7 @@ class LoadTransfer {
   RuleSet rules_;
   TransferReadings readings_;
   TransferResults out_;
+  double gamma_;  // the gamma the rule type was built with
   std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> transfer_;
 };
 

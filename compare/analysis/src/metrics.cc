@@ -216,6 +216,8 @@ std::vector<LoadFrame> load_frames(const agent::ImportedMesh& mesh, const std::v
       area += a;
     }
     f.centre = sum / area;
+    const auto& faces = mesh.face_groups.at(loads[i].group);
+    if (!faces.empty() && faces.front().side == agent::direction(f.axis, f.sign > 0)) f.sign = -f.sign;  // a pull
     frames.push_back(f);
   }
   return frames;

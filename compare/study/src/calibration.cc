@@ -31,6 +31,12 @@ agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coe
   for (std::size_t i = 0; i < kCoefficientCount; ++i)
     if (held[i]) agent::kCoefficients[i].set(k, agent::kCoefficients[i].get(own));
   k.poisson_decay = own.poisson_decay;  // a case's own value is held; unset, it follows alpha2
+  // The threshold is the case's own when gamma is held from it; else the fitted point's (a
+  // calibration that gives gamma, free or as a start, sets it: the absolute threshold acts).
+  // gamma_relative is not fitted: always the case's own.
+  static const std::size_t gamma = std::size_t(agent::find_coefficient("gamma") - agent::kCoefficients.data());
+  if (held[gamma]) k.threshold = own.threshold;
+  k.gamma_relative = own.gamma_relative;
   k.directional.directions = own.directional.directions;  // an integer: not fitted
   return k;
 }
@@ -44,49 +50,49 @@ double l2_error(const std::vector<double>& model, const std::vector<double>& ref
 Score score_case(const CalibrationCase& c, const GridFields& agent, const ObjectiveWeights& w) {
   const auto& grid = c.study.mesh.grid;
   const int dim = grid.dim;
-  Score s;
+  // Per row of kFields the agent's and the reference's values over the scope.
+  std::array<std::vector<double>, kFieldCount> a, r;
+  auto add_stress = [&](const auto& value_of) {  // value_of(fields, slot)
+    for (std::size_t k = 0; k < kFieldCount; ++k)
+      if (kFields[k].in(dim) && !kFields[k].per_node) {
+        a[k].push_back(value_of(agent, kFields[k].slot));
+        r[k].push_back(value_of(c.reference, kFields[k].slot));
+      }
+  };
+  auto add_nodes = [&](const auto& value_of) {  // value_of(fields, component)
+    for (std::size_t k = 0; k < kFieldCount; ++k)
+      if (kFields[k].in(dim) && kFields[k].per_node)
+        for (int comp = 0; comp < dim; ++comp)
+          if (kFields[k].slot < 0 || kFields[k].slot == comp) {  // -1: the displacement vector
+            a[k].push_back(value_of(agent, comp));
+            r[k].push_back(value_of(c.reference, comp));
+          }
+  };
   if (w.far || !w.lines) {  // the body, or its far field (docs/compare.md): agents and their nodes only, air left out
     NearLoad near;
     if (w.far)
       near = near_load(c.study.mesh, c.study.setup.loads, w.far_distance > 0 ? w.far_distance : 5 * grid.size[0]);
-    std::vector<double> a[3], r[3];
     for (std::size_t cell : agent_ids(grid))  // box order on any layout: the same sums
       if (!(w.far && near.cells[cell]))
-        for (int f = 0; f < 2; ++f) {
-          a[f].push_back(agent.stress[kStressSlots * cell + kSigmaX + f]);
-          r[f].push_back(c.reference.stress[kStressSlots * cell + kSigmaX + f]);
-        }
+        add_stress([&](const GridFields& f, int slot) { return f.stress[kStressSlots * cell + slot]; });
     for (std::size_t n : body_node_ids(grid))
-      if (!(w.far && near.nodes[n]))
-        for (int comp = 0; comp < dim; ++comp) {
-          a[2].push_back(agent.u[n * dim + comp]);
-          r[2].push_back(c.reference.u[n * dim + comp]);
-        }
-    s.sigma_x = l2_error(a[0], r[0]);
-    s.sigma_y = l2_error(a[1], r[1]);
-    s.displacement = l2_error(a[2], r[2]);
+      if (!(w.far && near.nodes[n])) add_nodes([&](const GridFields& f, int comp) { return f.u[n * dim + comp]; });
   } else {
-    std::vector<double> a[3], r[3];
     for (const auto& line : load_lines(grid, load_frames(c.study.mesh, c.study.setup.loads), w.depths))
       for (int i : line.body_samples) {  // a line stops at air
         const Eigen::Vector3d p = line.point(i);
-        for (int f = 0; f < 2; ++f) {
-          a[f].push_back(sample_cells(grid, agent.stress, kStressSlots, kSigmaX + f, p));
-          r[f].push_back(sample_cells(grid, c.reference.stress, kStressSlots, kSigmaX + f, p));
-        }
-        for (int comp = 0; comp < dim; ++comp) {
-          a[2].push_back(sample_nodes(grid, agent.u, dim, comp, p));
-          r[2].push_back(sample_nodes(grid, c.reference.u, dim, comp, p));
-        }
+        add_stress([&](const GridFields& f, int slot) { return sample_cells(grid, f.stress, kStressSlots, slot, p); });
+        add_nodes([&](const GridFields& f, int comp) { return sample_nodes(grid, f.u, dim, comp, p); });
       }
-    s.sigma_x = l2_error(a[0], r[0]);
-    s.sigma_y = l2_error(a[1], r[1]);
-    s.displacement = l2_error(a[2], r[2]);
   }
   // Squared errors: smooth at the optimum, which BOBYQA's quadratic models need (a plain norm is
-  // V-shaped there and stalls it).
-  s.objective = w.sigma_x * s.sigma_x * s.sigma_x + w.sigma_y * s.sigma_y * s.sigma_y +
-                w.displacement * s.displacement * s.displacement;
+  // V-shaped there and stalls it). A field without weight is reported, not scored.
+  Score s;
+  for (std::size_t k = 0; k < kFieldCount; ++k) {
+    if (!kFields[k].in(dim)) continue;
+    s.error[k] = l2_error(a[k], r[k]);
+    if (w.field[k] > 0) s.objective += w.field[k] * s.error[k] * s.error[k];
+  }
   return s;
 }
 
@@ -95,22 +101,20 @@ Score score_case(const CalibrationCase& c, const GridFields& agent, const Object
 namespace {
 
 /// A score as numbers, for the sum over the ranks.
-constexpr int kScoreSlots = 8;
+constexpr int kScoreSlots = 5 + int(kFieldCount);
 void pack(const Score& s, double* out) {
-  const double v[kScoreSlots] = {s.objective,      s.sigma_x,         s.sigma_y, s.displacement, s.reaction_share,
-                                 s.equilibrium_dev, s.reach, s.load_refused ? 1.0 : 0.0};
-  std::copy(v, v + kScoreSlots, out);
+  const double v[5] = {s.objective, s.reaction_share, s.equilibrium_dev, s.reach, s.load_refused ? 1.0 : 0.0};
+  std::copy(v, v + 5, out);
+  std::copy(s.error.begin(), s.error.end(), out + 5);
 }
 Score unpack(const double* v) {
   Score s;
   s.objective = v[0];
-  s.sigma_x = v[1];
-  s.sigma_y = v[2];
-  s.displacement = v[3];
-  s.reaction_share = v[4];
-  s.equilibrium_dev = v[5];
-  s.reach = v[6];
-  s.load_refused = v[7] != 0;
+  s.reaction_share = v[1];
+  s.equilibrium_dev = v[2];
+  s.reach = v[3];
+  s.load_refused = v[4] != 0;
+  std::copy(v + 5, v + kScoreSlots, s.error.begin());
   return s;
 }
 

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <fstream>
@@ -41,11 +42,11 @@ CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   o.threads = t.integer("threads", 0, 0, 1024);
   plan.cross_validate = t.flag("cross_validate", true);
   const auto w = t.table("objective");
-  o.weights.sigma_x = w.number("sigma_x", 0.0, Range::non_negative());
-  o.weights.sigma_y = w.number("sigma_y", 1.0, Range::non_negative());
-  o.weights.displacement = w.number("displacement", 1.0, Range::non_negative());
-  if (o.weights.sigma_x + o.weights.sigma_y + o.weights.displacement <= 0)
-    w.fail("sigma_y", "at least one of sigma_x, sigma_y, displacement must have a positive weight");
+  // One weight per field of the one field table (compare::kFields).
+  double weight_sum = 0;
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    weight_sum += o.weights.field[k] = w.number(kFields[k].name, o.weights.field[k], Range::non_negative());
+  if (weight_sum <= 0) w.fail("sigma_y", "at least one field (compare::kFields: sigma_x, sigma_y, displacement, ...) must have a positive weight");
   const std::string scope = w.text("scope", "body", {"body", "far", "lines"});
   o.weights.lines = scope == "lines";
   o.weights.far = scope == "far";
@@ -91,7 +92,8 @@ std::string with_coefficients(const std::string& text, const fs::path& case_dir,
                               agent::RuleSet rules, const std::optional<agent::Readings>& readings) {
   std::vector<std::pair<std::string, std::string>> agent{{"rule_set", workbench::toml_string(agent::rule_set_name(rules))}};
   for (const auto& c : agent::kCoefficients)
-    if (!c.integer) agent.emplace_back(c.name, workbench::toml_number(c.get(k)));  // poisson_decay too; `directions` is the case's own
+    if (!c.integer && c.acts_in(k))  // poisson_decay too; `directions` is the case's own; the threshold in effect only
+      agent.emplace_back(c.name, workbench::toml_number(c.get(k)));
   if (readings) agent.emplace_back("readings", workbench::toml_strings(agent_study::names_of(*readings)));
   std::string out = text;
   if (auto file = toml::parse(text)["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
@@ -193,6 +195,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     std::string held_out;
     double fitted_on_others, fitted_on_all, start;
     agent::Coefficients k;
+    Score held_out_score;  ///< the case left out, scored with the others' fit: its error per field
   };
   std::vector<Fold> folds;
   if (plan.cross_validate && cases.size() >= 2) {
@@ -205,7 +208,8 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
       const auto fold = calibrate(train, o, nullptr);
       std::vector<Score> score;
       objective({cases[i]}, fold.best, o.rules, o.weights, &score);
-      folds.push_back({cases[i].name, score[0].objective, result.after[i].objective, result.before[i].objective, fold.best});
+      folds.push_back({cases[i].name, score[0].objective, result.after[i].objective, result.before[i].objective, fold.best,
+                       score[0]});
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
@@ -216,19 +220,22 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   r << "Calibration of " << file.path().string() << " (" << (agent::rule_set_name(o.rules))
     << " rule set, " << o.starts << " starts, seed " << o.seed << ", " << result.evaluations << " evaluations, "
     << seconds << " s)\n\n";
-  r << "objective: sum over cases of weight * (" << o.weights.sigma_x << " e(sigma_x)^2 + " << o.weights.sigma_y
-    << " e(sigma_y)^2 + " << o.weights.displacement << " e(u)^2), e = relative L2 error over the "
-    << (o.weights.lines ? "sample lines" : o.weights.far ? "far field" : "body") << "\n\n";
+  r << "objective: sum over cases of weight * (";
+  for (std::size_t k = 0, n = 0; k < kFieldCount; ++k)
+    if (o.weights.field[k] > 0) r << (n++ ? " + " : "") << o.weights.field[k] << " e(" << kFields[k].name << ")^2";
+  r << "), e = relative L2 error over the " << (o.weights.lines ? "sample lines" : o.weights.far ? "far field" : "body")
+    << "; the other fields are reported, not fitted\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
-  r << std::left << std::setw(28) << "case" << std::right << std::setw(12) << "e(sx) before" << std::setw(12) << "after"
-    << std::setw(14) << "e(sy) before" << std::setw(12) << "after" << std::setw(12) << "e(u) before" << std::setw(12)
-    << "after" << "\n";
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    r << std::left << std::setw(28) << cases[i].name << std::right << std::setw(12) << result.before[i].sigma_x
-      << std::setw(12) << result.after[i].sigma_x << std::setw(14) << result.before[i].sigma_y << std::setw(12)
-      << result.after[i].sigma_y << std::setw(12) << result.before[i].displacement << std::setw(12)
-      << result.after[i].displacement << "\n";
+  // Per field (kFields) and case: the error before and after the fit (0: not compared in the case's dimension).
+  r << std::left << std::setw(14) << "field" << std::setw(28) << "case" << std::right << std::setw(12) << "before"
+    << std::setw(12) << "after" << std::setw(8) << "weight" << "\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      if (kFields[k].in(cases[i].study.mesh.grid.dim))
+        r << std::left << std::setw(14) << kFields[k].name << std::setw(28) << cases[i].name << std::right
+          << std::setw(12) << result.before[i].error[k] << std::setw(12) << result.after[i].error[k] << std::setw(8)
+          << o.weights.field[k] << "\n";
   r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
     << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
     << "reach before" << std::setw(10) << "after" << "\n";
@@ -264,9 +271,16 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   if (!folds.empty()) {
     r << "\ncross-validation (fit on the other cases, score the one left out):\n";
     for (const auto& f : folds)
+    {
       r << "  " << std::left << std::setw(28) << f.held_out << std::right << " held out: " << std::setw(10)
         << f.fitted_on_others << "  fitted on all: " << std::setw(10) << f.fitted_on_all << "  start: " << std::setw(10)
-        << f.start << "\n";
+        << f.start << "\n    held-out error per field:";
+      const int dim = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.name == f.held_out; })
+                          ->study.mesh.grid.dim;
+      for (std::size_t k = 0; k < kFieldCount; ++k)
+        if (kFields[k].in(dim)) r << " " << kFields[k].name << " " << f.held_out_score.error[k];
+      r << "\n";
+    }
   } else if (plan.cross_validate) {
     r << "\ncross-validation: needs two or more cases\n";
   }
@@ -291,10 +305,18 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     j["evaluations"] = result.evaluations;
     j["seconds"] = seconds;
     j["start_objectives"] = result.start_objectives;
+    // Errors per field of kFields compared in the case's dimension.
+    auto errors = [](const Score& s, int dim) {
+      nlohmann::json e = nlohmann::json::object();
+      for (std::size_t k = 0; k < kFieldCount; ++k)
+        if (kFields[k].in(dim)) e[kFields[k].name] = s.error[k];
+      return e;
+    };
+    for (std::size_t k = 0; k < kFieldCount; ++k) j["weights"][kFields[k].name] = o.weights.field[k];
     for (std::size_t i = 0; i < cases.size(); ++i)
       j["cases"][cases[i].name] = {
-          {"before", {{"sigma_x", result.before[i].sigma_x}, {"sigma_y", result.before[i].sigma_y}, {"displacement", result.before[i].displacement}}},
-          {"after", {{"sigma_x", result.after[i].sigma_x}, {"sigma_y", result.after[i].sigma_y}, {"displacement", result.after[i].displacement}}},
+          {"before", errors(result.before[i], cases[i].study.mesh.grid.dim)},
+          {"after", errors(result.after[i], cases[i].study.mesh.grid.dim)},
           {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
           {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
           {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
@@ -303,7 +325,12 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     for (const auto& s : result.sensitivity)
       j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
     for (const auto& f : folds)
-      j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all}, {"start", f.start}};
+    {
+      const int dim = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.name == f.held_out; })
+                          ->study.mesh.grid.dim;
+      j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all},
+                                           {"start", f.start}, {"held_out_errors", errors(f.held_out_score, dim)}};
+    }
     report::write_text(dir / "report.json", j.dump(2) + "\n");
 
     fs::create_directories(dir / "calibrated");

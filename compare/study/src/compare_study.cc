@@ -10,6 +10,7 @@
 #include "report.h"
 
 #include <agent_study.h>
+#include <carry_check.h>
 #include <fem_reference/fem_case.h>
 #include <fem_reference/mpi.h>
 #include <workbench/csv_file.h>
@@ -35,6 +36,8 @@ using namespace agent_compare;
 namespace {
 
 using workbench::open_csv;
+
+const char* const kSideNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 
 using report::seconds_since;
 
@@ -72,6 +75,7 @@ std::vector<std::string> agent_metric_names(const std::vector<std::string>& line
 
 std::string GateFailure::describe() const {
   std::ostringstream s;
+  if (!refused.empty()) return "carry check: " + refused;
   s << metric << " = " << value;
   if (zero_model)
     s << " is not below the zero model's " << limit << ": worse than predicting zero";
@@ -242,6 +246,8 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
                    {"dropped", d.dropped}, {"lost", d.applied - d.rigid_reaction - d.passed_out - d.dropped},
                    {"agents_generated", d.agents_generated}, {"agent_updates", d.agent_updates},
                    {"packet_moves", d.packet_moves}};
+  json["agent"]["threshold"] = {{"kind", agent::threshold_name(study.coefficients.threshold)},
+                                {"gamma_in_effect", study.coefficients.gamma_for(agent_study::entering_load(study, 1.0))}};
   for (const auto& c : agent::kCoefficients) {  // every coefficient in effect; those the rule set reads, named
     json["agent"]["coefficients"][c.name] = c.get(study.coefficients);
     if (c.used_by(study.rules)) json["agent"]["coefficients_used"].push_back(c.name);
@@ -283,6 +289,16 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   fem_reference::mpi_collective([&] { input.emplace(read_input(file, options)); });
   const auto& in = *input;
   const auto& grid = in.study.mesh.grid;
+
+  // 1b. The carry check: a load the rule set cannot carry to a rigid face is named, with the
+  // reason, before anything runs (docs/compare.md); it fails the gate after the run.
+  const auto carry = agent_study::carry_check(in.study);
+  CompareOutcome outcome;
+  for (const auto& c : carry) {
+    const std::string line = c.describe(in.study);
+    if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
+    if (c.refused()) outcome.refused.push_back(line);
+  }
 
   // 2. The agent model, every load step.
   auto t = std::chrono::steady_clock::now();
@@ -333,7 +349,6 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log);
   fem_seconds += seconds_since(t);
   // 7-9 on rank 0.
-  CompareOutcome outcome;
   mpi_on_root([&] {
     const auto& agent_state = states.back();
     // 7. The metrics.
@@ -362,6 +377,12 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     // 9. The gate, summary.json / summary.txt / junit.xml.
     outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
     auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
+    json["carry_check"] = nlohmann::json::array();
+    for (const auto& c : carry)
+      json["carry_check"].push_back({{"load", c.load}, {"group", c.group}, {"march", kSideNames[c.march]},
+                                     {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
+                                     {"carries", !c.refused()}, {"said", c.describe(in.study)}});
+    for (const auto& r : outcome.refused) outcome.warnings.push_back("agent: carry check: " + r);
     std::vector<std::string> notes{
         "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
             " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +

@@ -108,6 +108,14 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     ++outcome.gated;
     if (worse_than_zero(*m)) outcome.failures.push_back({m->name, m->value, kZeroModelRelL2, true});
   }
+  // A load the rule set cannot carry fails a gate with the carry check's line, not with its errors alone.
+  if (!gate.empty() || !better_than_zero.empty())
+    for (const auto& r : outcome.refused) {
+      ++outcome.gated;
+      GateFailure f{"carry_check", 0.0, 0.0};
+      f.refused = r;
+      outcome.failures.push_back(f);
+    }
   // A field the model predicts no better than zero is said so, in the body and the far field.
   std::string worse;
   for (const auto& m : outcome.metrics)
@@ -132,6 +140,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     json["metrics"][m.name] = entry;
   }
   json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
+  for (const auto& f : outcome.failures)
+    if (!f.refused.empty()) json["gate"]["refused"].push_back(f.describe());
   json["warnings"] = outcome.warnings;
   write_text(dir / "summary.json", json.dump(2) + "\n");
 
@@ -180,6 +190,10 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             << " is not below the zero model's " << kZeroModelRelL2 << ": worse than predicting zero\"/>";
     junit << "</testcase>\n";
   }
+  for (const auto& f : outcome.failures)
+    if (!f.refused.empty())
+      junit << "    <testcase classname=\"compare\" name=\"carry_check\"><failure message=\"" << xml_escape(f.describe())
+            << "\"/></testcase>\n";
   junit << "  </testsuite>\n</testsuites>\n";
   write_text(dir / "junit.xml", junit.str());
   render_html(dir, log);

@@ -68,6 +68,8 @@ Line make_line(const agent::Grid& grid, const Eigen::Vector3d& from, const Eigen
 struct LoadFrame {
   Eigen::Vector3d centre;  ///< force-weighted centre of the loaded faces [m]
   int axis = 1;            ///< direction of the load: axis and sign
+  /// The sign of the march into the body: the load's for a push (or a load along the face), the
+  /// opposite for a pull (docs/agent-model.md, "Tension"): a pull's lines lie where its push's do.
   int sign = -1;
   std::string label;       ///< e.g. "load 1 (group load, -y)"
 };

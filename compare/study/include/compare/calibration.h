@@ -25,11 +25,23 @@ struct Parameter {
   double start = 0, lo = 0, hi = 1;
 };
 
-/// What the objective measures: sum over cases of weight * (w_sx e(sigma_x)^2 + w_sy e(sigma_y)^2
-/// + w_u e(u)^2), e = ||agent - reference||_2 / ||reference||_2 over the body (every agent, every
-/// node) or over the sample lines.
+/// The fields a calibration can weight: every row of compare::kFields, in its order.
+constexpr std::size_t kFieldCount = std::size(kFields);
+using FieldValues = std::array<double, kFieldCount>;
+
+/// The default weights: sigma_y and the displacement 1, every other field 0 (the seed's fit).
+constexpr FieldValues default_field_weights() {
+  FieldValues w{};
+  w[field_index("sigma_y")] = 1.0;
+  w[field_index("displacement")] = 1.0;
+  return w;
+}
+
+/// What the objective measures: sum over cases of weight * sum over the fields f of compare::kFields
+/// compared in the case's dimension of w_f e(f)^2, e = ||agent - reference||_2 / ||reference||_2
+/// over the body (every agent, every node) or over the sample lines.
 struct ObjectiveWeights {
-  double sigma_x = 0.0, sigma_y = 1.0, displacement = 1.0;
+  FieldValues field = default_field_weights();  ///< per row of kFields
   bool lines = false;
   std::vector<double> depths{0.25, 0.5, 0.75};  ///< the lines across each load, when `lines`
   bool far = false;              ///< over the far field (docs/compare.md) instead of the body
@@ -65,7 +77,10 @@ struct CalibrationOptions {
 constexpr double kLoadTolerance = 1e-6;
 
 struct Score {
-  double objective = 0, sigma_x = 0, sigma_y = 0, displacement = 0;  ///< per case: the errors e
+  double objective = 0;
+  /// Per row of kFields, the case's error e (0 for a field not compared in its dimension).
+  FieldValues error{};
+  double field(std::string_view name) const { return error[field_index(name)]; }
   double reaction_share = 0;  ///< rigid reaction / applied: the load the agents carry to a rigid face
   double equilibrium_dev = 0; ///< |rigid reaction - applied| / applied
   double reach = 0;           ///< share of agents the load reaches
@@ -112,8 +127,9 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
 /// rest): poisson_decay is left to follow alpha2, the directional `directions` at its default.
 agent::Coefficients coefficients_from(const CoefficientValues& values);
 
-/// A case's coefficients: the fitted ones, with those `held` (and poisson_decay, directions) taken
-/// from the case's `own`.
+/// A case's coefficients: the fitted ones, with those `held` (and poisson_decay, directions,
+/// gamma_relative) taken from the case's `own`; the threshold (agent::Threshold) is the case's own
+/// when gamma is held, else the fitted point's (coefficients_from sets gamma: absolute).
 agent::Coefficients for_case(const agent::Coefficients& fitted, const agent::Coefficients& own,
                              const std::array<bool, kCoefficientCount>& held);
 

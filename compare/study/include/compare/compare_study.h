@@ -41,6 +41,8 @@ struct GateFailure {
   std::string metric;
   double value, limit;
   bool zero_model = false;  ///< the limit is the zero model's error (compare.better_than_zero)
+  /// Not a metric: the carry check refused a load (agent_study::carry_check); the line says which and why.
+  std::string refused;
   /// One line: "far.sigma_x.rel_l2 = 1.6 exceeds 0.5 by 1.1", or "... is not below the zero model's 1:
   /// worse than predicting zero".
   std::string describe() const;
@@ -76,6 +78,9 @@ struct CompareOutcome {
   std::vector<GateFailure> failures;  ///< gated metrics over their limit
   std::size_t gated = 0;              ///< metrics the gate checks
   std::vector<std::string> warnings;  ///< said on the log and in the summary (e.g. load lost)
+  /// Loads the rule set cannot carry (the carry check before the run), one line each: each fails
+  /// a case's gate (when it has one) with that line.
+  std::vector<std::string> refused;
 };
 
 /// Runs both models from the case file, compares them and writes everything into `dir`. Agent:

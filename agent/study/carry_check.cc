@@ -1,0 +1,96 @@
+// The carry check before a run (agent_study/carry_check.h).
+#include "carry_check.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace agent_study {
+
+namespace {
+const char* kSides[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+}
+
+Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry, int march, int widen) {
+  const int a = agent::axis_of(march);
+  const double area = grid.face_area(a);
+  std::vector<char> seen(grid.count(), 0);
+  std::vector<std::size_t> now, next;
+  for (std::size_t c : entry)
+    if (!seen[c]) seen[c] = 1, now.push_back(c);
+  Exits out;
+  while (!now.empty()) {
+    next.clear();
+    for (std::size_t c : now) {
+      const std::size_t n = grid.neighbour(c, march);
+      if (n != agent::Grid::npos && !grid.is_air(n)) {
+        if (!seen[n]) seen[n] = 1, next.push_back(n);
+      } else {
+        (grid.boundary(march, c) == agent::Boundary::Rigid ? out.rigid : out.free) += area;
+      }
+    }
+    // Widen through the row's agents, up to `widen` each way along each lateral axis.
+    const std::size_t row = next.size();
+    for (std::size_t i = 0; i < row; ++i)
+      for (int b = 0; b < grid.dim; ++b) {
+        if (b == a) continue;
+        for (int side : {agent::direction(b, false), agent::direction(b, true)}) {
+          std::size_t c = next[i];
+          for (int s = 0; s < widen; ++s) {
+            c = grid.neighbour(c, side);
+            if (c == agent::Grid::npos || grid.is_air(c)) break;
+            if (!seen[c]) seen[c] = 1, next.push_back(c);
+          }
+        }
+      }
+    now.swap(next);
+  }
+  return out;
+}
+
+int lateral_reach(const agent::Grid& grid, agent::RuleSet rules, const agent::Coefficients& k) {
+  if (rules == agent::RuleSet::Directional)
+    return int(std::ceil(std::tan(k.directional.fan_angle * M_PI / 180.0)));
+  return std::max({grid.cells[0], grid.cells[1], grid.cells[2]});
+}
+
+std::string LoadCarry::describe(const AgentStudy& study) const {
+  const auto& spec = study.setup.loads[load];
+  std::ostringstream s;
+  s << "load[" << load << "] (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
+    << kSides[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits " << 1e6 * exits.free << " mm^2";
+  if (refused()) {
+    s << ": cannot carry: no rigid face ahead of the loaded face (march " << kSides[march] << "); the "
+      << agent::rule_set_name(study.rules) << " rule set passes it out through free faces";
+    if (!across.empty()) s << " (rigid faces lie ahead along " << across << ": reached by bending, which no rule set here carries)";
+  }
+  else
+    s << ": carries (rigid share of the exits " << exits.rigid / (exits.rigid + exits.free) << ")";
+  return s.str();
+}
+
+std::vector<LoadCarry> carry_check(const AgentStudy& study) {
+  const auto& grid = study.mesh.grid;
+  const int widen = lateral_reach(grid, study.rules, study.coefficients);
+  std::vector<LoadCarry> out;
+  for (std::size_t i = 0; i < study.setup.loads.size(); ++i) {
+    const auto& spec = study.setup.loads[i];
+    const int dir = agent::direction(spec.axis, spec.sign > 0);
+    std::map<int, std::vector<std::size_t>> by_march;  // a pull marches inward, as the transfer does
+    for (const auto& f : study.mesh.face_groups.at(spec.group))
+      by_march[dir == f.side ? agent::opposite(dir) : dir].push_back(f.cell);
+    for (const auto& [march, cells] : by_march) {
+      LoadCarry c;
+      c.load = i, c.group = spec.group, c.march = march;
+      c.exits = exits_ahead(grid, cells, march, widen);
+      if (c.refused())  // where a load path by shear and bending would go: the axes with a rigid face ahead
+        for (int d = 0; d < 2 * grid.dim; ++d)
+          if (agent::axis_of(d) != agent::axis_of(march) && exits_ahead(grid, cells, d, widen).rigid > 0)
+            c.across += std::string(c.across.empty() ? "" : ", ") + kSides[d];
+      out.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace agent_study

@@ -1,0 +1,43 @@
+#pragma once
+// Saying before a run whether the rule set can carry each load to a rigid face (docs/agent-model.md,
+// "The carry check"; research: bench/research/carry_check.py). Every rule set marches from the
+// loaded face inward; a load whose rigid faces do not lie ahead of it (a cantilever, a bracket
+// clamped at its side) is passed out through free faces whatever the coefficients.
+#include "agent_study.h"
+
+#include <string>
+#include <vector>
+
+namespace agent_study {
+
+/// Where a march from `entry` agents along `march` can leave the body: the rows ahead are swept,
+/// each row's reached set widened by `widen` agents each way along every lateral axis through the
+/// agents of that row; a face across the march where the body ends ahead of a reached agent is an
+/// exit, rigid (a reaction) or free (passed out). Areas [m^2]. One pass over the reachable rows.
+struct Exits {
+  double rigid = 0, free = 0;
+};
+Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry, int march, int widen);
+
+/// Agents per row the rule set reaches sideways: the directional fan ceil(tan(fan_angle)); the
+/// seed's rule sets pass friction along the whole row (the box's width).
+int lateral_reach(const agent::Grid& grid, agent::RuleSet rules, const agent::Coefficients& k);
+
+/// One [[load]] of the case, checked.
+struct LoadCarry {
+  std::size_t load = 0;  ///< index of the [[load]] table
+  std::string group;
+  int march = 0;         ///< the direction the rule set marches (the loaded face's inward normal)
+  Exits exits;
+  /// When refused: the directions across the march along which rigid faces lie ahead ("-x"), else "".
+  std::string across;
+  /// The rule set cannot carry it: no rigid face ahead of the loaded face.
+  bool refused() const { return !(exits.rigid > 0); }
+  /// "load[0] (group "tip", 2 N, march -y): rigid exits 0 mm^2, free 22 mm^2: ..." (one line).
+  std::string describe(const AgentStudy& study) const;
+};
+
+/// Every [[load]] of the study, in case order.
+std::vector<LoadCarry> carry_check(const AgentStudy& study);
+
+}  // namespace agent_study

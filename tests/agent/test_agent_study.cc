@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "../support/scratch_folder.h"
+#include "../support/study_error.h"
 
 namespace fs = std::filesystem;
 
@@ -22,17 +23,6 @@ std::string plate_case(const std::string& boundary = "rigid = [\"base\"]", const
          "[material]\nyoung = 206e9\npoisson = 0.3\nthickness = 0.002\n[boundary]\n" + boundary +
          "\n[[load]]\ngroup = \"" + group + "\"\ndirection = \"" + direction + "\"\nforce = 2.0\n" +
          "[agent]\nrule_set = \"conserving\"\ngamma = 1e-6\n[steps]\ncount = 3\n";
-}
-
-std::string study_error(const std::string& body) {
-  try {
-    workbench::CaseFile file(write_file("bad.toml", body));
-    agent_study::load_agent_study(file);
-    file.reject_unknown_keys();
-  } catch (const workbench::Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 }  // namespace
@@ -125,13 +115,13 @@ TEST(AgentStudy, LoadThatMissesTheRigidFaceWarnsAndMixedLoadsPrintVectors) {
 }
 
 TEST(AgentStudy, BadCasesNameTheFileAndTheKey) {
-  EXPECT_NE(study_error(plate_case("rigid = []")).find("boundary.rigid: no rigid faces"), std::string::npos);
-  EXPECT_NE(study_error(plate_case("rigid = [\"floor\"]")).find("boundary.rigid: group 'floor' is not a physical group"),
+  EXPECT_NE(test_support::study_error(plate_case("rigid = []")).find("boundary.rigid: no rigid faces"), std::string::npos);
+  EXPECT_NE(test_support::study_error(plate_case("rigid = [\"floor\"]")).find("boundary.rigid: group 'floor' is not a physical group"),
             std::string::npos);
-  EXPECT_NE(study_error(plate_case("rigid = [\"base\"]", "-z")).find("load[0].direction: -z is not an axis of a 2D mesh"),
+  EXPECT_NE(test_support::study_error(plate_case("rigid = [\"base\"]", "-z")).find("load[0].direction: -z is not an axis of a 2D mesh"),
             std::string::npos);
-  EXPECT_NE(study_error(plate_case("rigid = [\"base\"]\nrollers = [\"free\"]")).find("boundary.rollers: the agent method"),
+  EXPECT_NE(test_support::study_error(plate_case("rigid = [\"base\"]\nrollers = [\"free\"]")).find("boundary.rollers: the agent method"),
             std::string::npos);
-  EXPECT_NE(study_error(plate_case() + "[mesh.extra]\n").find("unknown key"), std::string::npos);
-  EXPECT_NE(study_error(plate_case() + "[output]\n").find("unknown key 'output'"), std::string::npos);
+  EXPECT_NE(test_support::study_error(plate_case() + "[mesh.extra]\n").find("unknown key"), std::string::npos);
+  EXPECT_NE(test_support::study_error(plate_case() + "[output]\n").find("unknown key 'output'"), std::string::npos);
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "../support/scratch_folder.h"
+#include "../support/study_error.h"
 
 namespace {
 
@@ -40,17 +41,6 @@ double base_reaction(const agent_study::AgentStudy& s, const agent_study::AgentS
   double sum = 0;
   for (int i = 0; i < g.cells[0]; ++i) sum += st.face_forces[g.index(i, 0, 0) * 4 + 2];
   return sum;
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    workbench::CaseFile file(write_file("bad.toml", text));
-    agent_study::load_agent_study(file);
-    file.reject_unknown_keys();
-  } catch (const workbench::Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 }  // namespace
@@ -122,10 +112,10 @@ TEST(Threshold, RelativeDefaultCarriesAWidePatchAndScales) {
 }
 
 TEST(Threshold, ACaseNamesOneThreshold) {
-  EXPECT_NE(error_of(plate("conserving", "-y", "gamma = 1e-3\ngamma_relative = 1e-6\n")).find("agent.gamma_relative: name one threshold"),
+  EXPECT_NE(test_support::study_error(plate("conserving", "-y", "gamma = 1e-3\ngamma_relative = 1e-6\n")).find("agent.gamma_relative: name one threshold"),
             std::string::npos)
-      << error_of(plate("conserving", "-y", "gamma = 1e-3\ngamma_relative = 1e-6\n"));
-  EXPECT_NE(error_of(plate("conserving", "-y", "gamma_relative = 1\n")).find("agent.gamma_relative"), std::string::npos);
+      << test_support::study_error(plate("conserving", "-y", "gamma = 1e-3\ngamma_relative = 1e-6\n"));
+  EXPECT_NE(test_support::study_error(plate("conserving", "-y", "gamma_relative = 1\n")).find("agent.gamma_relative"), std::string::npos);
   const auto s = study_of("rel.toml", plate("patent", "-y", "gamma_relative = 1e-4\n"));
   EXPECT_EQ(s.coefficients.threshold, agent::Threshold::Relative);
   EXPECT_EQ(s.coefficients.gamma_for(2.0), 2e-4);

@@ -172,8 +172,9 @@ struct FemResult {
   /// FemOptions::coarser_level: the same problem on the mesh one refinement coarser, solved from the
   /// multigrid hierarchy; its fields on the same gmsh elements and nodes (no reactions, VTU or exact
   /// errors).
-  /// `start_residual`: ||K P u0 - f|| / ||f|| on the fine mesh, where the fine CG started.
   std::shared_ptr<const FemResult> coarser;
+  /// With `coarser`: ||K P u0 - f|| / ||f|| on this mesh (P u0 the coarser solution embedded in its
+  /// space), where this solution's CG started.
   double coarser_start_residual = 0;
 };
 

@@ -48,8 +48,8 @@ using namespace dealii;
 
 namespace {
 
-/// (lambda div u div v + mu (grad u + grad u^T) : grad v), matrix-free, on the active mesh (level
-/// = invalid) or on one multigrid level.
+/// (lambda div u div v + mu (grad u + grad u^T) : grad v), matrix-free (deal.II's sum
+/// factorisation): here only to compute the coarse level's matrix for KLU or ML.
 template <int dim, int degree, typename number>
 class ElasticOperator : public MatrixFreeOperators::Base<dim, LinearAlgebra::distributed::Vector<number>> {
  public:

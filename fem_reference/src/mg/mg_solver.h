@@ -1,9 +1,10 @@
 // Matrix-free geometric multigrid for the FEM reference (private header; deal.II types).
 // The solver of fem.solver = "mg" (and of "auto" on refined quadrilateral/hexahedral meshes): CG on
-// the matrix-free elasticity operator, preconditioned by a V-cycle over the global refinement levels
-// (Chebyshev-Jacobi smoothing in single precision, step-37 style) with the coarse mesh solved by KLU
-// when direct_is_fast for it (elasticity.h), else by one ML AMG cycle (amg/amg.h).
-// No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
+// the elasticity operator applied cell by cell from shared element matrices (double;
+// cell_matrix_operator.h), preconditioned by a V-cycle over the global refinement levels
+// (Chebyshev-Jacobi smoothing on the same operator in single precision, step-37 style) with the
+// coarse mesh solved by KLU when direct_is_fast for it (elasticity.h), else by one ML AMG cycle
+// (amg/amg.h). No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
 #pragma once
 
 #include "amg/amg.h"

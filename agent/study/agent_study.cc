@@ -232,11 +232,11 @@ void set_von_mises(AgentState& s, int dim) {
   const int shears = agent::shear_count(dim);
   for (std::size_t c = 0; c < s.von_mises.size(); ++c) {
     const double* n = &s.stress[c * std::size_t(dim)];
-    const double* t = s.shear.empty() ? nullptr : &s.shear[c * std::size_t(shears)];
+    const double* t = &s.shear[c * std::size_t(shears)];  // every rule set's (zero without shear)
     if (dim == 2) {
-      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t ? t[0] : 0.0);
+      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t[0]);
     } else {
-      const double six[6] = {n[0], n[1], n[2], t ? t[0] : 0.0, t ? t[1] : 0.0, t ? t[2] : 0.0};
+      const double six[6] = {n[0], n[1], n[2], t[0], t[1], t[2]};
       s.von_mises[c] = agent::von_mises_3d(six);
     }
   }

@@ -230,6 +230,24 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
       while (lo > 0 && !is_air(lo - 1)) --lo;
       while (hi < n_w - 1 && !is_air(hi + 1)) ++hi;
     };
+    // 2D: the agent of row `layer` nearest to lateral slot `u` (u itself unless it is air), -1 if the
+    // row has none. A path over a hole or a notch goes round it by the nearer side.
+    auto nearest_agent = [&](int layer, int u) {
+      for (int off = 0; off < n0; ++off) {
+        if (u - off >= 0 && !air(slot_of(layer, u - off, 0))) return u - off;
+        if (u + off < n0 && !air(slot_of(layer, u + off, 0))) return u + off;
+        if (u - off < 0 && u + off >= n0) break;
+      }
+      return -1;
+    };
+    // Whether what agent (u, v) of row `layer` carries leaves the body through its exit face: at the
+    // body's last row, at a rigid face, or at a free face when the next row has no agent at all.
+    // A free face with body beyond it in the next row (a hole's, a notch's; 2D only: `goes_on`)
+    // passes nothing out.
+    auto leaves = [&](int layer, int u, int v, bool last_layer, bool goes_on) {
+      if (last_layer) return true;
+      return air(slot_of(layer + step, u, v)) && (rigid(slot_of(layer, u, v), exit_face) || !goes_on);
+    };
     auto march_turning = [&](const EntryLoad& entry_load, double body_depth) {
       std::array<AxisPaths, 2> axes;
       for (int which = 0; which < (dim == 3 ? 2 : 1); ++which) {
@@ -258,7 +276,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
       // Row `layer`'s distribution along one lateral axis. 2D: each direction over the run its path
       // lies in (a path over air passes out), its force leaving where the row's agents exit. 3D:
       // over the run through the entry's lateral line (false if the entry's line is air there).
-      auto distribute = [&](AxisPaths& p, int which, int layer, bool last_layer, double depth_m) {
+      auto distribute = [&](AxisPaths& p, int which, int layer, bool last_layer, bool goes_on, double depth_m) {
         const double* pos = at[p.axis].data();
         const double spread = std::max(std::sqrt(k.diffusion_length * depth_m), 0.3 * p.size);
         const int n_w = which == 0 ? n0 : n1;
@@ -277,8 +295,8 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
           double x = p.x0 + L * t;
           const double slope = s * (1 - t * t);
           if (dim == 2) {
-            const int iu = slot_at(p.axis, x / p.size);
-            if (air(slot_of(layer, iu, 0))) {  // the body ends under the path
+            const int iu = nearest_agent(layer, slot_at(p.axis, x / p.size));
+            if (iu < 0) {  // the body ends under the path
               d.passed_out += p.mass[dir];
               p.mass[dir] = 0;
               continue;
@@ -307,7 +325,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
             const double m = p.mass[dir] * shares[i - from] / total;
             p.force[i] += m;
             p.shear[i] += m * slope;
-            if (dim == 2 && (last_layer || air(slot_of(layer + step, i, 0)))) exits += m;
+            if (dim == 2 && leaves(layer, i, 0, last_layer, goes_on)) exits += m;
           }
           if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
           p.from = std::min(p.from, from);
@@ -325,7 +343,9 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
       for (int layer = entry[a], depth = 0; layer >= 0 && layer < g.cells[a]; layer += step, ++depth) {
         const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
         const double depth_m = (depth + 0.5) * row;  // of the row's centre below the loaded face
-        if (!distribute(pu, 0, layer, last_layer, depth_m) || (dim == 3 && !distribute(pv, 1, layer, last_layer, depth_m))) {
+        const bool goes_on = dim == 2 && !last_layer && nearest_agent(layer + step, eu) >= 0;
+        if (!distribute(pu, 0, layer, last_layer, goes_on, depth_m) ||
+            (dim == 3 && !distribute(pv, 1, layer, last_layer, goes_on, depth_m))) {
           d.passed_out += rest;  // 3D: the body ends under the load's line
           return;
         }
@@ -351,7 +371,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
               shear[cell * shears + pair_u] += tau_sign * rest * pu.shear[u] * pv.force[v] / area_across;
               if (dim == 3) shear[cell * shears + pair_v] += tau_sign * rest * pu.force[u] * pv.shear[v] / area_across;
             }
-            if (last_layer || air(slot_of(layer + step, u, v))) {
+            if (leaves(layer, u, v, last_layer, goes_on)) {
               left += f_uv;
               if (rigid(cell, exit_face)) {
                 f[exit_face] += f_uv;
@@ -359,9 +379,9 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
               } else {
                 d.passed_out += f_uv;
               }
-            } else {
+            } else if (!air(slot_of(layer + step, u, v))) {
               f[exit_face] += f_uv;
-            }
+            }  // else a free face with body beyond it in the next row: the load goes round, the face carries none
           }
         if (dim == 3) rest = last_layer ? 0.0 : rest - left;
         balance_row_moment(layer, last_layer, row_force);

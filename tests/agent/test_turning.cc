@@ -131,6 +131,40 @@ TEST(Turning, EveryRowCarriesTheLoadAndTheBaseReturnsIt) {
   for (int j = 0; j < 18; ++j) EXPECT_EQ(face(f.model, 0, j, kMinusX), 0.0);
 }
 
+TEST(Turning, AHoleIsGoneRoundNotPassedOut) {
+  // A 6 x 4-agent hole under a centred load: the paths over it go round by the nearer side, so
+  // the base returns the whole load, every row passes it on, the hole's faces carry nothing, and
+  // the fields stay symmetric about the centre line.
+  const int nx = 24, ny = 18;
+  Grid g = steel_plate(nx, ny);
+  for (int j = 6; j < 10; ++j)
+    for (int i = 9; i < 15; ++i) g.make_air(g.index(i, j, 0));
+  Coefficients k;
+  const double load = 2.0;
+  const auto f = solve(g, k, {{g.index(11, ny - 1, 0), direction(1, false), load / 2}, {g.index(12, ny - 1, 0), direction(1, false), load / 2}});
+  const auto& d = f.model.diagnostics();
+  EXPECT_NEAR(d.rigid_reaction, load, 1e-13 * load);
+  EXPECT_EQ(d.passed_out, 0.0);
+  for (int j = 0; j < ny; ++j) {
+    double through = 0;
+    for (int i = 0; i < nx; ++i)
+      if (!g.is_air(g.index(i, j, 0))) through += face(f.model, i, j, kPlusY);
+    EXPECT_NEAR(through, load, 1e-13 * load) << "row " << j;
+  }
+  for (int i = 9; i < 15; ++i) EXPECT_EQ(face(f.model, i, 10, kMinusY), 0.0) << i;  // the hole's roof
+  const double sy_max = largest_magnitude(f.stress.sigma, 2, 1), tau_max = largest_magnitude(f.stress.shear, 1, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0), m = g.index(nx - 1 - i, j, 0);
+      EXPECT_NEAR(f.stress.sigma[2 * c + 1], f.stress.sigma[2 * m + 1], 1e-9 * sy_max) << i << "," << j;
+      EXPECT_NEAR(f.stress.shear[c], -f.stress.shear[m], 1e-9 * tau_max) << i << "," << j;
+    }
+  // Beside the hole the two columns of agents carry the load round it: more than the same
+  // agents of the plate without the hole.
+  const auto whole = solve(steel_plate(nx, ny), k, {{g.index(11, ny - 1, 0), direction(1, false), load / 2}, {g.index(12, ny - 1, 0), direction(1, false), load / 2}});
+  EXPECT_LT(f.stress.sigma[2 * g.index(8, 8, 0) + 1], 1.2 * whole.stress.sigma[2 * g.index(8, 8, 0) + 1]);
+}
+
 TEST(Turning, ACentredLoadGivesSymmetricSigmaXAndAntisymmetricShearAndUx) {
   const int nx = 20, ny = 16;
   const Grid g = steel_plate(nx, ny);

@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <map>
 #include <sstream>
@@ -141,6 +142,32 @@ std::string set_case_keys(const std::string& text, const std::string& table,
     if (!same(table_at(std::as_const(check), table)[values[w].first], std::as_const(wanted[w])["v"]))
       throw Error("the derived case does not read back " + table + "." + values[w].first + " = " + values[w].second +
                   " (write the key's value on one line)");
+  return out;
+}
+
+std::string remove_case_keys(const std::string& text, const std::string& table, const std::vector<std::string>& keys) {
+  std::string out, current;
+  std::map<std::string, int> entries;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (const auto t = table_of(line); !t.empty()) {
+      const bool entry = line.compare(line.find_first_not_of(" \t"), 2, "[[") == 0;
+      current = entry ? t + "[" + std::to_string(entries[t]++) + "]" : t;
+    } else if (current == table && std::find(keys.begin(), keys.end(), key_of(line)) != keys.end()) {
+      continue;
+    }
+    out += line + "\n";
+  }
+  toml::table check;
+  try {
+    check = toml::parse(out);
+  } catch (const toml::parse_error& e) {  // the rest of a value over several lines
+    throw Error("the derived case does not parse (" + std::string(e.description()) + "): write [" + table +
+                "] values on one line");
+  }
+  for (const auto& key : keys)
+    if (table_at(std::as_const(check), table)[key])
+      throw Error("the derived case still names " + table + "." + key + " (write the key on one line)");
   return out;
 }
 

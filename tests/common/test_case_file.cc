@@ -96,6 +96,14 @@ TEST(CaseEdit, SetsAKeyOfOneArrayEntryAndOfTheTopLevel) {
   EXPECT_EQ(set_case_keys("[agent]\nalpha1 = 0.5\n", "", {{"title", "\"t\""}}).substr(0, 12), "title = \"t\"\n");
 }
 
+TEST(CaseEdit, RemovesAKeyOfOneTableOnly) {
+  const std::string text = "gamma = 1\n[agent]\ngamma_relative = 1e-9  # relative\nalpha1 = 0.5\n[compare]\ngamma_relative = 2\n";
+  EXPECT_EQ(remove_case_keys(text, "agent", {"gamma_relative", "beta"}),
+            "gamma = 1\n[agent]\nalpha1 = 0.5\n[compare]\ngamma_relative = 2\n");
+  EXPECT_EQ(remove_case_keys(text, "mesh", {"gamma_relative"}), text);
+  EXPECT_THROW(remove_case_keys("[agent]\nreadings = [\n  \"a\",\n]\n", "agent", {"readings"}), Error);
+}
+
 TEST(CaseFile, SyntaxErrorsGiveLineAndColumn) {
   EXPECT_NE(error_of([] { CaseFile("a = 1\nb = = 2\n", "bad.toml"); }).find("bad.toml:2:"), std::string::npos);
   EXPECT_NE(error_of([] { CaseFile(std::filesystem::path("/nonexistent/case.toml")); }).find("no such file"),

@@ -231,6 +231,22 @@ TEST(Calibration, CalibratedCaseKeepsTheOriginalsTextAndWritesNumbersShortestExa
   EXPECT_LT(text.find("beta = 0.5"), text.find("[compare]"));
 }
 
+TEST(Calibration, ACalibratedCaseNamesOnlyTheThresholdInEffect) {
+  // The case names the relative threshold; a calibration that fits gamma sets the absolute one:
+  // the calibrated case names gamma alone (a case naming both is refused), and the other way round.
+  const std::string original = "[mesh]\nfile = \"/m.geo\"\n[agent]\nrule_set = \"conserving\"\ngamma_relative = 1e-8  # relative\n";
+  agent::Coefficients k = coefficients_from({0.5, 0.3, 0.2, 0.5, 1e-4});
+  ASSERT_EQ(k.threshold, agent::Threshold::Absolute);
+  const auto text = with_coefficients(original, "/cases", k, agent::RuleSet::Conserving);
+  EXPECT_EQ(text.find("gamma_relative"), std::string::npos) << text;
+  EXPECT_NE(text.find("gamma = 1e-04\n"), std::string::npos) << text;
+  k.threshold = agent::Threshold::Relative;
+  k.gamma_relative = 1e-8;
+  const auto kept = with_coefficients(original, "/cases", k, agent::RuleSet::Conserving);
+  EXPECT_NE(kept.find("gamma_relative = 1e-8  # relative\n"), std::string::npos) << kept;
+  EXPECT_EQ(kept.find("gamma ="), std::string::npos) << kept;
+}
+
 TEST(Calibration, TheFarFieldObjectiveLeavesOutTheCellsNearTheLoad) {
   // A target that differs from the start only near the patch: doubling the reference's stress and
   // displacement within 30 mm of the loaded face changes the body error, not the far field's.

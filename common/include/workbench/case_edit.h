@@ -27,4 +27,9 @@ std::string toml_strings(const std::vector<std::string>& values);
 std::string set_case_keys(const std::string& text, const std::string& table,
                           const std::vector<std::pair<std::string, std::string>>& values);
 
+/// `text` without the lines of `keys` in `table` (named as for set_case_keys); a key the table
+/// does not name is no change. Throws workbench::Error when a key's value spans several lines (a
+/// line edit cannot remove it) or the result does not parse.
+std::string remove_case_keys(const std::string& text, const std::string& table, const std::vector<std::string>& keys);
+
 }  // namespace workbench

@@ -91,15 +91,17 @@ CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
 std::string with_coefficients(const std::string& text, const fs::path& case_dir, const agent::Coefficients& k,
                               agent::RuleSet rules, const std::optional<agent::Readings>& readings) {
   std::vector<std::pair<std::string, std::string>> agent{{"rule_set", workbench::toml_string(agent::rule_set_name(rules))}};
+  std::vector<std::string> not_acting;  // the threshold not in effect: a case names one of the two
   for (const auto& c : agent::kCoefficients)
-    if (!c.integer && c.acts_in(k))  // poisson_decay too; `directions` is the case's own; the threshold in effect only
+    if (!c.acts_in(k)) not_acting.push_back(c.name);
+    else if (!c.integer)  // poisson_decay too; `directions` is the case's own
       agent.emplace_back(c.name, workbench::toml_number(c.get(k)));
   if (readings) agent.emplace_back("readings", workbench::toml_strings(agent_study::names_of(*readings)));
   std::string out = text;
   if (auto file = toml::parse(text)["mesh"]["file"].value<std::string>(); file && fs::path(*file).is_relative())
     out = workbench::set_case_keys(out, "mesh", {{"file", workbench::toml_string(fs::absolute(case_dir / *file).lexically_normal().string())}});
   try {
-    return workbench::set_case_keys(out, "agent", agent);
+    return workbench::set_case_keys(workbench::remove_case_keys(out, "agent", not_acting), "agent", agent);
   } catch (const Error& e) {
     throw Error(std::string("calibrate: ") + e.what());
   }

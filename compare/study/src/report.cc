@@ -53,11 +53,24 @@ void check_gate_names(const CompareOptions& options, const std::vector<std::stri
                                                      "e.g. \"far.sigma_x\"; docs/compare.md lists them)");
 }
 
-bool worse_than_zero(const Metric& m) {
+namespace {
+
+bool is_rel_l2(const Metric& m) {
   const std::string suffix = ".rel_l2";
-  return m.name.size() > suffix.size() && m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
-         !(m.value < kZeroModelRelL2);
+  return m.name.size() > suffix.size() && m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
+
+/// The reference does not resolve the field in this scope (its own error >= kUnresolvedReferenceError).
+bool unresolved(const Metric& m) {
+  return is_rel_l2(m) && std::isfinite(m.reference_error) && m.reference_error >= kUnresolvedReferenceError;
+}
+
+/// Flagged "worse than zero" in the summaries: a resolved field the model predicts no better than 0.
+bool flagged_worse(const Metric& m) { return worse_than_zero(m) && !unresolved(m); }
+
+}  // namespace
+
+bool worse_than_zero(const Metric& m) { return is_rel_l2(m) && !(m.value < kZeroModelRelL2); }
 
 fem_reference::FemResult run_fem(const fem_reference::FemProblem& problem, const std::filesystem::path& dir,
                                  std::ostream& log, double& seconds) {
@@ -117,12 +130,20 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
       outcome.failures.push_back(f);
     }
   // A field the model predicts no better than zero is said so, in the body and the far field.
-  std::string worse;
-  for (const auto& m : outcome.metrics)
-    if (worse_than_zero(m) && (m.name.rfind("body.", 0) == 0 || m.name.rfind("far.", 0) == 0))
+  // A field the reference does not resolve in a scope is not judged, and the summary says which.
+  std::string worse, not_judged;
+  for (const auto& m : outcome.metrics) {
+    if (flagged_worse(m) && (m.name.rfind("body.", 0) == 0 || m.name.rfind("far.", 0) == 0))
       worse += (worse.empty() ? "" : ", ") + m.name.substr(0, m.name.size() - 7);
+    if (unresolved(m)) not_judged += (not_judged.empty() ? "" : ", ") + m.name.substr(0, m.name.size() - 7);
+  }
   if (!worse.empty())
     outcome.warnings.push_back("worse than predicting zero (relative L2 error >= 1, the zero model's): " + worse);
+  std::vector<std::string> all_notes = notes;
+  if (!not_judged.empty())
+    all_notes.push_back("not judged against the zero model (the reference's own error >= " +
+                        [] { std::ostringstream v; v << kUnresolvedReferenceError; return v.str(); }() +
+                        ": FEM does not resolve the field there, e.g. zero by symmetry): " + not_judged);
 
   // Summary: JSON for programs, a table for people, JUnit XML for CI systems.
   for (const auto& m : outcome.metrics) {
@@ -131,7 +152,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (std::isfinite(m.staircase_error)) entry["staircase_error"] = m.staircase_error;
     if (m.name.size() > 7 && m.name.compare(m.name.size() - 7, 7, ".rel_l2") == 0) {
       entry["zero_model"] = kZeroModelRelL2;
-      entry["worse_than_zero"] = worse_than_zero(m);
+      entry["worse_than_zero"] = flagged_worse(m);
+      if (std::isfinite(m.reference_error)) entry["resolved"] = !unresolved(m);
     }
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;
@@ -147,8 +169,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
 
   std::ostringstream table;
   for (const auto& w : outcome.warnings) table << "WARNING: " << w << "\n";
-  for (const auto& n : notes) table << n << "\n";
-  if (!notes.empty() || !outcome.warnings.empty()) table << "\n";
+  for (const auto& n : all_notes) table << n << "\n";
+  if (!all_notes.empty() || !outcome.warnings.empty()) table << "\n";
   std::size_t width = 40;
   for (const auto& m : outcome.metrics) width = std::max(width, m.name.size() + 2);
   table << std::left << std::setw(int(width)) << "metric" << std::right << std::setw(14) << "value" << std::setw(16)
@@ -161,7 +183,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (auto it = gate.find(m.name); it != gate.end())
       table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
     if (std::isfinite(m.staircase_error)) table << "  staircase_error " << m.staircase_error;
-    if (worse_than_zero(m)) table << "  WORSE THAN ZERO";
+    if (flagged_worse(m)) table << "  WORSE THAN ZERO";
+    if (unresolved(m)) table << "  NOT RESOLVED BY THE REFERENCE";
     table << "\n";
   }
   write_text(dir / "summary.txt", table.str());

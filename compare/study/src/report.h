@@ -53,7 +53,8 @@ void finish(const std::filesystem::path& dir, const std::filesystem::path& case_
             std::ostream& log, const std::vector<std::string>& better_than_zero = {});
 
 /// Whether `m` is a relative L2 error not below the zero model's (kZeroModelRelL2): the model
-/// does no better than predicting zero there.
+/// does no better than predicting zero there. The gate's test (`better_than_zero`); the summaries
+/// flag it only where the reference resolves the field (its own error below kUnresolvedReferenceError).
 bool worse_than_zero(const Metric& m);
 
 /// Renders dir/report.html from summary.json (a comparison) or report.json (a calibration) and the

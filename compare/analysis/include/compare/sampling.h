@@ -60,6 +60,10 @@ constexpr std::size_t field_index(std::string_view name) {
 /// The relative L2 error of predicting zero everywhere (the zero model), beside which every
 /// relative L2 error is read: a model whose error is not below it is worse than predicting nothing.
 constexpr double kZeroModelRelL2 = 1.0;
+/// A relative error whose reference's own error (its distance from the estimate level, the same
+/// norm) is at least this is not judged against the zero model: the reference does not resolve the
+/// field there (e.g. tau_xy or u_x along a line of symmetry, where FEM's values are round-off).
+constexpr double kUnresolvedReferenceError = 0.5;
 
 /// The FEM result on the agent grid, found by point location (not by element order): an agent's
 /// stress is the mean of the FEM cells whose centre lies in it, a grid node's displacement is

@@ -535,6 +535,19 @@ TEST(FemMultigrid, CoarseMlCycleMatchesDirect) {
   expect_mg_matches_direct("mg_ml_coarse", "rigid = [\"base\"]", "refine = 2\ndirect_limit = 500");
 }
 
+TEST(FemMultigrid, Q2CoarseLevelByPCoarseningMatchesDirect) {
+  // A Q2 coarse level above direct_limit (3362 DoFs) is not assembled: a p-multigrid to Q1 on the
+  // same mesh (882 DoFs) under it, with KLU (direct_limit 1000) or one ML cycle (500) on Q1; rollers
+  // hold one component on the levels of both degrees.
+  for (const char* limit : {"direct_limit = 1000", "direct_limit = 500"})
+    expect_mg_matches_direct(std::string("mg_p_") + limit[15], "rigid = [\"base\"]",
+                             std::string("degree = 2\nrefine = 1\n") + limit);
+  expect_mg_matches_direct("mg_p_rollers", "rigid = [\"free\"]\nrollers = [\"base\"]",
+                           "degree = 2\nrefine = 1\ndirect_limit = 500\nmodel = \"plane_strain\"");
+  const auto r = run_case(write_file("mg_p_name.toml", plate_case("rigid = [\"base\"]", "degree = 2\nrefine = 1\nsolver = \"mg\"\ndirect_limit = 500")));
+  EXPECT_NE(r.solver.find("coarse p-multigrid to Q1 (Chebyshev 4, Q1 ML AMG cycle)"), std::string::npos) << r.solver;
+}
+
 TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
   // 13 122 DoFs > direct_limit, coarse mesh 882 DoFs <= direct_limit: geometric multigrid.
   const auto r = run_case(write_file("mg_auto.toml", plate_case("rigid = [\"base\"]", "refine = 2\ndirect_limit = 1000")));
@@ -549,6 +562,12 @@ TEST(FemMultigrid, AutoPicksMultigridOnLargeQuadMeshes) {
   const auto ml = run_case(write_file("mg_auto_ml.toml", plate_case("rigid = [\"base\"]", "direct_limit = 500")));
   EXPECT_EQ(ml.n_dofs, 882u);
   EXPECT_EQ(ml.solver, "cg+amg (ML)");
+  // Unrefined Q2 above direct_limit: multigrid with one level, the p-multigrid to Q1 under it.
+  const auto q2 = run_case(write_file("mg_auto_q2.toml", plate_case("rigid = [\"base\"]", "degree = 2\ndirect_limit = 500")));
+  const auto q2_direct = run_case(write_file("mg_auto_q2_direct.toml", plate_case("rigid = [\"base\"]", "degree = 2\nsolver = \"direct\"")));
+  EXPECT_EQ(q2.n_dofs, 3362u);
+  EXPECT_NE(q2.solver.find("1 levels, Chebyshev 4, coarse p-multigrid to Q1"), std::string::npos) << q2.solver;
+  EXPECT_LT(relative_difference(q2_direct, q2), 1e-8);
 }
 
 TEST(FemMultigrid, CoarserLevelIsTheCoarseMeshsOwnSolution) {
@@ -556,7 +575,8 @@ TEST(FemMultigrid, CoarserLevelIsTheCoarseMeshsOwnSolution) {
   // restricted from the fine one) is the FE solution a separate solve on that mesh gives, for
   // tractions; the fine solution started from it is the one started from zero; with a share the
   // fine CG stops early, its residual at that share of where it started.
-  for (const char* degree : {"degree = 1", "degree = 2"}) {
+  // "direct_limit = 500": the Q2 coarse level by p-coarsening (the test above).
+  for (const char* degree : {"degree = 1", "degree = 2", "degree = 2\ndirect_limit = 500"}) {
     auto p = problem_from_case(workbench::CaseFile(write_file("coarse0.toml", plate_case("rigid = [\"base\"]", degree))));
     p.options.solver = fem_reference::SolverKind::Direct;
     const auto coarse = solve_fem(p);

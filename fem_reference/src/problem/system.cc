@@ -167,11 +167,12 @@ void ElasticProblem<dim>::setup_system() {
   const auto& o = problem_.options;
   // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
   // else multigrid on refined meshes (its coarse level by KLU or, when large, one ML cycle: in 3D
-  // 4x faster than ML on the whole problem, the solver sweep), else ML (on an unrefined mesh
-  // multigrid would have a single level).
+  // 4x faster than ML on the whole problem, the solver sweep) and on unrefined Q2 meshes (a single
+  // level, the p-multigrid to Q1 under it: no Q2 matrix for ML), else ML (Q1 unrefined).
   direct_ = o.solver == SolverKind::Direct ||
             (o.solver == SolverKind::Auto && direct_is_fast(double(dof_handler_.n_dofs()), dim, o.direct_limit));
-  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg || (o.solver == SolverKind::Auto && !direct_ && o.refine > 0));
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
+                             (o.solver == SolverKind::Auto && !direct_ && (o.refine > 0 || degree_ == 2)));
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);

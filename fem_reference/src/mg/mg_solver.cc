@@ -121,7 +121,6 @@ class CoarseLevel : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<f
 template <int dim, int degree>
 class CoarseSolver : public CoarseLevel {
  public:
-
   CoarseSolver(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const MGConstrainedDoFs& mg_constrained,
                const MgSettings& s, std::string& name)
       : control_(1, 0) {

@@ -1,10 +1,11 @@
 // Matrix-free geometric multigrid for the FEM reference (private header; deal.II types).
-// The solver of fem.solver = "mg" (and of "auto" on refined quadrilateral/hexahedral meshes): CG on
-// the elasticity operator applied cell by cell from shared element matrices (double;
-// cell_matrix_operator.h), preconditioned by a V-cycle over the global refinement levels
-// (Chebyshev-Jacobi smoothing on the same operator in single precision, step-37 style) with the
-// coarse mesh solved by KLU when direct_is_fast for it (elasticity.h), else by one ML AMG cycle
-// (amg/amg.h). No global matrix or sparsity pattern is built: about a third of the memory of CG + ML.
+// The solver of fem.solver = "mg" (and of "auto" on refined quadrilateral/hexahedral meshes and
+// unrefined Q2 ones): CG on the elasticity operator applied cell by cell from shared element
+// matrices (double; cell_matrix_operator.h), preconditioned by a V-cycle over the global refinement
+// levels (Chebyshev-Jacobi smoothing on the same operator in single precision, step-37 style) with
+// the coarse mesh solved by KLU when direct_is_fast for it (elasticity.h), else by one ML AMG cycle
+// (amg/amg.h) in Q1 and by one cycle of a p-multigrid to Q1 on the same mesh in Q2. No global
+// matrix or sparsity pattern is built: about a third of the memory of CG + ML.
 #pragma once
 
 #include "amg/amg.h"

@@ -67,7 +67,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
   auto rigid = [&slots](std::size_t cell, int side) { return slots.rigid(cell, side); };
   auto air = [&slots](std::size_t cell) { return slots.air(cell); };
 
-  Row now(0, 0), next(0, 0);  // sized for the largest layer the loads need
+  Row now(0, 0), next(0, 0);  // mirror paths: sized for the largest layer the loads need
   std::vector<double> row_force;
   // Lateral positions are true distances in agents from the box's lower side: slot i starts at
   // at[a][i] (i itself unless a run of empty planes was collapsed into a wider air slot), the box
@@ -114,18 +114,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
     // A packet along a ray carries stress along the ray: sigma_ll = slope_l^2 sigma_aa.
     const double side_u = g.face_area(l0) / g.face_area(a), side_v = dim == 3 ? g.face_area(l1) / g.face_area(a) : 0.0;
 
-    // Reused across the loads: every row is consumed back to zero as it is marched.
-    if (now.force.size() < directions * layer_size) {
-      now = Row(directions, layer_size);
-      next = Row(directions, layer_size);
-    }
     row_force.assign(layer_size, 0.0);  // the packets' force through each agent of a row
-    const std::size_t entry_slot = eu + std::size_t(n0) * ev;
-    for (int dir = 0; dir < directions; ++dir) {
-      const double w = fan.weight[dir % n] * (dim == 3 ? fan.weight[dir / n] : 1.0);
-      now.force[dir * layer_size + entry_slot] = load.force * w;
-      now.box[dir].add(eu, ev);
-    }
 
     // The row's moment balance (statics of the body above a cut along the row): the force through a
     // row must have its centroid under the load, as in a beam. Packets reflected by a side shift
@@ -254,7 +243,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         }
       }
       double rest = dim == 3 ? entry_load.force : 1.0;  // 3D: the load still in the body
-      std::vector<double> shares;
+      std::vector<double> shares, edge_cdf;  // per agent of a direction's window; per edge
       // Row `layer`'s distribution along one lateral axis. 2D: each direction over the run its path
       // lies in (a path over air passes out), its force leaving where the row's agents exit. 3D:
       // over the run through the entry's lateral line (false if the entry's line is air there).
@@ -262,7 +251,7 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
         const double* pos = at[p.axis].data();
         const double spread = std::max(std::sqrt(k.diffusion_length * depth_m), 0.3 * p.size);
         const int n_w = which == 0 ? n0 : n1;
-        int lo = 0, hi = 0;
+        int lo = 0, hi = -1;  // the run the paths lie in (2D: the last one found; most paths share it)
         if (dim == 3) {
           if (air(slot_of(layer, eu, ev))) return false;
           run_of(layer, which, eu, ev, lo, hi);
@@ -283,21 +272,40 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
               p.mass[dir] = 0;
               continue;
             }
-            run_of(layer, 0, iu, 0, lo, hi);
+            if (iu < lo || iu > hi) run_of(layer, 0, iu, 0, lo, hi);
           }
           const double edge_lo = pos[lo] * p.size, edge_hi = (pos[hi] + 1) * p.size;
           x = std::min(std::max(x, edge_lo), edge_hi);
           const int from = std::max(lo, slot_at(p.axis, (x - 6 * spread) / p.size));
           const int to = std::min(hi, slot_at(p.axis, (x + 6 * spread) / p.size));
-          shares.assign(std::size_t(to - from + 1), 0.0);
-          double total = 0;
-          for (int i = from; i <= to; ++i) {
-            const double xa = pos[i] * p.size, xb = xa + p.size;
-            double share = 0;
-            for (const double c : {x, 2 * edge_lo - x, 2 * edge_hi - x}) share += cdf((xb - c) / spread) - cdf((xa - c) / spread);
-            shares[i - from] = share;
-            total += share;
+          const int count = to - from + 1;
+          // Each agent's share: the Gaussian's mass over it plus its images' (mirrored at the run's
+          // ends). A run is agents only, each one agent long (only air slots are wider), so agent
+          // i's upper edge is agent i + 1's lower one: the cdf is taken once per edge and image.
+          shares.assign(std::size_t(count), 0.0);
+          edge_cdf.resize(std::size_t(count) + 1);
+          auto edge = [&](int j) { return j < count ? pos[from + j] * p.size : (pos[to] + 1) * p.size; };
+          const std::array<double, 3> centres{x, 2 * edge_lo - x, 2 * edge_hi - x};
+          for (int image = 0; image < 3; ++image) {
+            const double c = centres[image];
+            if (image == 0) {
+              for (int j = 0; j <= count; ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+            } else if (image == 1) {
+              // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
+              int j = 0;
+              for (; j <= count && (j == 0 || edge_cdf[j - 1] < 1.0); ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+              for (; j <= count; ++j) edge_cdf[j] = 1.0;
+            } else {
+              // The upper image lies above every edge: below 1e-18 its cdf is dropped, round-off
+              // of a direction's force (its shares sum to 1), as the lower image's tail is by 1.
+              int j = count;
+              for (; j >= 0 && (j == count || edge_cdf[j + 1] >= 1e-18); --j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+              for (; j >= 0; --j) edge_cdf[j] = 0.0;
+            }
+            for (int i = 0; i < count; ++i) shares[i] += edge_cdf[i + 1] - edge_cdf[i];
           }
+          double total = 0;
+          for (int i = 0; i < count; ++i) total += shares[i];
           if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
             std::fill(shares.begin(), shares.end(), 0.0);
             shares[std::min(std::max(slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
@@ -372,6 +380,18 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
     if (k.paths == Paths::Turning) {
       march_turning(load, depth_of_body(entry[a]));
       continue;
+    }
+    // Mirror paths: the rows of packets, reused across the loads (every row is consumed back to
+    // zero as it is marched).
+    if (now.force.size() < directions * layer_size) {
+      now = Row(directions, layer_size);
+      next = Row(directions, layer_size);
+    }
+    const std::size_t entry_slot = eu + std::size_t(n0) * ev;
+    for (int dir = 0; dir < directions; ++dir) {
+      const double w = fan.weight[dir % n] * (dim == 3 ? fan.weight[dir / n] : 1.0);
+      now.force[dir * layer_size + entry_slot] = load.force * w;
+      now.box[dir].add(eu, ev);
     }
     for (int layer = entry[a], depth = 0;; layer += step, ++depth) {
       const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;

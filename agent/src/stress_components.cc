@@ -19,20 +19,61 @@ double von_mises_3d(const double* s) {
   return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
-void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
-  const int reach = std::max(1, int(std::ceil(4 * window)));
-  if (count < 3) {
-    for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
-    return;
+namespace {
+
+/// fitted_slope's weights for one window. The slope is linear in the values: per entry, weights
+/// c_i = e1' M^-1 w_i p_i of its neighbours. They depend only on the entry's offsets to its
+/// neighbours, so on a line longer than two reaches every interior entry has the same weights and
+/// each end entry those of its distance to the end: computed once, kept for every such line.
+class SlopeFit {
+ public:
+  explicit SlopeFit(double window) : window_(window), reach_(std::max(1, int(std::ceil(4 * window)))) {
+    const int count = 2 * reach_ + 1;  // the shortest line with an interior entry
+    int first = 0;
+    weights(reach_, count, inner_, first);
+    low_.resize(std::size_t(reach_));
+    high_.resize(std::size_t(reach_));
+    for (int j = 0; j < reach_; ++j) {
+      weights(j, count, low_[j], first);
+      weights(count - 1 - j, count, high_[j], first);
+    }
   }
-  // The slope is linear in the values: per entry, weights c_i = e1' M^-1 w_i p_i of its
-  // neighbours. Away from the ends every entry has the same weights: computed once.
-  auto weights = [&](int j, std::vector<double>& c, int& first) {
-    first = std::max(0, j - reach);
-    const int last = std::min(count - 1, j + reach);
+
+  void operator()(const double* values, std::size_t stride, int count, double* slope) const {
+    if (count < 3) {
+      for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
+      return;
+    }
+    const bool kept = count > 2 * reach_;
+    std::vector<double> c;
+    for (int j = 0; j < count; ++j) {
+      int first = 0;
+      const std::vector<double>* use = &c;
+      if (!kept) {
+        weights(j, count, c, first);
+      } else if (j < reach_) {
+        use = &low_[j];
+      } else if (j + reach_ >= count) {
+        use = &high_[count - 1 - j];
+        first = j - reach_;
+      } else {
+        use = &inner_;
+        first = j - reach_;
+      }
+      double sum = 0;
+      for (std::size_t i = 0; i < use->size(); ++i) sum += (*use)[i] * values[(first + i) * stride];
+      slope[j * stride] = sum;
+    }
+  }
+
+ private:
+  /// Entry j's weights on a line of `count` entries, for the entries from `first` on.
+  void weights(int j, int count, std::vector<double>& c, int& first) const {
+    first = std::max(0, j - reach_);
+    const int last = std::min(count - 1, j + reach_);
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
     for (int i = first; i <= last; ++i) {
-      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      const double d = i - j, w = std::exp(-0.5 * (d / window_) * (d / window_));
       const Eigen::Vector3d p(1, d, d * d);
       m += w * p * p.transpose();
     }
@@ -46,22 +87,22 @@ void fitted_slope(const double* values, std::size_t stride, int count, double wi
     }
     const Eigen::Vector3d row = lu.inverse().row(1).transpose();
     for (int i = first; i <= last; ++i) {
-      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      const double d = i - j, w = std::exp(-0.5 * (d / window_) * (d / window_));
       c[i - first] = w * (row[0] + row[1] * d + row[2] * d * d);
     }
-  };
-  std::vector<double> inner, c;
-  int first = 0;
-  if (count > 2 * reach) weights(reach, inner, first);
-  for (int j = 0; j < count; ++j) {
-    const bool interior = j >= reach && j + reach < count && !inner.empty();
-    if (!interior) weights(j, c, first);
-    const std::vector<double>& use = interior ? inner : c;
-    const int from = interior ? j - reach : first;
-    double sum = 0;
-    for (std::size_t i = 0; i < use.size(); ++i) sum += use[i] * values[(from + i) * stride];
-    slope[j * stride] = sum;
   }
+
+  double window_;
+  int reach_;
+  std::vector<double> inner_;
+  std::vector<std::vector<double>> low_, high_;  // by distance to the line's lower / upper end
+};
+
+}  // namespace
+
+void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
+  const SlopeFit fit(window);
+  fit(values, stride, count, slope);
 }
 
 namespace {
@@ -105,12 +146,13 @@ double position(const Grid& g, std::size_t cell, int a) {
 std::vector<double> derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at,
                                      double window) {
   std::vector<double> out(g.count(), 0.0), values, slopes;
+  const SlopeFit fit(window);
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     values.resize(run.size());
     slopes.resize(run.size());
     for (int j = 0; j < count; ++j) values[j] = field[run[j] * stride + at];
-    fitted_slope(values.data(), 1, count, window, slopes.data());
+    fit(values.data(), 1, count, slopes.data());
     for (int j = 0; j < count; ++j) out[run[j]] = slopes[j] / g.size[a];
   });
   return out;

@@ -141,11 +141,19 @@ double position(const Grid& g, std::size_t cell, int a) {
   return std::round((g.centre(cell)[a] - g.origin[a]) / g.size[a] - 0.5);
 }
 
+/// Per-agent scratch fields of one agent_stress_components call, reused by every step (a step's
+/// are dead when the next starts): at a million agents fresh pages cost about as much as the
+/// arithmetic (docs/performance.md, "Every core").
+struct Scratch {
+  std::vector<double> first, second, third;
+};
+
 /// d/d(position along a) [per m] of a per-agent field (stride `stride`, offset `at`), fitted along
-/// each run of agents along a.
-std::vector<double> derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at,
-                                     double window) {
-  std::vector<double> out(g.count(), 0.0), values, slopes;
+/// each run of agents along a, into `out` (0 on air).
+void derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at, double window,
+                      std::vector<double>& out) {
+  out.assign(g.count(), 0.0);
+  std::vector<double> values, slopes;
   const SlopeFit fit(window);
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
@@ -155,18 +163,19 @@ std::vector<double> derivative_along(const Grid& g, int a, const std::vector<dou
     fit(values.data(), 1, count, slopes.data());
     for (int j = 0; j < count; ++j) out[run[j]] = slopes[j] / g.size[a];
   });
-  return out;
 }
 
 /// The bonded rigid face's layer for loads marching along a toward `exit_side`, its part across
 /// lateral axis l: adds it to sigma_l and its shear to `shear` (stride, component).
 void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
-                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component) {
+                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component,
+                    Scratch& scratch) {
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
   // Per agent: its height above a rigid exit face at the end of its run along a (-1: none).
-  std::vector<double> height(g.count(), -1.0);
+  std::vector<double>& height = scratch.first;
+  height.assign(g.count(), -1.0);
   double weight = 0, mean = 0, square = 0, lo = 1e300, hi = -1e300;
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const std::size_t count = run.size(), end = up ? run.back() : run.front();
@@ -185,7 +194,10 @@ void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vecto
   const double variance = std::max(0.0, square / weight - mean * mean);
   const double ell = ell_share * std::min(std::sqrt(12 * variance), hi - lo);
   if (!(ell > 0)) return;
-  std::vector<double> layer(g.count(), 0.0), gradient(g.count(), 0.0);
+  std::vector<double>& layer = scratch.second;
+  std::vector<double>& gradient = scratch.third;
+  layer.assign(g.count(), 0.0);
+  gradient.assign(g.count(), 0.0);
   runs_along(g, l, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     for (int i = 0; i < count; ++i) {
@@ -228,7 +240,10 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
     std::copy(shear_flux.begin(), shear_flux.end(), out.shear.begin());  // the packets'
     // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
     const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
-    std::vector<double> field(n, 0.0), sum_layer, count_layer;
+    Scratch scratch;
+    std::vector<double>& field = scratch.first;
+    std::vector<double>& derivative = scratch.second;
+    std::vector<double> sum_layer, count_layer;
     for (int a = 0; a < dim; ++a) {
       const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
       if (load == loads.end()) continue;  // no load marches along a: nothing written for it
@@ -248,7 +263,7 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
             sum_layer[j] += position(g, c, l);
             count_layer[j] += 1;
           }
-        std::fill(field.begin(), field.end(), 0.0);
+        field.assign(n, 0.0);
         runs_along(g, l, [&](const std::vector<std::size_t>& run) {
           const int j = g.coords(run.front())[a];
           const double slope = slopes[2 * j + which];
@@ -260,12 +275,13 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
             q += s;
           }
         });
-        const auto balance_shear = derivative_along(g, a, field, 1, 0, window);
-        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= balance_shear[c];
+        derivative_along(g, a, field, 1, 0, window, derivative);  // the balance's shear
+        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= derivative[c];
         if (k.paths != Paths::Turning) continue;
         // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
         // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
-        const auto dtau = derivative_along(g, a, out.shear, shears, component, window);
+        derivative_along(g, a, out.shear, shears, component, window, derivative);
+        const std::vector<double>& dtau = derivative;
         std::vector<double> faces;
         runs_along(g, l, [&](const std::vector<std::size_t>& run) {
           const std::size_t count = run.size();
@@ -275,7 +291,8 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
           for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
           for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
         });
-        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component);
+        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component,
+                       scratch);
       }
     }
   }

@@ -19,20 +19,61 @@ double von_mises_3d(const double* s) {
   return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
-void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
-  const int reach = std::max(1, int(std::ceil(4 * window)));
-  if (count < 3) {
-    for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
-    return;
+namespace {
+
+/// fitted_slope's weights for one window. The slope is linear in the values: per entry, weights
+/// c_i = e1' M^-1 w_i p_i of its neighbours. They depend only on the entry's offsets to its
+/// neighbours, so on a line longer than two reaches every interior entry has the same weights and
+/// each end entry those of its distance to the end: computed once, kept for every such line.
+class SlopeFit {
+ public:
+  explicit SlopeFit(double window) : window_(window), reach_(std::max(1, int(std::ceil(4 * window)))) {
+    const int count = 2 * reach_ + 1;  // the shortest line with an interior entry
+    int first = 0;
+    weights(reach_, count, inner_, first);
+    low_.resize(std::size_t(reach_));
+    high_.resize(std::size_t(reach_));
+    for (int j = 0; j < reach_; ++j) {
+      weights(j, count, low_[j], first);
+      weights(count - 1 - j, count, high_[j], first);
+    }
   }
-  // The slope is linear in the values: per entry, weights c_i = e1' M^-1 w_i p_i of its
-  // neighbours. Away from the ends every entry has the same weights: computed once.
-  auto weights = [&](int j, std::vector<double>& c, int& first) {
-    first = std::max(0, j - reach);
-    const int last = std::min(count - 1, j + reach);
+
+  void operator()(const double* values, std::size_t stride, int count, double* slope) const {
+    if (count < 3) {
+      for (int j = 0; j < count; ++j) slope[j * stride] = count == 2 ? values[stride] - values[0] : 0.0;
+      return;
+    }
+    const bool kept = count > 2 * reach_;
+    std::vector<double> c;
+    for (int j = 0; j < count; ++j) {
+      int first = 0;
+      const std::vector<double>* use = &c;
+      if (!kept) {
+        weights(j, count, c, first);
+      } else if (j < reach_) {
+        use = &low_[j];
+      } else if (j + reach_ >= count) {
+        use = &high_[count - 1 - j];
+        first = j - reach_;
+      } else {
+        use = &inner_;
+        first = j - reach_;
+      }
+      double sum = 0;
+      for (std::size_t i = 0; i < use->size(); ++i) sum += (*use)[i] * values[(first + i) * stride];
+      slope[j * stride] = sum;
+    }
+  }
+
+ private:
+  /// Entry j's weights on a line of `count` entries, for the entries from `first` on.
+  void weights(int j, int count, std::vector<double>& c, int& first) const {
+    first = std::max(0, j - reach_);
+    const int last = std::min(count - 1, j + reach_);
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
     for (int i = first; i <= last; ++i) {
-      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      const double d = i - j, w = std::exp(-0.5 * (d / window_) * (d / window_));
       const Eigen::Vector3d p(1, d, d * d);
       m += w * p * p.transpose();
     }
@@ -46,22 +87,22 @@ void fitted_slope(const double* values, std::size_t stride, int count, double wi
     }
     const Eigen::Vector3d row = lu.inverse().row(1).transpose();
     for (int i = first; i <= last; ++i) {
-      const double d = i - j, w = std::exp(-0.5 * (d / window) * (d / window));
+      const double d = i - j, w = std::exp(-0.5 * (d / window_) * (d / window_));
       c[i - first] = w * (row[0] + row[1] * d + row[2] * d * d);
     }
-  };
-  std::vector<double> inner, c;
-  int first = 0;
-  if (count > 2 * reach) weights(reach, inner, first);
-  for (int j = 0; j < count; ++j) {
-    const bool interior = j >= reach && j + reach < count && !inner.empty();
-    if (!interior) weights(j, c, first);
-    const std::vector<double>& use = interior ? inner : c;
-    const int from = interior ? j - reach : first;
-    double sum = 0;
-    for (std::size_t i = 0; i < use.size(); ++i) sum += use[i] * values[(from + i) * stride];
-    slope[j * stride] = sum;
   }
+
+  double window_;
+  int reach_;
+  std::vector<double> inner_;
+  std::vector<std::vector<double>> low_, high_;  // by distance to the line's lower / upper end
+};
+
+}  // namespace
+
+void fitted_slope(const double* values, std::size_t stride, int count, double window, double* slope) {
+  const SlopeFit fit(window);
+  fit(values, stride, count, slope);
 }
 
 namespace {
@@ -100,31 +141,41 @@ double position(const Grid& g, std::size_t cell, int a) {
   return std::round((g.centre(cell)[a] - g.origin[a]) / g.size[a] - 0.5);
 }
 
+/// Per-agent scratch fields of one agent_stress_components call, reused by every step (a step's
+/// are dead when the next starts): at a million agents fresh pages cost about as much as the
+/// arithmetic (docs/performance.md, "Every core").
+struct Scratch {
+  std::vector<double> first, second, third;
+};
+
 /// d/d(position along a) [per m] of a per-agent field (stride `stride`, offset `at`), fitted along
-/// each run of agents along a.
-std::vector<double> derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at,
-                                     double window) {
-  std::vector<double> out(g.count(), 0.0), values, slopes;
+/// each run of agents along a, into `out` (0 on air).
+void derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at, double window,
+                      std::vector<double>& out) {
+  out.assign(g.count(), 0.0);
+  std::vector<double> values, slopes;
+  const SlopeFit fit(window);
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     values.resize(run.size());
     slopes.resize(run.size());
     for (int j = 0; j < count; ++j) values[j] = field[run[j] * stride + at];
-    fitted_slope(values.data(), 1, count, window, slopes.data());
+    fit(values.data(), 1, count, slopes.data());
     for (int j = 0; j < count; ++j) out[run[j]] = slopes[j] / g.size[a];
   });
-  return out;
 }
 
 /// The bonded rigid face's layer for loads marching along a toward `exit_side`, its part across
 /// lateral axis l: adds it to sigma_l and its shear to `shear` (stride, component).
 void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
-                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component) {
+                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component,
+                    Scratch& scratch) {
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
   // Per agent: its height above a rigid exit face at the end of its run along a (-1: none).
-  std::vector<double> height(g.count(), -1.0);
+  std::vector<double>& height = scratch.first;
+  height.assign(g.count(), -1.0);
   double weight = 0, mean = 0, square = 0, lo = 1e300, hi = -1e300;
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const std::size_t count = run.size(), end = up ? run.back() : run.front();
@@ -143,7 +194,10 @@ void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vecto
   const double variance = std::max(0.0, square / weight - mean * mean);
   const double ell = ell_share * std::min(std::sqrt(12 * variance), hi - lo);
   if (!(ell > 0)) return;
-  std::vector<double> layer(g.count(), 0.0), gradient(g.count(), 0.0);
+  std::vector<double>& layer = scratch.second;
+  std::vector<double>& gradient = scratch.third;
+  layer.assign(g.count(), 0.0);
+  gradient.assign(g.count(), 0.0);
   runs_along(g, l, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     for (int i = 0; i < count; ++i) {
@@ -186,7 +240,10 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
     std::copy(shear_flux.begin(), shear_flux.end(), out.shear.begin());  // the packets'
     // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
     const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
-    std::vector<double> field(n, 0.0), sum_layer, count_layer;
+    Scratch scratch;
+    std::vector<double>& field = scratch.first;
+    std::vector<double>& derivative = scratch.second;
+    std::vector<double> sum_layer, count_layer;
     for (int a = 0; a < dim; ++a) {
       const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
       if (load == loads.end()) continue;  // no load marches along a: nothing written for it
@@ -206,7 +263,7 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
             sum_layer[j] += position(g, c, l);
             count_layer[j] += 1;
           }
-        std::fill(field.begin(), field.end(), 0.0);
+        field.assign(n, 0.0);
         runs_along(g, l, [&](const std::vector<std::size_t>& run) {
           const int j = g.coords(run.front())[a];
           const double slope = slopes[2 * j + which];
@@ -218,12 +275,13 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
             q += s;
           }
         });
-        const auto balance_shear = derivative_along(g, a, field, 1, 0, window);
-        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= balance_shear[c];
+        derivative_along(g, a, field, 1, 0, window, derivative);  // the balance's shear
+        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= derivative[c];
         if (k.paths != Paths::Turning) continue;
         // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
         // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
-        const auto dtau = derivative_along(g, a, out.shear, shears, component, window);
+        derivative_along(g, a, out.shear, shears, component, window, derivative);
+        const std::vector<double>& dtau = derivative;
         std::vector<double> faces;
         runs_along(g, l, [&](const std::vector<std::size_t>& run) {
           const std::size_t count = run.size();
@@ -233,7 +291,8 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
           for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
           for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
         });
-        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component);
+        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component,
+                       scratch);
       }
     }
   }

@@ -5,9 +5,10 @@
 // Directional2D/n: one load into the top of an n x n plate of 1 mm agents on a rigid base, the
 // default (calibrated) coefficients, 32 directions, turning paths (the default);
 // Directional2DMirror/n: the same on mirrored straight paths; Directional3D/n: an n^3 block,
-// 16 x 16 directions. Counters: moves/s (packets moved per second; turning paths: deposits of a
-// direction into an agent; the cost is agents reached times directions), reached (agents), moves
-// per agent reached. Directional2DStress/n: the turning plate's stress components alone (the
+// 16 x 16 directions. Counters: moves/s (packets moved per second; turning paths: a row's deposit
+// into one agent, all directions together, so 1 per agent reached; the cost is that times the
+// directions, one Gaussian cdf per direction and agent edge), reached (agents), moves per agent
+// reached. Directional2DStress/n: the turning plate's stress components alone (the
 // shear, the tie scan, the base layer: agent_stress_components), per agent.
 #include <agent/fields.h>
 #include <agent/load_transfer.h>

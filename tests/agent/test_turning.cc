@@ -66,6 +66,20 @@ TEST(Turning, FittedSlopeIsExactOnAQuadratic) {
   for (int j = 0; j < 9; ++j) EXPECT_NEAR(slope[j], 3 + j, 1e-10) << j;
 }
 
+TEST(Turning, FittedSlopeIsExactOnALongQuadratic) {
+  // A line longer than two reaches (window 2.5: 10 entries each way) takes the interior's and the
+  // ends' weights computed once: still 3 + j at every entry, both ends included.
+  std::vector<double> f(60), slope(60);
+  for (int j = 0; j < 60; ++j) f[j] = 1 + 3 * j + 0.5 * j * j;
+  fitted_slope(f.data(), 1, 60, 2.5, slope.data());
+  for (int j = 0; j < 60; ++j) EXPECT_NEAR(slope[j], 3 + j, 1e-9) << j;
+  // Strided, as the transfer's per-agent fields are read: the same slopes.
+  std::vector<double> g(120, -7.0), strided(120, 0.0);
+  for (int j = 0; j < 60; ++j) g[2 * j + 1] = f[j];
+  fitted_slope(g.data() + 1, 2, 60, 2.5, strided.data() + 1);
+  for (int j = 0; j < 60; ++j) EXPECT_EQ(strided[2 * j + 1], slope[j]) << j;
+}
+
 TEST(Turning, AUniformSigmaYGivesNoShearAndNoTie) {
   // No shear flux and no balance: equilibrium needs no tau and no sigma_x (no rigid face: no layer).
   const Grid g = steel_plate(8, 6, false);

@@ -57,7 +57,9 @@ check columns_summary $? "$(grep -A8 carry_check "$work/columns/summary.json" | 
 mkdir -p "$work/refusal"
 agent_case | sed 's/^rule_set = .*/rule_set = "columns"/' >"$work/plate_columns.toml"
 refused columns_refuse_the_plate 'agent.rule_set: the columns rule set cannot carry the loads: the rigid faces along the beam axis x form one support' \
-  "$work/refusal" "$bin" compare "$work/plate_columns.toml" -o "$work/refusal/out"
+  "$work/refusal" "$bin" compare "$work/plate_columns.toml" -o "$work/refusal_out"
+[ ! -e "$work/refusal_out" ]
+check columns_refusal_wrote_nothing $? "$(ls "$work/refusal_out" 2>&1)"
 
 # The pulled plate: the same errors as the pushed one, and its load carried to the base.
 "$bin" compare "$src/cases/seed_plate_directional.toml" -o "$work/push" >"$work/push.log" 2>&1

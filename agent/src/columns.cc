@@ -279,7 +279,7 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
           const double r = g.plane(t, across), rc = c.centroid[i];
           const double p = -nu / E * (c.n[i] / c.area[i] * (r - r0) +
                                       c.m[i] / (2 * c.inertia[i]) * ((r - rc) * (r - rc) - (r0 - rc) * (r0 - rc)));
-          // A node seen from one column four times at most (its agents above and below): once per column.
+          // A node is met twice in a column (by the agents above and below it): counted once per column.
           const std::uint8_t bit = std::uint8_t(1u << dj);
           if (shared[node] & bit) continue;
           shared[node] |= bit;

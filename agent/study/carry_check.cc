@@ -119,9 +119,8 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
       std::vector<agent::EntryLoad> entries;
       for (std::size_t cell : cells) entries.push_back({cell, march, 1.0});
       agent::ColumnPlan plan;
-      const std::string columns_cannot = columns_refusal(grid, entries, plan);
       if (study.rules == agent::RuleSet::Columns) {
-        if (columns_cannot.empty()) {
+        if (const auto columns_cannot = columns_refusal(grid, entries, plan); columns_cannot.empty()) {
           c.march = plan.holding == agent::Holding::Clamp ? plan.clamp_side : agent::direction(plan.axis, false);
           c.exits.rigid = plan.rigid_area, c.route = columns_route(plan);
         } else {
@@ -137,10 +136,12 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
             c.across += std::string(c.across.empty() ? "" : ", ") + kSides[d];
         c.why = std::string("no rigid face ahead of the loaded face (march ") + kSides[march] + "); the " +
                 agent::rule_set_name(study.rules) + " rule set passes it out through free faces";
-        if (!c.across.empty())
+        if (!c.across.empty()) {
+          const auto columns_cannot = columns_refusal(grid, entries, plan);
           c.why += " (rigid faces lie ahead along " + c.across + ": reached by bending; " +
                    (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + columns_route(plan)
                                            : "the columns rule set cannot: " + columns_cannot) + ")";
+        }
       }
       out.push_back(c);
     }

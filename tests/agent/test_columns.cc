@@ -261,3 +261,23 @@ TEST(Columns, StudyRefusesBeforeTheRunAndTheCarryCheckKnowsTheColumns) {
   EXPECT_NE(refused[0].describe(directional).find("rule_set = \"columns\" carries it"), std::string::npos)
       << refused[0].describe(directional);
 }
+
+// The same beam on tiles (agent::tile): every stress and displacement the dense grid's, slot by slot
+// and node by node (the columns are gathered by coordinates, not by id order).
+TEST(Columns, TiledGridGivesTheDenseFields) {
+  Grid dense = supported(70, 20, 3);
+  dense.make_air(dense.index(35, 0, 0)), dense.make_air(dense.index(35, 1, 0));  // a notch
+  const Grid tiled = tile(dense);
+  ASSERT_TRUE(tiled.tiled());
+  const auto a = solved(dense, {down(dense, 30, 2.0)}), b = solved(tiled, {down(tiled, 30, 2.0)});
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 70; ++i) {
+      const std::size_t c = dense.index(i, j, 0), d = tiled.index(i, j, 0);
+      ASSERT_EQ(a.shear_flux()[c], b.shear_flux()[d]) << i << ", " << j;
+      ASSERT_EQ(a.face_forces()[c * 4], b.face_forces()[d * 4]) << i << ", " << j;
+    }
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 70; ++i)
+      for (int k = 0; k < 2; ++k)
+        ASSERT_EQ(a.displacement()[dense.node_index(i, j, 0) * 2 + k], b.displacement()[tiled.node_index(i, j, 0) * 2 + k]);
+}

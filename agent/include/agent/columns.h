@@ -68,15 +68,17 @@ Columns column_statics(const Grid& grid, const std::vector<EntryLoad>& loads);
 /// column's centroid less the supports' level; n = -H and m += e H in the span. A clamp: nothing.
 void add_bonded_thrust(Columns& columns);
 
-/// The fields of the columns into `out` (every slot of the grid): per agent sigma_a = n / A + m (t -
-/// centroid) / I as compressive face forces on its two faces across a (sigma_t = 0: its faces along
-/// a carry nothing), tau = v Q / (I w) in out.shear (Q the first moment of the column's agents above
-/// each level, averaged over the agent's height: the shears of a column integrate to v; w the thickness); per node (out.displacement, dim per node id) the plane
+/// The fields of the columns into `out` (every slot of the grid; out.faces, generation and shear
+/// sized for it): per agent sigma_a = n / A + m (t - centroid) / I as compressive face forces on its
+/// two faces across a (sigma_t = 0: its faces along a carry nothing), tau = v Q / (I w) in out.shear
+/// (Q the first moment of what lies above each level, averaged over the agent's height: a column's
+/// shears integrate to v; w the thickness); per node (out.displacement, dim per node id) the plane
 /// sections' displacement marched from the clamp or the supports: rotation by the curvature m /
-/// (E I), deflection by the rotation and the column's shear strain (energy mean of tau / G), axial
-/// displacement by n / (E A), the Poisson strain -nu sigma_a / E integrated across; zero rotation,
-/// deflection and axial displacement at the clamp plane, zero deflection at both support centres
-/// and zero axial displacement at the first. Generation: columns from the nearest loaded column
+/// (E I), deflection by the rotation and the column's shear strain (the energy mean of tau / G),
+/// axial displacement by n / (E A), the Poisson strain -nu sigma_a / E integrated across; zero
+/// rotation, axial displacement and deflection of the clamp column's centroid on the clamp plane;
+/// zero deflection at both support centres and zero axial displacement at the first, at the
+/// supports' plane. Generation: columns from the nearest loaded column
 /// (-1 in a column without resultants); the load balance: every load is carried to the rigid faces
 /// (rigid_reaction = applied, by the statics).
 void column_fields(const Grid& grid, const Material& material, const Columns& columns,

@@ -300,11 +300,7 @@ ColumnTransfer::ColumnTransfer(const Grid& grid, const Material& material) : mat
 }
 
 void ColumnTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
-  if (loads.empty()) {
-    out.clear_all();
-    std::fill(out.displacement.begin(), out.displacement.end(), 0.0);
-    return;
-  }
+  if (loads.empty()) return out.clear_all();
   Columns c = column_statics(grid, loads);
   add_bonded_thrust(c);
   column_fields(grid, material_, c, loads, out);

@@ -16,10 +16,9 @@ void check(bool ok, const std::string& what) {
 Coefficients with_gamma(Coefficients k, double gamma);
 
 // The rule type of (rule set, readings) at the absolute threshold `gamma`, each checking its own coefficients.
-std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer> make_transfer(const Grid& grid, const Material& material,
-                                                                           const Coefficients& case_k, double gamma,
-                                                                           RuleSet rules,
-                                                                           const TransferReadings& readings) {
+using RuleType = std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer>;
+RuleType make_transfer(const Grid& grid, const Material& material, const Coefficients& case_k, double gamma,
+                       RuleSet rules, const TransferReadings& readings) {
   check_coefficients(case_k, rules);  // as the case gave them: a bad gamma_relative is named as such
   const Coefficients k = with_gamma(case_k, gamma);
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");

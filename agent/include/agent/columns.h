@@ -52,7 +52,7 @@ struct Columns {
   std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
   /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
   std::array<double, 2> reactions{};
-  double clamp_moment = 0;  ///< the clamp's couple [N m] (sign as m)
+  double clamp_moment = 0;  ///< the clamp's couple on the body [N m], positive turning +a toward +t
   double thrust = 0;        ///< supports: the axial force the supports hold the span with (n = -thrust there) [N]
 };
 
@@ -78,9 +78,9 @@ void add_bonded_thrust(Columns& columns);
 /// axial displacement by n / (E A), the Poisson strain -nu sigma_a / E integrated across; zero
 /// rotation, axial displacement and deflection of the clamp column's centroid on the clamp plane;
 /// zero deflection at both support centres and zero axial displacement at the first, at the
-/// supports' plane. Generation: columns from the nearest loaded column
-/// (-1 in a column without resultants); the load balance: every load is carried to the rigid faces
-/// (rigid_reaction = applied, by the statics).
+/// supports' plane. Generation: columns from the nearest loaded column (-1 in a column without
+/// resultants); the load balance: every load is carried to the rigid faces (rigid_reaction =
+/// applied, by the statics).
 void column_fields(const Grid& grid, const Material& material, const Columns& columns,
                    const std::vector<EntryLoad>& loads, TransferResults& out);
 

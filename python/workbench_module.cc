@@ -403,8 +403,11 @@ class Objective {
   Objective(const std::vector<Case>& cases, const std::string& rule_set, const std::map<std::string, double>& weights,
             const py::object& progress) {
     const auto named = agent::rule_set_named(rule_set);
-    if (!named)
-      throw workbench::Error("rule_set: must be \"patent\", \"conserving\" or \"directional\", not \"" + rule_set + "\"");
+    if (!named) {
+      std::string names;
+      for (agent::RuleSet r : agent::kRuleSets) names += std::string(names.empty() ? "" : ", ") + "\"" + agent::rule_set_name(r) + "\"";
+      throw workbench::Error("rule_set: must be one of " + names + ", not \"" + rule_set + "\"");
+    }
     rules_ = *named;
     for (const auto& [name, value] : weights) {
       const auto* f = std::find_if(std::begin(compare::kFields), std::end(compare::kFields),

@@ -16,10 +16,9 @@ void check(bool ok, const std::string& what) {
 Coefficients with_gamma(Coefficients k, double gamma);
 
 // The rule type of (rule set, readings) at the absolute threshold `gamma`, each checking its own coefficients.
-std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(const Grid& grid, const Material& material,
-                                                                           const Coefficients& case_k, double gamma,
-                                                                           RuleSet rules,
-                                                                           const TransferReadings& readings) {
+using RuleType = std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer>;
+RuleType make_transfer(const Grid& grid, const Material& material, const Coefficients& case_k, double gamma,
+                       RuleSet rules, const TransferReadings& readings) {
   check_coefficients(case_k, rules);  // as the case gave them: a bad gamma_relative is named as such
   const Coefficients k = with_gamma(case_k, gamma);
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
@@ -33,6 +32,7 @@ std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> make_transfer(cons
     check(false, "reading non_compounding_entry is a reading of the patent rule set");
   }
   if (rules == RuleSet::Directional) return DirectionalTransfer(k);
+  if (rules == RuleSet::Columns) return ColumnTransfer(grid, material);
   if (readings.cyclic()) return CyclicTransfer(grid, material, k, readings);
   return LayerSweep(grid, material, k, rules, readings);
 }
@@ -48,6 +48,7 @@ void TransferResults::clear_all() {
   std::fill(generation.begin(), generation.end(), -1);
   std::fill(shear.begin(), shear.end(), 0.0);
   std::fill(balance.begin(), balance.end(), 0.0);
+  std::fill(displacement.begin(), displacement.end(), 0.0);
   diagnostics = Diagnostics{};
 }
 
@@ -57,14 +58,14 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
       transfer_(make_transfer(grid, material, k, gamma_, rules, readings)) {
   out_.faces.assign(grid.count() * 2 * grid.dim, 0.0);
   out_.generation.assign(grid.count(), -1);
-  if (rules == RuleSet::Directional) {  // the only rule type that writes them
+  if (rules == RuleSet::Directional || rules == RuleSet::Columns)  // the rule types that write a shear
     out_.shear.assign(grid.count() * (grid.dim == 3 ? 3 : 1), 0.0);
-    out_.balance.assign(2 * balance_offset(grid, 3), 0.0);
-  }
+  if (rules == RuleSet::Directional) out_.balance.assign(2 * balance_offset(grid, 3), 0.0);
+  if (rules == RuleSet::Columns) out_.displacement.assign(grid.node_count() * std::size_t(grid.dim), 0.0);
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
-  return (out_.faces.capacity() + out_.shear.capacity() + out_.balance.capacity()) * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) +
+  return (out_.faces.capacity() + out_.shear.capacity() + out_.balance.capacity() + out_.displacement.capacity()) * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) +
          grid_.flags.capacity() + grid_.tiles.memory_bytes() +
          std::visit([](const auto& t) { return t.memory_bytes(); }, transfer_);
 }

@@ -110,6 +110,8 @@ agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rule
     t.fail("readings", "non_compounding_entry is a reading of the patent rule set");
   if (r.cyclic() && rules != agent::RuleSet::Patent)
     t.fail("readings", "every_agent_all_operations and boundaries_return are readings of the patent rule set");
+  if (r.any() && rules == agent::RuleSet::Columns)
+    t.fail("readings", "entering_face_stress and lateral_strain_stress read face forces: the columns rule set gives its stresses itself");
   return r;
 }
 
@@ -170,6 +172,13 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
     }
   }
   check_readings_fit_loads(study, root.table("agent"));
+  if (study.rules == agent::RuleSet::Columns) {  // what the columns cannot carry is refused before the run
+    try {
+      agent::plan_columns(grid, study.loads);
+    } catch (const std::invalid_argument& e) {
+      root.table("agent").fail("rule_set", std::string("the columns rule set cannot carry the loads: ") + e.what());
+    }
+  }
   if (study.readings.cyclic()) {  // the cyclic transfer must end: gamma > 0, every factor below 1
     auto k = study.coefficients;
     k.gamma = k.gamma_for(entering_load(study, 1.0));  // the threshold the transfer drops loads by
@@ -193,6 +202,21 @@ double entering_load(const AgentStudy& study, double factor) {
 
 namespace {
 
+/// The von Mises stress of every agent from its normal stresses and shears.
+void set_von_mises(AgentState& s, int dim) {
+  const int shears = agent::shear_count(dim);
+  for (std::size_t c = 0; c < s.von_mises.size(); ++c) {
+    const double* n = &s.stress[c * std::size_t(dim)];
+    const double* t = &s.shear[c * std::size_t(shears)];  // every rule set's (zero without shear)
+    if (dim == 2) {
+      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t[0]);
+    } else {
+      const double six[6] = {n[0], n[1], n[2], t[0], t[1], t[2]};
+      s.von_mises[c] = agent::von_mises_3d(six);
+    }
+  }
+}
+
 /// The state of `pushes` (forces >= 0, marching inward) alone: the transfer and every field from
 /// it. `entering` is the whole load's magnitude (the relative threshold's base), `datums` those of
 /// the whole load, so that a pull's state is its push's to the bit.
@@ -210,6 +234,16 @@ AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const st
   s.face_forces = model.face_forces();
   s.generation = model.generation();
   s.diagnostics = model.diagnostics();
+  if (model.rules() == agent::RuleSet::Columns) {  // the columns give the shear and the displacement themselves
+    s.stress = agent::agent_stresses(grid, s.face_forces);
+    s.shear = model.shear_flux();
+    s.von_mises.assign(grid.count(), 0.0);
+    set_von_mises(s, grid.dim);
+    s.strain = agent::agent_strains(grid, model.material(), s.stress);
+    s.displacement = model.displacement();
+    agent::hold_rigid_faces(grid, s.displacement);
+    return s;
+  }
   const auto normal = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
                                            model.coefficients().beta, model.material().poisson);
   // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
@@ -225,21 +259,6 @@ AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const st
                                                            agent::axis_of(pushes.front().dir));
   agent::hold_rigid_faces(grid, s.displacement);
   return s;
-}
-
-/// The von Mises stress of every agent from its normal stresses and shears.
-void set_von_mises(AgentState& s, int dim) {
-  const int shears = agent::shear_count(dim);
-  for (std::size_t c = 0; c < s.von_mises.size(); ++c) {
-    const double* n = &s.stress[c * std::size_t(dim)];
-    const double* t = &s.shear[c * std::size_t(shears)];  // every rule set's (zero without shear)
-    if (dim == 2) {
-      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t[0]);
-    } else {
-      const double six[6] = {n[0], n[1], n[2], t[0], t[1], t[2]};
-      s.von_mises[c] = agent::von_mises_3d(six);
-    }
-  }
 }
 
 /// `a` - `b` in every field (a push state less a pull's; von Mises of the difference); generations the earlier, balances added

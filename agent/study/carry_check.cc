@@ -1,8 +1,11 @@
 // The carry check before a run (agent_study/carry_check.h).
 #include "carry_check.h"
 
+#include <agent/columns.h>
+
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <sstream>
 
 namespace agent_study {
@@ -59,15 +62,46 @@ std::string LoadCarry::describe(const AgentStudy& study) const {
   std::ostringstream s;
   s << "load[" << load << "] (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
     << kSides[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits " << 1e6 * exits.free << " mm^2";
-  if (refused()) {
-    s << ": cannot carry: no rigid face ahead of the loaded face (march " << kSides[march] << "); the "
-      << agent::rule_set_name(study.rules) << " rule set passes it out through free faces";
-    if (!across.empty()) s << " (rigid faces lie ahead along " << across << ": reached by bending, which no rule set here carries)";
-  }
+  if (refused())
+    s << ": cannot carry: " << why;
+  else if (!route.empty())
+    s << ": carries by " << route;
   else
     s << ": carries (rigid share of the exits " << exits.rigid / (exits.rigid + exits.free) << ")";
   return s.str();
 }
+
+namespace {
+
+/// The column rule set's verdict on entry loads: empty and `plan` set when it carries them, else why not.
+std::string columns_refusal(const agent::Grid& grid, const std::vector<agent::EntryLoad>& loads, agent::ColumnPlan& plan) {
+  try {
+    plan = agent::plan_columns(grid, loads);
+    return "";
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+}
+
+std::string mm(double x) {
+  std::ostringstream s;
+  s << 1e3 * x << " mm";
+  return s.str();
+}
+
+/// How the columns carry a load: "bending: columns along x to the clamp at x = 0 mm".
+std::string columns_route(const agent::ColumnPlan& p) {
+  const char a = char('x' + p.axis);
+  std::ostringstream s;
+  s << "bending: columns along " << a << " to ";
+  if (p.holding == agent::Holding::Clamp)
+    s << "the clamp at " << a << " = " << mm(p.at[0]);
+  else
+    s << "the supports at " << a << " = " << mm(p.at[0]) << " and " << mm(p.at[1]);
+  return s.str();
+}
+
+}  // namespace
 
 std::vector<LoadCarry> carry_check(const AgentStudy& study) {
   const auto& grid = study.mesh.grid;
@@ -82,11 +116,33 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
     for (const auto& [march, cells] : by_march) {
       LoadCarry c;
       c.load = i, c.group = spec.group, c.march = march;
+      std::vector<agent::EntryLoad> entries;
+      for (std::size_t cell : cells) entries.push_back({cell, march, 1.0});
+      agent::ColumnPlan plan;
+      if (study.rules == agent::RuleSet::Columns) {
+        if (const auto columns_cannot = columns_refusal(grid, entries, plan); columns_cannot.empty()) {
+          c.march = plan.holding == agent::Holding::Clamp ? plan.clamp_side : agent::direction(plan.axis, false);
+          c.exits.rigid = plan.rigid_area, c.route = columns_route(plan);
+        } else {
+          c.why = columns_cannot;
+        }
+        out.push_back(c);
+        continue;
+      }
       c.exits = exits_ahead(grid, cells, march, widen);
-      if (c.refused())  // where a load path by shear and bending would go: the axes with a rigid face ahead
+      if (c.refused()) {  // where a load path by shear and bending would go: the axes with a rigid face ahead
         for (int d = 0; d < 2 * grid.dim; ++d)
           if (agent::axis_of(d) != agent::axis_of(march) && exits_ahead(grid, cells, d, widen).rigid > 0)
             c.across += std::string(c.across.empty() ? "" : ", ") + kSides[d];
+        c.why = std::string("no rigid face ahead of the loaded face (march ") + kSides[march] + "); the " +
+                agent::rule_set_name(study.rules) + " rule set passes it out through free faces";
+        if (!c.across.empty()) {
+          const auto columns_cannot = columns_refusal(grid, entries, plan);
+          c.why += " (rigid faces lie ahead along " + c.across + ": reached by bending; " +
+                   (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + columns_route(plan)
+                                           : "the columns rule set cannot: " + columns_cannot) + ")";
+        }
+      }
       out.push_back(c);
     }
   }

@@ -1,8 +1,10 @@
 #pragma once
 // Saying before a run whether the rule set can carry each load to a rigid face (docs/agent-model.md,
-// "The carry check"; research: bench/research/carry_check.py). Every rule set marches from the
-// loaded face inward; a load whose rigid faces do not lie ahead of it (a cantilever, a bracket
-// clamped at its side) is passed out through free faces whatever the coefficients.
+// "The carry check"; research: bench/research/carry_check.py). The patent, conserving and
+// directional rule sets march from the loaded face inward: a load whose rigid faces do not lie ahead
+// of it (a cantilever, a bracket clamped at its side) is passed out through free faces whatever the
+// coefficients. The columns rule set carries a load by bending to a clamp or two supports beside
+// it (agent/columns.h), or cannot at all (then the study refuses the case before the run).
 #include "agent_study.h"
 
 #include <string>
@@ -27,11 +29,16 @@ int lateral_reach(const agent::Grid& grid, agent::RuleSet rules, const agent::Co
 struct LoadCarry {
   std::size_t load = 0;  ///< index of the [[load]] table
   std::string group;
-  int march = 0;         ///< the direction the rule set marches (the loaded face's inward normal)
+  /// The direction the rule set marches: the loaded face's inward normal; the columns rule set:
+  /// along the beam axis toward the clamp (supports: toward the first, -x or -y)
+  int march = 0;
+  /// The rigid and free faces the march leaves by; the columns: the clamp's or the supports' (free 0)
   Exits exits;
   /// When refused: the directions across the march along which rigid faces lie ahead ("-x"), else "".
   std::string across;
-  /// The rule set cannot carry it: no rigid face ahead of the loaded face.
+  std::string route;  ///< the columns rule set: how it carries the load ("bending: columns along x ...")
+  std::string why;    ///< when refused: why, in one sentence
+  /// The rule set cannot carry it: no rigid face ahead of the loaded face (the columns: none beside it).
   bool refused() const { return !(exits.rigid > 0); }
   /// "load[0] (group "tip", 2 N, march -y): rigid exits 0 mm^2, free 22 mm^2: ..." (one line).
   std::string describe(const AgentStudy& study) const;

@@ -12,19 +12,22 @@
 
 namespace agent {
 
-/// The two readings of the seed's transfer rules and the project's extension (docs/agent-model.md).
+/// The two readings of the seed's transfer rules and the project's extensions (docs/agent-model.md).
 enum class RuleSet {
   Patent,      ///< literal: entry x alpha1, each step down x alpha2, friction alpha3 re-entered with alpha1
   Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
   Directional, ///< not the seed's: packets with slopes from a fan (agent/directional.h); uses gamma only
+  /// not the seed's: bending, columns across the beam axis carry the section resultants to a clamp
+  /// or two supports (agent/columns.h); 2D, no coefficient
+  Columns,
 };
 
 /// Every rule set, in the order of the enum.
-constexpr std::array<RuleSet, 3> kRuleSets{RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional};
+constexpr std::array<RuleSet, 4> kRuleSets{RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional, RuleSet::Columns};
 
-/// The rule set's name in case files and reports ("patent", "conserving", "directional").
+/// The rule set's name in case files and reports ("patent", "conserving", "directional", "columns").
 constexpr const char* rule_set_name(RuleSet r) {
-  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : "directional";
+  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : r == RuleSet::Directional ? "directional" : "columns";
 }
 
 /// How the directional rule set's packets go (docs/agent-model.md, "Paths"): turning toward the

@@ -9,13 +9,15 @@
 //   const auto& f = model.face_forces();     // 2*dim compressive face forces per agent [N]
 //
 // LoadTransfer is a facade: it validates the grid, the material and the loads, and runs one of
-// three rule types, chosen at construction from the rule set and the transfer readings:
+// four rule types, chosen at construction from the rule set and the transfer readings:
 //   agent::LayerSweep           patent (readings 2 and 6 off) and conserving: the layer sweep (agent/sweep.h);
 //   agent::DirectionalTransfer  the directional rule set: the packet fan (agent/directional.h);
-//   agent::CyclicTransfer       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h).
+//   agent::CyclicTransfer       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h);
+//   agent::ColumnTransfer       the columns rule set: beam sections (agent/columns.h), 2D.
 // Each rule type checks its own coefficients. The stress readings (4, 5) are not the transfer's:
 // agent_stresses (agent/fields.h) takes them.
 #include <agent/coefficients.h>
+#include <agent/columns.h>
 #include <agent/cyclic_transfer.h>
 #include <agent/directional.h>
 #include <agent/grid.h>
@@ -60,10 +62,12 @@ class LoadTransfer {
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
   const std::vector<std::int32_t>& generation() const { return out_.generation; }
   const Diagnostics& diagnostics() const { return out_.diagnostics; }
-  /// TransferResults::shear and ::balance (empty but for the directional rule set): the packets'
-  /// shear stresses per slot [Pa], the row moment balance's slopes per march axis and layer.
+  /// TransferResults::shear (the directional and column rule sets': the shear stress per slot [Pa])
+  /// and ::balance (the directional rule set's row moment balance's slopes per march axis and layer).
   const std::vector<double>& shear_flux() const { return out_.shear; }
   const std::vector<double>& balance_force() const { return out_.balance; }
+  /// TransferResults::displacement: the column rule set's node displacements (empty for the others).
+  const std::vector<double>& displacement() const { return out_.displacement; }
   /// Bytes held for the grid's slots (results, the grid's flags and tile table, the rule type's
   /// scratch between solves).
   std::size_t memory_bytes() const;
@@ -76,7 +80,7 @@ class LoadTransfer {
   TransferReadings readings_;
   TransferResults out_;
   double gamma_;  // the gamma the rule type was built with
-  std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer> transfer_;
+  std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer> transfer_;
 };
 
 }  // namespace agent

@@ -118,6 +118,9 @@ struct TransferResults {
   /// along a: k0 (u - mean u) + k1 (v - mean v) [N] at an agent u, v agents from the box's lower
   /// sides (in `faces` too); its shear is read by vertical equilibrium.
   std::vector<double> balance;
+  /// The column rule set (agent/columns.h): dim displacements per node id [m]; empty for the others,
+  /// whose displacement is integrated from the stresses (agent/fields.h).
+  std::vector<double> displacement;
   Diagnostics diagnostics;
   /// Zero forces, every generation -1, no diagnostics: what a rule type without its own
   /// bookkeeping of what it wrote does before a solve.

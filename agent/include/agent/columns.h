@@ -1,0 +1,101 @@
+#pragma once
+// The column rule set (docs/agent-model.md, "Bending: the column rule set"; research:
+// bench/research/bending.py, beam_columns.py): a load whose rigid faces lie beside it (a cantilever,
+// a beam on end supports) reaches them through shear and bending. The agents are cut into columns
+// across the beam axis (the axis along which the rigid faces lie beside the loads); each column's
+// area, centroid and second moment come from its own agents (a notch changes them). The section
+// resultants are passed column to column from the loads to the clamp or the supports; each column
+// spreads its moment linearly over its agents (Navier) and its shear by a scan down the column
+// (Jourawski). The deflection is marched from the clamp or the supports. 2D only.
+#include <agent/grid.h>
+#include <agent/transfer.h>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace agent {
+
+/// Where the rigid faces hold the beam: a clamp (rigid faces across the beam axis, in one plane at
+/// one end of the body) or two supports (rigid faces along the beam axis, in two separate stretches
+/// on one side of the body, in one plane).
+enum class Holding { Clamp, Supports };
+
+/// How the column rule set carries a set of loads (agent::plan_columns).
+struct ColumnPlan {
+  int axis = 0;    ///< the beam axis a: the columns are the slots of equal coordinate along it
+  int across = 1;  ///< the load axis t (the other axis)
+  Holding holding = Holding::Clamp;
+  /// Clamp: the clamp plane along a [m] (at [0]) and the side its faces face (-a: the body lies at
+  /// larger a). Supports: the centres of the two supports along a [m], increasing.
+  std::array<double, 2> at{};
+  int clamp_side = 0;
+  double support_level = 0;  ///< supports: the plane of their faces along t [m]
+  double rigid_area = 0;     ///< area of the rigid faces that take the load [m^2]
+};
+
+/// The plan for `loads` (EntryLoad: cell, marching direction; forces are not read) on `grid`, or
+/// std::invalid_argument saying in one sentence why the column rule cannot carry them: a 3D grid, no
+/// load, loads along both axes, no rigid face, rigid faces both across and along the beam axis,
+/// clamps at both ends or on several planes, agents beyond the clamp, one support or more than two,
+/// supports on both sides or at two levels, a column along the beam axis without agents.
+ColumnPlan plan_columns(const Grid& grid, const std::vector<EntryLoad>& loads);
+
+/// The columns of a plan and their section resultants (sign convention: the part of the body at
+/// lower a, its cut face's outward normal +a): per column (slot along a), the force across the
+/// cut v = int tau dA, the moment m = int sigma_a (t - centroid) dA about the column's centroid and
+/// the axial force n = int sigma_a dA.
+struct Columns {
+  ColumnPlan plan;
+  std::vector<double> centre, width;            ///< per column, along a [m]
+  std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4]
+  std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
+  /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
+  std::array<double, 2> reactions{};
+  double clamp_moment = 0;  ///< the clamp's couple on the body [N m], positive turning +a toward +t
+  double thrust = 0;        ///< supports: the axial force the supports hold the span with (n = -thrust there) [N]
+};
+
+/// The statics of `loads` (forces >= 0 along their direction): each column's area, centroid and
+/// second moment from its agents, the reactions from the balance of forces and moments (a clamp
+/// takes the force and the couple), and v, m per column. No thrust (supports free to slide).
+/// Throws what plan_columns throws.
+Columns column_statics(const Grid& grid, const std::vector<EntryLoad>& loads);
+
+/// Supports that hold the body (bonded rigid faces, as the agents' and FEM's are): the face they
+/// hold cannot lengthen between them, so they hold the span with a thrust H along a at their level
+/// (compatibility, two scans over the span): H = -int m e / I da / int (1 / A + e^2 / I) da, e the
+/// column's centroid less the supports' level; n = -H and m += e H in the span. A clamp: nothing.
+void add_bonded_thrust(Columns& columns);
+
+/// The fields of the columns into `out` (every slot of the grid; out.faces, generation and shear
+/// sized for it): per agent sigma_a = n / A + m (t - centroid) / I as compressive face forces on its
+/// two faces across a (sigma_t = 0: its faces along a carry nothing), tau = v Q / (I w) in out.shear
+/// (Q the first moment of what lies above each level, averaged over the agent's height: a column's
+/// shears integrate to v; w the thickness); per node (out.displacement, dim per node id) the plane
+/// sections' displacement marched from the clamp or the supports: rotation by the curvature m /
+/// (E I), deflection by the rotation and the column's shear strain (the energy mean of tau / G),
+/// axial displacement by n / (E A), the Poisson strain -nu sigma_a / E integrated across; zero
+/// rotation, axial displacement and deflection of the clamp column's centroid on the clamp plane;
+/// zero deflection at both support centres and zero axial displacement at the first, at the
+/// supports' plane. Generation: columns from the nearest loaded column (-1 in a column without
+/// resultants); the load balance: every load is carried to the rigid faces (rigid_reaction =
+/// applied, by the statics).
+void column_fields(const Grid& grid, const Material& material, const Columns& columns,
+                   const std::vector<EntryLoad>& loads, TransferResults& out);
+
+/// The column rule set as a LoadTransfer rule type: statics, the bonded thrust, the fields. It reads
+/// no coefficient and takes no reading; the grid must be 2D (checked at construction), the plan is
+/// made per solve (std::invalid_argument when the loads cannot be carried).
+class ColumnTransfer {
+ public:
+  ColumnTransfer(const Grid& grid, const Material& material);
+  /// Clears the whole result (a column's resultants reach all its agents), then carries `loads`.
+  void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
+  std::size_t memory_bytes() const { return 0; }  ///< nothing held between solves
+
+ private:
+  Material material_;
+};
+
+}  // namespace agent

@@ -1,0 +1,309 @@
+// The column rule set: statics, the bonded thrust, Navier and Jourawski per column, the march of
+// the displacement (agent/columns.h).
+#include <agent/columns.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace agent {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& why) { throw std::invalid_argument(why); }
+
+std::string mm(double x) {
+  std::ostringstream s;
+  s << 1e3 * x << " mm";
+  return s.str();
+}
+
+const char* kSideNames[4] = {"-x", "+x", "-y", "+y"};
+
+/// Centre of column i along `a` [m], as Grid::centre computes it.
+double column_centre(const Grid& g, int a, int i) {
+  return g.planes[a].empty() ? g.origin[a] + (i + 0.5) * g.size[a] : 0.5 * (g.plane(a, i) + g.plane(a, i + 1));
+}
+
+/// A force across the beam axis at `s` along it [N], and a couple [N m] (the clamp's).
+struct Force {
+  double s, f, couple;
+};
+
+}  // namespace
+
+ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
+  if (g.dim != 2) refuse("the columns rule set is 2D: a 3D body is not built");
+  if (loads.empty()) refuse("no load");
+  const int t = axis_of(loads.front().dir);
+  for (const auto& l : loads)
+    if (axis_of(l.dir) != t) refuse("loads along both x and y: the columns carry loads across one beam axis");
+  ColumnPlan p;
+  p.across = t;
+  p.axis = 1 - t;
+  const int a = p.axis;
+  const char an = char('x' + a);
+  std::vector<char> filled(std::size_t(g.cells[a]), 0);
+  for (std::size_t c = 0; c < g.count(); ++c)
+    if (!g.is_air(c)) filled[std::size_t(g.coords(c)[a])] = 1;
+  for (int i = 0; i < g.cells[a]; ++i)
+    if (!filled[std::size_t(i)])
+      refuse(std::string("no agent between ") + an + " = " + mm(g.plane(a, i)) + " and " + mm(g.plane(a, i + 1)) +
+             ": the body is not one beam along " + an);
+  std::vector<BoundaryFace> clamp, supports;
+  for (const auto& f : g.boundary_faces())
+    if (g.boundary(f.side, f.cell) == Boundary::Rigid) (axis_of(f.side) == a ? clamp : supports).push_back(f);
+  if (clamp.empty() && supports.empty()) refuse("no rigid face");
+  if (!clamp.empty() && !supports.empty())
+    refuse(std::string("rigid faces both across the beam axis ") + an + " (a clamp) and along it (supports): not built");
+  if (!clamp.empty()) {
+    p.holding = Holding::Clamp;
+    p.clamp_side = clamp.front().side;
+    auto plane_of = [&](const BoundaryFace& f) { return g.coords(f.cell)[a] + (is_positive(f.side) ? 1 : 0); };
+    const int plane = plane_of(clamp.front());
+    for (const auto& f : clamp)
+      if (f.side != p.clamp_side || plane_of(f) != plane)
+        refuse(std::string("rigid faces across the beam axis ") + an +
+               " on more than one plane (clamped at both ends, or a stepped clamp): an indeterminate beam, not built");
+    if (plane != (is_positive(p.clamp_side) ? g.cells[a] : 0))
+      refuse(std::string("the clamp (rigid faces ") + kSideNames[p.clamp_side] + " at " + an + " = " +
+             mm(g.plane(a, plane)) + ") is not at the end of the body: agents lie beyond it");
+    p.at[0] = g.plane(a, plane);
+    p.rigid_area = double(clamp.size()) * g.face_area(a);
+    return p;
+  }
+  p.holding = Holding::Supports;
+  const int side = supports.front().side;
+  auto level_of = [&](const BoundaryFace& f) { return g.coords(f.cell)[t] + (is_positive(f.side) ? 1 : 0); };
+  const int level = level_of(supports.front());
+  for (const auto& f : supports)
+    if (f.side != side || level_of(f) != level)
+      refuse(std::string("rigid faces along the beam axis ") + an + " on more than one plane (on both sides, or at two levels): not built");
+  std::sort(supports.begin(), supports.end(),
+            [&](const BoundaryFace& x, const BoundaryFace& y) { return g.coords(x.cell)[a] < g.coords(y.cell)[a]; });
+  std::vector<std::pair<double, int>> stretches;  // (sum of face centres along a, faces)
+  int last = -2;
+  for (const auto& f : supports) {
+    const int i = g.coords(f.cell)[a];
+    if (i > last + 1) stretches.push_back({0.0, 0});
+    stretches.back().first += column_centre(g, a, i), stretches.back().second += 1;
+    last = i;
+  }
+  if (stretches.size() == 1)
+    refuse(std::string("the rigid faces along the beam axis ") + an +
+           " form one support: the columns need a clamp or two supports (a load onto a support ahead of it is carried by "
+           "the other rule sets)");
+  if (stretches.size() > 2)
+    refuse(std::to_string(stretches.size()) + " supports along " + an + ": an indeterminate beam, not built (the columns need a clamp or two supports)");
+  for (int k = 0; k < 2; ++k) p.at[std::size_t(k)] = stretches[std::size_t(k)].first / stretches[std::size_t(k)].second;
+  p.support_level = g.plane(t, level);
+  p.rigid_area = double(supports.size()) * g.face_area(t);
+  return p;
+}
+
+Columns column_statics(const Grid& g, const std::vector<EntryLoad>& loads) {
+  Columns c;
+  c.plan = plan_columns(g, loads);
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double h = g.size[t], w = g.thickness;
+  // Sections: sums over each column's agents, positions from the box's lower side (less round-off).
+  std::vector<double> count(std::size_t(n), 0.0), sum(std::size_t(n), 0.0), sum2(std::size_t(n), 0.0);
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) {
+      const std::size_t i = std::size_t(g.coords(cell)[a]);
+      const double r = g.centre(cell)[t] - g.origin[t];
+      count[i] += 1, sum[i] += r, sum2[i] += r * r;
+    }
+  c.area.resize(std::size_t(n)), c.centroid.resize(std::size_t(n)), c.inertia.resize(std::size_t(n));
+  c.centre.resize(std::size_t(n)), c.width.resize(std::size_t(n));
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    c.centre[i] = column_centre(g, a, int(i));
+    c.width[i] = g.plane(a, int(i) + 1) - g.plane(a, int(i));
+    const double rc = sum[i] / count[i];
+    c.area[i] = count[i] * h * w;
+    c.centroid[i] = g.origin[t] + rc;
+    c.inertia[i] = w * h * std::max(0.0, sum2[i] - count[i] * rc * rc) + count[i] * w * h * h * h / 12;
+  }
+  // The forces across the axis: the loads, then the reactions (statics).
+  std::vector<Force> forces;
+  double total = 0, moment = 0;  // sum f, sum s f
+  for (const auto& l : loads) {
+    const double s = column_centre(g, a, g.coords(l.cell)[a]);
+    const double f = (is_positive(l.dir) ? 1 : -1) * l.force;
+    forces.push_back({s, f, 0.0});
+    total += f, moment += s * f;
+  }
+  if (c.plan.holding == Holding::Clamp) {
+    const double s = c.plan.at[0], r = -total;
+    c.reactions[0] = r;
+    c.clamp_moment = -(moment + s * r);
+    forces.push_back({s, r, c.clamp_moment});
+  } else {
+    const double s1 = c.plan.at[0], s2 = c.plan.at[1];
+    c.reactions[1] = -(moment - s1 * total) / (s2 - s1);
+    c.reactions[0] = -total - c.reactions[1];
+    forces.push_back({s1, c.reactions[0], 0.0});
+    forces.push_back({s2, c.reactions[1], 0.0});
+  }
+  std::sort(forces.begin(), forces.end(), [](const Force& x, const Force& y) { return x.s < y.s; });
+  // One scan: the part of the body below each column's centre (a force at the centre: half on each side).
+  c.v.assign(std::size_t(n), 0.0), c.m.assign(std::size_t(n), 0.0), c.n.assign(std::size_t(n), 0.0);
+  double f0 = 0, f1 = 0, couples = 0;  // sum f, sum s f, sum of couples below
+  std::size_t k = 0;
+  for (int i = 0; i < n; ++i) {
+    const double s = c.centre[std::size_t(i)];
+    for (; k < forces.size() && forces[k].s < s; ++k) f0 += forces[k].f, f1 += forces[k].s * forces[k].f, couples += forces[k].couple;
+    double at = 0;
+    for (std::size_t e = k; e < forces.size() && forces[e].s == s; ++e) at += forces[e].f;
+    c.v[std::size_t(i)] = -f0 - 0.5 * at;
+    c.m[std::size_t(i)] = f1 - s * f0 + couples;
+  }
+  return c;
+}
+
+void add_bonded_thrust(Columns& c) {
+  if (c.plan.holding != Holding::Supports) return;
+  const double s1 = c.plan.at[0], s2 = c.plan.at[1], level = c.plan.support_level;
+  auto in_span = [&](std::size_t i) { return c.centre[i] > s1 && c.centre[i] < s2; };
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < c.m.size(); ++i)
+    if (in_span(i)) {
+      const double e = c.centroid[i] - level;
+      num += c.m[i] * e / c.inertia[i] * c.width[i];
+      den += (1 / c.area[i] + e * e / c.inertia[i]) * c.width[i];
+    }
+  c.thrust = den > 0 ? -num / den : 0.0;
+  for (std::size_t i = 0; i < c.m.size(); ++i)
+    if (in_span(i)) c.n[i] = -c.thrust, c.m[i] += (c.centroid[i] - level) * c.thrust;
+}
+
+void column_fields(const Grid& g, const Material& material, const Columns& c, const std::vector<EntryLoad>& loads,
+                   TransferResults& out) {
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double h = g.size[t], w = g.thickness, dA = h * w, face = g.face_area(a);
+  const double E = material.young, nu = material.poisson, G = E / (2 * (1 + nu));
+  out.clear_all();
+  out.displacement.assign(g.node_count() * 2, 0.0);
+  auto& d = out.diagnostics;
+  // Each column's agents along t (id order is that order in a dense grid: sorted only when not).
+  std::vector<std::size_t> start(std::size_t(n) + 1, 0), agents;
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) ++start[std::size_t(g.coords(cell)[a]) + 1];
+  for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
+  agents.resize(start.back());
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t cell = 0; cell < g.count(); ++cell)
+      if (!g.is_air(cell)) agents[next[std::size_t(g.coords(cell)[a])]++] = cell;
+  }
+  auto along_t = [&](std::size_t x, std::size_t y) { return g.coords(x)[t] < g.coords(y)[t]; };
+  // Stresses per agent; each column's shear strain per unit v (the energy mean: int (Q / (I w))^2 dA / G).
+  std::vector<double> shear_strain(std::size_t(n), 0.0);
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const auto first = agents.begin() + std::ptrdiff_t(start[i]), last = agents.begin() + std::ptrdiff_t(start[i + 1]);
+    if (!std::is_sorted(first, last, along_t)) std::sort(first, last, along_t);
+    const double A = c.area[i], rc = c.centroid[i], I = c.inertia[i];
+    double above = 0, energy = 0;  // Q of the agents above; int (Q / (I w))^2 dA
+    for (auto it = last; it != first;) {
+      const std::size_t cell = *--it;
+      const double r = g.centre(cell)[t];
+      const double sigma = c.n[i] / A + c.m[i] * (r - rc) / I;
+      out.faces[cell * 4 + std::size_t(direction(a, false))] = out.faces[cell * 4 + std::size_t(direction(a, true))] = -sigma * face;
+      // The first moment of what lies above each level, Q, averaged over the agent's height: the
+      // agents above, and this one above the level (its shear then integrates to v exactly).
+      const double z1 = r + 0.5 * h - rc, z0 = r - 0.5 * h - rc;
+      const double top = above + 0.5 * w * z1 * z1, z3 = z1 * z1 * z1 - z0 * z0 * z0;  // Q = top - w z^2 / 2 in the agent
+      const double q = top - w * z3 / (6 * h);
+      out.shear[cell] = c.v[i] * q / (I * w);
+      // The shear energy's integral of Q^2 over the agent, exact (a solid rectangle's k is 5/6).
+      const double z5 = z1 * z1 * z1 * z1 * z1 - z0 * z0 * z0 * z0 * z0;
+      energy += w * (top * top * h - top * w * z3 / 3 + w * w * z5 / 20) / ((I * w) * (I * w));
+      above += dA * (r - rc);
+    }
+    shear_strain[i] = energy / G;
+    d.agent_updates += start[i + 1] - start[i];
+  }
+  // Generation: columns from the nearest loaded column, in the columns that carry something.
+  std::vector<int> reach(std::size_t(n), n + 1);
+  for (const auto& l : loads) reach[std::size_t(g.coords(l.cell)[a])] = 0;
+  for (int i = 1; i < n; ++i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) - 1] + 1);
+  for (int i = n - 2; i >= 0; --i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) + 1] + 1);
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    if (c.v[i] == 0 && c.m[i] == 0 && c.n[i] == 0) continue;
+    for (std::size_t k = start[i]; k < start[i + 1]; ++k) out.generation[agents[k]] = reach[i];
+    d.agents_generated += start[i + 1] - start[i];
+  }
+  // The plane sections' march over the node lines (planes along a): rotation theta (u_a = U - theta
+  // (r - r0)), axial displacement U and deflection W at the reference level r0.
+  const double r0 = c.plan.holding == Holding::Supports ? c.plan.support_level
+                    : is_positive(c.plan.clamp_side)    ? c.centroid.back()
+                                                        : c.centroid.front();
+  std::vector<double> theta(std::size_t(n) + 1, 0.0), U(theta), W(theta);
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const double ds = c.width[i], EI = E * c.inertia[i];
+    theta[i + 1] = theta[i] - c.m[i] / EI * ds;
+    U[i + 1] = U[i] + (c.n[i] / (E * c.area[i]) + c.m[i] * (r0 - c.centroid[i]) / EI) * ds;
+    W[i + 1] = W[i] + (0.5 * (theta[i] + theta[i + 1]) + c.v[i] * shear_strain[i]) * ds;
+  }
+  // The rigid motion that holds the clamp or the supports: a rotation omega about (s0, r0) and shifts.
+  auto at = [&](const std::vector<double>& f, double s) {  // linear between the node lines
+    std::size_t i = 0;
+    while (i + 1 < std::size_t(n) && g.plane(a, int(i) + 1) <= s) ++i;
+    return f[i] + (f[i + 1] - f[i]) * (s - g.plane(a, int(i))) / c.width[i];
+  };
+  double omega, s0, u0, w0;
+  if (c.plan.holding == Holding::Clamp) {
+    const std::size_t j = is_positive(c.plan.clamp_side) ? std::size_t(n) : 0;
+    omega = -theta[j], s0 = c.plan.at[0], u0 = U[j], w0 = W[j];
+  } else {
+    const double s1 = c.plan.at[0], s2 = c.plan.at[1];
+    omega = -(at(W, s2) - at(W, s1)) / (s2 - s1), s0 = s1, u0 = at(U, s1), w0 = at(W, s1);
+  }
+  for (std::size_t j = 0; j <= std::size_t(n); ++j)
+    theta[j] += omega, U[j] -= u0, W[j] += omega * (g.plane(a, int(j)) - s0) - w0;
+  // Per node: u_a from the plane section, u_t = W + the Poisson strain -nu sigma_a / E integrated
+  // from r0 (the mean over the columns whose agents share the node).
+  std::vector<double> poisson(g.node_count(), 0.0);
+  std::vector<std::uint8_t> shared(g.node_count(), 0);
+  auto node_of = [&](int along, int across) { return a == 0 ? g.node_index(along, across, 0) : g.node_index(across, along, 0); };
+  for (std::size_t i = 0; i < std::size_t(n); ++i)
+    for (std::size_t k = start[i]; k < start[i + 1]; ++k) {
+      const int row = g.coords(agents[k])[t];
+      for (int dj = 0; dj < 2; ++dj)
+        for (int dk = 0; dk < 2; ++dk) {
+          const int line = int(i) + dj, across = row + dk;
+          const std::size_t node = node_of(line, across);
+          const double r = g.plane(t, across), rc = c.centroid[i];
+          const double p = -nu / E * (c.n[i] / c.area[i] * (r - r0) +
+                                      c.m[i] / (2 * c.inertia[i]) * ((r - rc) * (r - rc) - (r0 - rc) * (r0 - rc)));
+          // A node is met twice in a column (by the agents above and below it): counted once per column.
+          const std::uint8_t bit = std::uint8_t(1u << dj);
+          if (shared[node] & bit) continue;
+          shared[node] |= bit;
+          poisson[node] += p;
+          out.displacement[node * 2 + std::size_t(a)] = U[std::size_t(line)] - theta[std::size_t(line)] * (r - r0);
+          out.displacement[node * 2 + std::size_t(t)] = W[std::size_t(line)];
+        }
+      d.agent_updates += 1;
+    }
+  for (std::size_t node = 0; node < shared.size(); ++node)
+    if (shared[node]) out.displacement[node * 2 + std::size_t(t)] += poisson[node] / double((shared[node] & 1) + (shared[node] >> 1));
+  for (const auto& l : loads) d.applied += l.force;
+  d.rigid_reaction = d.applied;  // every load is carried to the rigid faces by the statics
+}
+
+ColumnTransfer::ColumnTransfer(const Grid& grid, const Material& material) : material_(material) {
+  if (grid.dim != 2) throw std::invalid_argument("the columns rule set is 2D: a 3D body is not built");
+}
+
+void ColumnTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
+  if (loads.empty()) return out.clear_all();
+  Columns c = column_statics(grid, loads);
+  add_bonded_thrust(c);
+  column_fields(grid, material_, c, loads, out);
+}
+
+}  // namespace agent

@@ -65,9 +65,10 @@ LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, 
 }
 
 std::size_t LoadTransfer::memory_bytes() const {
-  return (out_.faces.capacity() + out_.shear.capacity() + out_.balance.capacity() + out_.displacement.capacity()) * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) +
-         grid_.flags.capacity() + grid_.tiles.memory_bytes() +
-         std::visit([](const auto& t) { return t.memory_bytes(); }, transfer_);
+  const std::size_t doubles =
+      out_.faces.capacity() + out_.shear.capacity() + out_.balance.capacity() + out_.displacement.capacity();
+  return doubles * sizeof(double) + out_.generation.capacity() * sizeof(std::int32_t) + grid_.flags.capacity() +
+         grid_.tiles.memory_bytes() + std::visit([](const auto& t) { return t.memory_bytes(); }, transfer_);
 }
 
 void LoadTransfer::solve(const std::vector<EntryLoad>& loads) {

@@ -539,9 +539,8 @@ TEST(FemMultigrid, Q2CoarseLevelByPCoarseningMatchesDirect) {
   // A Q2 coarse level above direct_limit (3362 DoFs) is not assembled: a p-multigrid to Q1 on the
   // same mesh (882 DoFs) under it, with KLU (direct_limit 1000) or one ML cycle (500) on Q1; rollers
   // hold one component on the levels of both degrees.
-  for (const char* limit : {"direct_limit = 1000", "direct_limit = 500"})
-    expect_mg_matches_direct(std::string("mg_p_") + limit[15], "rigid = [\"base\"]",
-                             std::string("degree = 2\nrefine = 1\n") + limit);
+  for (const auto& [name, limit] : {std::pair{"mg_p_klu", "direct_limit = 1000"}, std::pair{"mg_p_ml", "direct_limit = 500"}})
+    expect_mg_matches_direct(name, "rigid = [\"base\"]", std::string("degree = 2\nrefine = 1\n") + limit);
   expect_mg_matches_direct("mg_p_rollers", "rigid = [\"free\"]\nrollers = [\"base\"]",
                            "degree = 2\nrefine = 1\ndirect_limit = 500\nmodel = \"plane_strain\"");
   const auto r = run_case(write_file("mg_p_name.toml", plate_case("rigid = [\"base\"]", "degree = 2\nrefine = 1\nsolver = \"mg\"\ndirect_limit = 500")));

@@ -182,10 +182,6 @@ class CellMatrixOperator : public Subscriptor {
       d.local_element(i) = d.local_element(i) > 0 ? Number(1) / d.local_element(i) : Number(1);
   }
 
-  template <unsigned N>
-  void apply_cells(VectorType& dst, const VectorType& src) const {
-    apply_cells_inline<N>(dst, src);
-  }
   /// The same product in AVX2 intrinsics: per matrix row one broadcast x_j and one FMA per register
   /// (the compiler, left to itself, builds x in a register by inserts and permutes the matrix).
   template <unsigned N>
@@ -217,8 +213,9 @@ class CellMatrixOperator : public Subscriptor {
       for (unsigned i = 0; i < N; ++i) out[dofs[i]] += y[i];
     }
   }
+  /// The product in plain C++ (N = 0: any size), which the compiler vectorises for the target.
   template <unsigned N>
-  __attribute__((always_inline)) inline void apply_cells_inline(VectorType& dst, const VectorType& src) const {
+  void apply_cells(VectorType& dst, const VectorType& src) const {
     const unsigned n = N > 0 ? N : n_;
     constexpr unsigned P = padded(N > 0 ? N : 1);
     const unsigned stride = N > 0 ? P : stride_;

@@ -110,11 +110,48 @@ def write_png(fig, path):
     image.convert("RGB").save(path, format="png", compress_level=3, dpi=(DPI, DPI), pnginfo=info)
 
 
+# Fixed layouts, their margins in inches: room for tick labels and an axis label left of and below
+# each axes, a title above each and the figure's title at the top. matplotlib's constrained layout
+# measures every tick label's extent to place the axes: 30 % of the figures' CPU
+# (docs/performance.md). The margins hold what these figures draw (tick labels of up to six
+# characters).
+LEFT, RIGHT, BOTTOM, TOP = 0.85, 0.25, 0.6, 0.65
+BETWEEN = 0.95  # between two axes, across and down: the right one's labels, the lower one's title
+
+
+def panels(rows, cols, figsize):
+    """A figure of rows x cols axes (an array of rows), laid out as above."""
+    width, height = figsize
+    cell_w = (width - LEFT - RIGHT - (cols - 1) * BETWEEN) / cols
+    cell_h = (height - BOTTOM - TOP - (rows - 1) * BETWEEN) / rows
+    return plt.subplots(rows, cols, figsize=figsize, dpi=DPI, squeeze=False, gridspec_kw=dict(
+        left=LEFT / width, right=1 - RIGHT / width, bottom=BOTTOM / height, top=1 - TOP / height,
+        wspace=BETWEEN / cell_w, hspace=BETWEEN / cell_h))
+
+
+def map_panels(rows, cols, figsize, aspect):
+    """A figure of rows x cols maps of one data aspect (height / width), each with a colour bar as
+    tall as the map beside it: (figure, axes, colour bar axes), arrays of rows. Titles of two lines."""
+    width, height = figsize
+    bar, gap, bar_labels = 0.15, 0.1, 0.75  # the colour bar's width, its gap, its ticks and label
+    top, between_y = TOP + 0.25, BETWEEN + 0.25
+    cell_w = (width - LEFT - RIGHT - (cols - 1) * BETWEEN) / cols
+    cell_h = (height - BOTTOM - top - (rows - 1) * between_y) / rows
+    w = min(cell_w - gap - bar - bar_labels, cell_h / aspect)
+    h = aspect * w
+    fig = plt.figure(figsize=figsize, dpi=DPI)
+    axes = np.empty((rows, cols), dtype=object)
+    bars = np.empty((rows, cols), dtype=object)
+    for r in range(rows):
+        y0 = height - top - (r + 1) * cell_h - r * between_y + (cell_h - h) / 2
+        for c in range(cols):
+            x0 = LEFT + c * (cell_w + BETWEEN)
+            axes[r, c] = fig.add_axes([x0 / width, y0 / height, w / width, h / height])
+            bars[r, c] = fig.add_axes([(x0 + w + gap) / width, y0 / height, bar / width, h / height])
+    return fig, axes, bars
+
+
 def save(fig, out, name, formats):
-    # The constrained layout once, then kept ("none"): savefig would draw the figure twice (a pass
-    # without output that runs the layout, then the real one), and run the layout in both.
-    fig.get_layout_engine().execute(fig)
-    fig.set_layout_engine("none")
     for ext in formats:
         write = (lambda p: write_png(fig, p)) if ext == "png" else (lambda p: fig.savefig(p, dpi=DPI))
         saving(os.path.join(out, f"{name}.{ext}"), write)
@@ -156,7 +193,8 @@ def agent_lattice(x, y, node_x, node_y):
     agents' centres and the nodes' coordinates [m]: a column or row that is all air keeps its
     place, a run of them is one air column as wide as the gap. Gives grid_of(values) (one value per
     agent at its slot, NaN elsewhere), draw(ax, grid, cmap, vmin, vmax) and update(artist, grid) for
-    a map, and the agent size h [m] (the nearest two node planes: every agent has two)."""
+    a map, the agent size h [m] (the nearest two node planes: every agent has two) and the drawn
+    lattice's aspect (height / width)."""
     def axis(c, node_c):
         u = np.unique(c)
         h = np.diff(np.unique(node_c)).min()
@@ -200,7 +238,8 @@ def agent_lattice(x, y, node_x, node_y):
         else:
             artist.set_data(artist.scale.to_rgba(values, bytes=True))
 
-    return types.SimpleNamespace(grid_of=grid_of, draw=draw, update=update, h=h)
+    aspect = (ye[-1] - ye[0]) / (xe[-1] - xe[0])  # of the drawn lattice, height / width
+    return types.SimpleNamespace(grid_of=grid_of, draw=draw, update=update, h=h, aspect=aspect)
 
 
 def animation_gif(steps, agent_nodes, out, name="agent_steps.gif"):
@@ -296,15 +335,14 @@ def main():
     nodes = in_slice(read_csv(os.path.join(args.dir, "nodes.csv")), zc)
 
     def legend(ax):
-        # Inside the axes: no part of the layout (which would place it, "best" included, twice more).
-        ax.legend(fontsize=6, loc="best").set_in_layout(False)
+        ax.legend(fontsize=6, loc="best")
         ax.grid(alpha=0.3)
 
     def fig8():
         # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines, masked where |FEM| is small
         # against the line's own maximum (a ratio blows up at a sign change), and beside it the signed
         # error over the line's maximum |FEM|, which does not.
-        fig, axes = plt.subplots(2, 4, figsize=(20, 8), constrained_layout=True, dpi=DPI)
+        fig, axes = panels(2, 4, (20, 8))
         for row, comp in enumerate(("sigma_x", "sigma_y")):
             for col, (group, what) in enumerate(groups):
                 ax_r, ax_e = axes[row, 2 * col], axes[row, 2 * col + 1]
@@ -334,7 +372,7 @@ def main():
 
     def fig9_lines():
         # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
-        fig, axes = plt.subplots(2, 2, figsize=(12, 8), constrained_layout=True, dpi=DPI)
+        fig, axes = panels(2, 2, (12, 8))
         for row, comp in enumerate(("sigma_x", "sigma_y")):
             for col, (group, what) in enumerate(groups):
                 ax = axes[row, col]
@@ -351,13 +389,13 @@ def main():
         save(fig, out, "fig9_stress_lines", formats)
 
     agents = agent_lattice(num(cells["x"]), num(cells["y"]), num(nodes["x"]), num(nodes["y"]))
-    grid_of, draw_map, h = agents.grid_of, agents.draw, agents.h
+    grid_of, draw_map, h, aspect = agents.grid_of, agents.draw, agents.h, agents.aspect
 
     def fig9_maps():
         # Every stress field the comparison has (cells.csv): the seed's sigma_x, sigma_y, then tau_xy and
         # von Mises. A field whose body error is not below the zero model's (relative L2 1) says so.
         comps = [c for c in ("sigma_x", "sigma_y", "tau_xy", "von_mises") if f"fem_{c}" in cells]
-        fig, axes = plt.subplots(len(comps), 2, figsize=(10, 4.5 * len(comps)), constrained_layout=True, dpi=DPI, squeeze=False)
+        fig, axes, bars = map_panels(len(comps), 2, (10, 4.5 * len(comps)), aspect)
         for row, comp in enumerate(comps):
             f, a = num(cells[f"fem_{comp}"]), num(cells[f"agent_{comp}"])
             rel_l2 = np.linalg.norm(a - f) / (np.linalg.norm(f) or 1.0)
@@ -368,10 +406,10 @@ def main():
                 ax = axes[row, col]
                 im = draw_map(ax, grid_of(num(cells[f"{model}_{comp}"])) / 1e3, cmap="viridis" if sequential else "RdBu_r",
                               vmin=0 if sequential else -lim / 1e3, vmax=lim / 1e3)
-                ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}" + ("" if model == "fem" else f" ({verdict})"))
+                ax.set_title(f"{'FEM' if model == 'fem' else 'agent'}: {comp}\n" + ("" if model == "fem" else f"({verdict})"))
                 ax.set_xlabel("x [mm]")
                 ax.set_ylabel("y [mm]")
-                fig.colorbar(im.scale, ax=ax, label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
+                fig.colorbar(im.scale, cax=bars[row, col], label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
         fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
         save(fig, out, "fig9_stress_maps", formats)
 
@@ -400,7 +438,8 @@ def main():
             return np.insert(A[:, ::every], wide_y, np.nan, axis=0)
         def rows(A):  # the drawn node rows, broken at wide columns
             return np.insert(A[::every, :], wide_x, np.nan, axis=1).T
-        fig, axes = plt.subplots(1, 2, figsize=(12, 6), constrained_layout=True, dpi=DPI)
+        fig, axes = panels(1, 2, (12, 6))
+        axes = axes[0]
         for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
             U, V = node_grid(num(nodes[f"{model}_u_x"])), node_grid(num(nodes[f"{model}_u_y"]))
             Xd, Yd = 1e3 * (X + magnification * U), 1e3 * (Y + magnification * V)
@@ -419,7 +458,7 @@ def main():
 
     def fig11():
         # Fig. 11: displacement of both models along the lines, both components.
-        fig, axes = plt.subplots(2, 2, figsize=(12, 9), constrained_layout=True, dpi=DPI)
+        fig, axes = panels(2, 2, (12, 9))
         for col, (group, what) in enumerate(groups):
             for row, comp in enumerate(("u_y", "u_x")):
                 ax = axes[row, col]
@@ -436,26 +475,27 @@ def main():
         save(fig, out, "fig11_displacement", formats)
 
     print(f"figures: read the comparison's data in {time.process_time() - start:.2f} s CPU", flush=True)
-    # The figures are independent: drawn in two processes (forked, sharing the data read above),
-    # which halves the wall time on two cores (docs/performance.md); the jobs are balanced by their
-    # measured CPU time (figures.log). On one core (the CPUs this process may run on, as taskset
-    # sets them) one process draws them all: two would cost 0.7-2 s more CPU (the pages they share
-    # are copied as they are written) for no gain.
+    # The figures are independent: drawn in two processes, this one and a forked child sharing the
+    # data read above, which halves the wall time on two cores (docs/performance.md); the jobs are
+    # balanced by their measured CPU time (figures.log). This process draws its share itself: a
+    # second child would copy the pages it shares with this one as Python writes their reference
+    # counts. On one core (the CPUs this process may run on, as taskset sets them) this process
+    # draws them all: two would cost more CPU for no gain.
     if args.wait:
-        jobs = ([fig8, fig9_lines, fig10], [fig9_maps, fig11])
+        jobs = ([fig9_maps, fig11], [fig8, fig9_lines, fig10])
     else:
-        jobs = ([fig8, fig9_lines, fig11], [fig9_maps, fig10, lambda: animation_gif(steps, agent_nodes, out)])
+        jobs = ([fig9_maps, fig10, lambda: animation_gif(steps, agent_nodes, out)], [fig8, fig9_lines, fig11])
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     if cpus and cpus > 1:
-        gc.freeze()  # the collector in a drawing process does not write to (and copy) the pages they share
-        procs = [multiprocessing.get_context("fork").Process(target=run_all, args=(j,)) for j in jobs]
-        for proc in procs:
-            proc.start()
-        for proc in procs:
-            proc.join()
-        if any(proc.exitcode == WRITE_FAILED for proc in procs):
+        gc.freeze()  # the collector in the drawing processes does not write to (and copy) the pages they share
+        # A daemon: ended with this process when this process's share fails.
+        child = multiprocessing.get_context("fork").Process(target=run_all, args=(jobs[1],), daemon=True)
+        child.start()
+        run_all(jobs[0])
+        child.join()
+        if child.exitcode == WRITE_FAILED:
             os._exit(WRITE_FAILED)  # the drawing process has sent the report
-        if any(proc.exitcode != 0 for proc in procs):
+        if child.exitcode != 0:
             sys.exit("figures: a drawing process failed")
     else:
         for j in jobs:

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 namespace workbench {
@@ -67,6 +68,10 @@ vtkNew<vtkDoubleArray> to_array(const Field& field, std::size_t count, const cha
 
 void write_vtu(const std::filesystem::path& file, const OutputMesh& mesh, const std::vector<Field>& point_fields,
                const std::vector<Field>& cell_fields, std::size_t series_frames) {
+  // One file at a time: the agent model writes its steps beside the FEM reference writing its own
+  // (compare), and VTK's object factories and array type registry are not documented thread-safe.
+  static std::mutex vtk_lock;
+  std::lock_guard<std::mutex> hold(vtk_lock);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.point_count()));

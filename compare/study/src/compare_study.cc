@@ -15,14 +15,16 @@
 #include <fem_reference/mpi.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
+#include <workbench/line_log.h>
 #include <workbench/vtk_output.h>
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
-#include <future>
 #include <cmath>
+#include <future>
+#include <mutex>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -122,7 +124,7 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
   return in;
 }
 
-// Step 2: the agent model at every load step, each solved once (the last is the full load).
+// Step 3: the agent model at every load step, each solved once (the last is the full load).
 std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& study, const fs::path& dir,
                                                std::ostream& log) {
   fs::create_directories(dir / "agent");
@@ -300,32 +302,41 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     if (c.refused()) outcome.refused.push_back(line);
   }
 
-  // 2. The agent model, every load step.
-  auto t = std::chrono::steady_clock::now();
-  std::vector<agent_study::AgentState> states;
-  mpi_on_root([&] { states = run_agent(in.study, dir, log); });
-  const double agent_seconds = seconds_since(t);
-
-  // 3. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
-  // the animation, which needs only the agents, while the FEM reference solves. Its data is
-  // written on a thread beside the reference too, which then tells the script (figures is used
-  // by one thread at a time: the main thread again only after animation_data.get()).
+  // 2. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
+  // the script starts now (its imports beside the agent model), draws the animation, which needs
+  // only the agents, while the FEM reference solves, and the figures once the comparison's data is
+  // written.
   const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
   std::optional<report::BackgroundFigures> figures;
-  std::future<void> animation_data;
   mpi_on_root([&] {
     if (options.figures) figures.emplace(dir, title, options.figure_formats, log);
-    animation_data = std::async(std::launch::async, [&] {
+  });
+
+  // 3. The agent model, every load step, on rank 0 beside the FEM reference (step 4), on a thread
+  // of its own that then writes the animation's data and tells the script (figures is used by one
+  // thread at a time: the main thread again only after agent_run.get()). The main thread alone
+  // calls MPI; the two write the log through LineLogs, whole lines each.
+  std::mutex log_lock;
+  workbench::LineLog agent_log(log, log_lock), fem_log(log, log_lock);
+  std::vector<agent_study::AgentState> states;
+  double agent_seconds = 0;
+  std::future<void> agent_run;
+  if (fem_reference::mpi_rank() == 0)
+    agent_run = std::async(std::launch::async, [&] {
+      const auto t0 = std::chrono::steady_clock::now();
+      states = run_agent(in.study, dir, agent_log);
+      agent_seconds = seconds_since(t0);
       write_steps_csv(dir / "steps.csv", in.study, states);
       report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
       if (figures) figures->steps_ready();
     });
-  });
 
-  // 4. The FEM reference (its output in dir/fem), on every rank.
-  t = std::chrono::steady_clock::now();
-  auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
+  // 4. The FEM reference (its output in dir/fem), on every rank; then the agent model's failure,
+  // if it failed, ends every rank.
+  auto t = std::chrono::steady_clock::now();
+  auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, fem_log);
   double fem_seconds = seconds_since(t);
+  mpi_on_root([&] { agent_run.get(); });
 
   // 5. Both models on the agent grid and along the lines, and the files the figures read: the
   // figures go on while the reference's own error is estimated.
@@ -338,7 +349,6 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
       sample_line(grid, in.lines[li], {&agent_fields, &reference.fields}, samples[li]);
     write_lines_csv(dir / "lines.csv", grid, in.lines, samples);
     write_field_files(dir, in, agent_fields, reference.fields, states.back(), options.mask);
-    animation_data.get();
     if (figures) figures->data_ready();
   });
   double compare_seconds = seconds_since(t);

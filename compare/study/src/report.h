@@ -69,8 +69,8 @@ void render_html(const std::filesystem::path& dir, std::ostream& log);
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
                        const std::vector<std::string>& formats, std::ostream& log);
 
-/// compare/figures.py drawing beside the comparison (`--wait`): started once the agent model has
-/// run (agent/ written), it loads matplotlib, waits for steps_ready() (steps.csv, lines.json) and
+/// compare/figures.py drawing beside the comparison (`--wait`): started before the agent model runs,
+/// it loads matplotlib, waits for steps_ready() (steps.csv, lines.json, agent/ written) and
 /// draws the load-step animation while the FEM reference solves, then waits for data_ready()
 /// (lines.csv, cells.csv, nodes.csv complete) and draws Figures 8-11 while the reference's error
 /// estimate solves. Destroyed without finish() (an error in between), it ends the script.

@@ -32,6 +32,7 @@
 #include <ostream>
 #include <sstream>
 #include <streambuf>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -428,16 +429,17 @@ class Objective {
   }
   /// J at the coefficients: [alpha1, alpha2, alpha3, beta, gamma], or a dict of any of
   /// agent::kCoefficients (the rest at the library's defaults; poisson_decay follows alpha2 as
-  /// in `workbench calibrate`). Each case keeps its own [agent] readings.
+  /// in `workbench calibrate`). Each case keeps its own [agent] readings; the cases are scored on
+  /// every core.
   double operator()(const agent::Coefficients& k) const {
     py::gil_scoped_release release;
-    return compare::objective(cases_, k, rules_, weights_);
+    return compare::objective(cases_, k, rules_, weights_, nullptr, every_core());
   }
   py::list scores(const agent::Coefficients& k) const {
     std::vector<compare::Score> per_case;
     {
       py::gil_scoped_release release;
-      compare::objective(cases_, k, rules_, weights_, &per_case);
+      compare::objective(cases_, k, rules_, weights_, &per_case, every_core());
     }
     py::list out;
     for (std::size_t i = 0; i < per_case.size(); ++i) {
@@ -467,6 +469,10 @@ class Objective {
       c->set(k, value);
     }
     return k;
+  }
+  /// One process, its cases on every core (the total is the same, bit for bit, for any count).
+  static compare::CaseShare every_core() {
+    return {0, 1, std::max(1, int(std::thread::hardware_concurrency()))};
   }
   friend void bind_objective(py::module_& m);
 

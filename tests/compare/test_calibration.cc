@@ -162,6 +162,32 @@ TEST(Calibration, IsReproducibleWhateverTheThreadCount) {
   EXPECT_EQ(a.start_objectives, b.start_objectives);
 }
 
+TEST(Calibration, TheObjectiveScoresItsCasesOnAnyNumberOfThreadsBitForBit) {
+  // Three cases, each the agent model at other coefficients, scored at a point that fits none.
+  const std::vector<CalibrationCase> cases{agent_target("0.05", coefficients_from({0.5, 0.3, 0.6, 0.6, 1e-9})),
+                                           agent_target("0.1", coefficients_from({0.5, 0.4, 0.3, 0.5, 1e-9})),
+                                           agent_target("0.14", coefficients_from({0.5, 0.6, 0.2, 0.4, 1e-9}))};
+  const auto at = coefficients_from({0.5, 0.5, 0.25, 0.5, 1e-9});
+  const auto o = options();
+  std::vector<Score> one, two, three;
+  const double j1 = objective(cases, at, o.rules, o.weights, &one, {0, 1, 1});
+  const double j2 = objective(cases, at, o.rules, o.weights, &two, {0, 1, 2});
+  const double j3 = objective(cases, at, o.rules, o.weights, &three, {0, 1, 3});
+  ASSERT_GT(j1, 0.0);  // the point fits no case
+  EXPECT_EQ(j1, j2);
+  EXPECT_EQ(j1, j3);
+  ASSERT_EQ(one.size(), 3u);
+  ASSERT_EQ(three.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(one[i].objective, 0.0);
+    EXPECT_EQ(one[i].objective, two[i].objective);
+    EXPECT_EQ(one[i].objective, three[i].objective);
+    EXPECT_EQ(one[i].error, three[i].error);
+  }
+  // The total is the cases' sum in case order (weights 1).
+  EXPECT_EQ(j1, one[0].objective + one[1].objective + one[2].objective);
+}
+
 TEST(Calibration, RefusesBadCalibrationFiles) {
   const std::string base = "[calibrate]\nrule_set = \"conserving\"\n[[calibrate.case]]\nfile = \"" +
                            write_file("case.toml", plate_case()).string() + "\"\n";

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <functional>
 #include <cmath>
+#include <exception>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -123,10 +124,9 @@ Score unpack(const double* v) {
 double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
                  const ObjectiveWeights& w, std::vector<Score>* per_case, CaseShare share) {
   // Each case's score in its slots, zero where another rank scores it: the sum over the ranks adds
-  // only zeros to a score, so it is exact.
+  // only zeros to a score, so it is exact. The threads write disjoint slots.
   std::vector<double> scores(cases.size() * kScoreSlots, 0.0);
-  for (std::size_t ci = 0; ci < cases.size(); ++ci) {
-    if (int(ci % std::size_t(share.size)) != share.rank) continue;
+  auto score = [&](std::size_t ci) {
     const auto& c = cases[ci];
     const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
     // Readings 2 and 6 refuse a factor of 1 (their transfer would not end) and stop at a cap: such
@@ -144,7 +144,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
       s.load_refused = true;
       s.objective = 1e30;
       pack(s, &scores[ci * kScoreSlots]);
-      continue;
+      return;
     }
     const auto& state = *solved;
     Score s = score_case(c, agent_on_grid(c.study.mesh.grid, state), w);
@@ -158,7 +158,27 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
     }
     if (!std::isfinite(s.objective)) s.objective = 1e30;  // e.g. an agent field where the reference is zero
     pack(s, &scores[ci * kScoreSlots]);
-  }
+  };
+  std::vector<std::size_t> mine;
+  for (std::size_t ci = 0; ci < cases.size(); ++ci)
+    if (int(ci % std::size_t(share.size)) == share.rank) mine.push_back(ci);
+  const int threads = std::max(1, std::min(share.threads, int(mine.size())));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> failed(static_cast<std::size_t>(threads));
+  auto work = [&](int t) {
+    try {
+      for (std::size_t i; (i = next++) < mine.size();) score(mine[i]);
+    } catch (...) {
+      failed[std::size_t(t)] = std::current_exception();
+      next = mine.size();  // the other threads stop after their case
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
   if (share.size > 1) fem_reference::mpi_sum(scores);
   double total = 0;
   if (per_case) per_case->clear();
@@ -187,10 +207,17 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     return v;
   };
   // Under MPI the ranks share every evaluation's cases; each start's evaluations are then
-  // collective, in the same order on every rank, so the starts run one after another.
-  const CaseShare share{fem_reference::mpi_rank(), fem_reference::mpi_size()};
-  auto J = [&](const CoefficientValues& v) {
-    return objective(cases, coefficients_from(v), o.rules, o.weights, nullptr, share);
+  // collective, in the same order on every rank, so the starts run one after another, one thread
+  // each. On one rank the starts run on `threads` threads and each evaluation's cases on the cores
+  // the starts leave (one start on two cores: its cases two at a time); the evaluations outside
+  // the starts take every core.
+  const int size = fem_reference::mpi_size();
+  const int wanted = size > 1 ? 1 : o.threads > 0 ? o.threads : std::max(1, int(std::thread::hardware_concurrency()));
+  const int threads = std::max(1, std::min<int>(wanted, o.starts));
+  const CaseShare share{fem_reference::mpi_rank(), size, wanted};
+  const CaseShare start_share{share.rank, size, std::max(1, wanted / threads)};
+  auto J = [&](const CoefficientValues& v, const CaseShare& on) {
+    return objective(cases, coefficients_from(v), o.rules, o.weights, nullptr, on);
   };
 
   // The starts: the given point, then uniform random points in the bounds (seeded).
@@ -219,7 +246,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   auto run_start = [&](int s) {
     std::vector<double> x = starts[s];
     if (free.empty()) {
-      best_f[s] = J(full(x));
+      best_f[s] = J(full(x), start_share);
       evaluations[s] = 1;
       return;
     }
@@ -241,7 +268,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
       long* count;
       double* best_f;
       std::vector<double>* best_x;
-    } data{[&](const std::vector<double>& y) { return J(full(y)); }, &evaluations[s], &best_f[s], &best_x[s]};
+    } data{[&](const std::vector<double>& y) { return J(full(y), start_share); }, &evaluations[s], &best_f[s], &best_x[s]};
     opt.set_min_objective(
         [](const std::vector<double>& x, std::vector<double>&, void* raw) {
           auto* d = static_cast<Data*>(raw);
@@ -268,8 +295,6 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     }
   };
 
-  const int wanted = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
-  const int threads = share.size > 1 ? 1 : std::max(1, std::min<int>(wanted, int(starts.size())));
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t)
     pool.emplace_back([&] {
@@ -296,7 +321,7 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
     auto at = [&](double value) {
       CoefficientValues w = v;
       w[i] = std::min(p.hi, std::max(p.lo, value));
-      return J(w);
+      return J(w, share);
     };
     Sensitivity s;
     s.name = p.name;

@@ -88,15 +88,17 @@ struct Score {
 };
 
 /// Which cases this process scores: case i where i % size == rank, the rest by the other ranks
-/// (every rank holds every case). The default, one rank, scores every case.
+/// (every rank holds every case), each case on one of `threads` threads. The default, one rank and
+/// one thread, scores every case here, one after the other.
 struct CaseShare {
   int rank = 0, size = 1;
+  int threads = 1;
 };
 
 /// The objective for one set of coefficients; `per_case` receives each case's errors. Under a share
 /// of several ranks (a collective call: every rank makes it) each rank scores its cases and the
 /// scores are summed over the ranks, then added in case order: the same total, bit for bit, as one
-/// rank's.
+/// rank's, for any number of threads.
 double objective(const std::vector<CalibrationCase>& cases, const agent::Coefficients& k, agent::RuleSet rules,
                  const ObjectiveWeights& w, std::vector<Score>* per_case = nullptr, CaseShare share = {});
 

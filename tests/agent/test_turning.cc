@@ -179,6 +179,73 @@ TEST(Turning, AHoleIsGoneRoundNotPassedOut) {
   EXPECT_LT(f.stress.sigma[2 * g.index(8, 8, 0) + 1], 1.2 * whole.stress.sigma[2 * g.index(8, 8, 0) + 1]);
 }
 
+TEST(Turning, KirschsShearClosedForms) {
+  // On the hole's rim sigma_rr = tau_rtheta = 0 and sigma_thetatheta = s (1 - 2 cos 2 theta): at
+  // 45 degrees tau_xy = -s / 2. None on the axes; far away the hole's shear fades as (a / r)^2.
+  const double a = 0.01, s = 1000.0, r45 = a / std::sqrt(2.0);
+  EXPECT_NEAR(kirsch_shear(r45, r45, a, s), -0.5 * s, 1e-12 * s);
+  EXPECT_NEAR(kirsch_shear(-r45, r45, a, s), 0.5 * s, 1e-12 * s);
+  EXPECT_NEAR(kirsch_shear(0.5 * r45, 0.5 * r45, a, s), -0.5 * s, 1e-12 * s);  // inside: on the rim
+  EXPECT_EQ(kirsch_shear(0.03, 0.0, a, s), 0.0);
+  EXPECT_NEAR(kirsch_shear(0.0, 0.03, a, s), 0.0, 1e-12 * s);
+  EXPECT_EQ(kirsch_shear(0.0, 0.0, a, s), 0.0);
+  // At 45 degrees cos 2 theta = 0: tau = (sigma_rr - sigma_thetatheta) / 2 = -s (a / r)^2 / 2.
+  for (const double r : {2 * a, 5 * a}) {
+    const double q2 = a * a / (r * r), x = r / std::sqrt(2.0);
+    EXPECT_NEAR(kirsch_shear(x, x, a, s), -0.5 * s * q2, 1e-12 * s) << r;
+  }
+  // Linear in s, odd in either offset.
+  EXPECT_NEAR(kirsch_shear(0.013, 0.021, a, -2 * s), -2 * kirsch_shear(0.013, 0.021, a, s), 1e-12 * s);
+  EXPECT_NEAR(kirsch_shear(-0.013, 0.021, a, s), -kirsch_shear(0.013, 0.021, a, s), 1e-12 * s);
+}
+
+TEST(Turning, AHoleIsTheEnclosedAirOnlyAndItsShearIsKirschs) {
+  // A 4 x 4-agent hole at the centre of a 40 x 40 plate and a notch from the left side: one hole,
+  // of 16 agents' area at the plate's centre. Under a uniform sigma_y its shear is Kirsch's for the
+  // circle of its area, the remote stress the row's force over the row's extent (36 of 40 agents).
+  const int nx = 40, ny = 40;
+  Grid g = steel_plate(nx, ny);
+  const double h = 5e-3;
+  for (int j = 18; j < 22; ++j)
+    for (int i = 18; i < 22; ++i) g.make_air(g.index(i, j, 0));
+  for (int i = 0; i < 4; ++i) g.make_air(g.index(i, 30, 0));
+  const auto holes = enclosed_holes(g);
+  ASSERT_EQ(holes.size(), 1u);
+  EXPECT_NEAR(holes[0].area, 16 * h * h, 1e-12 * h * h);
+  EXPECT_NEAR(holes[0].centre[0], 20 * h, 1e-12);
+  EXPECT_NEAR(holes[0].centre[1], 20 * h, 1e-12);
+  const double sigma = -1000.0;
+  std::vector<double> normal(2 * g.count(), 0.0);
+  for (std::size_t c = 0; c < g.count(); ++c)
+    if (!g.is_air(c)) normal[2 * c + 1] = sigma;
+  const auto tau = hole_shear(g, 1, normal);
+  const double radius = std::sqrt(16 * h * h / std::acos(-1.0)), remote = sigma * 36 / 40;
+  for (const auto& [i, j] : {std::pair{22, 22}, std::pair{17, 23}, std::pair{25, 19}, std::pair{0, 0}}) {
+    const Eigen::Vector3d x = g.centre(g.index(i, j, 0));
+    EXPECT_NEAR(tau[g.index(i, j, 0)], kirsch_shear(x[1] - 20 * h, x[0] - 20 * h, radius, remote), 1e-9) << i << "," << j;
+  }
+  EXPECT_GT(tau[g.index(22, 22, 0)], 0.0);  // compression: the opposite of a pull's -s q^2 / 2 at 45 degrees
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0), mx = g.index(nx - 1 - i, j, 0), my = g.index(i, ny - 1 - j, 0);
+      if (g.is_air(c) || g.is_air(mx) || g.is_air(my)) continue;  // the hole, the notch and their mirrors
+      EXPECT_NEAR(tau[c], -tau[mx], 1e-9) << i << "," << j;
+      EXPECT_NEAR(tau[c], -tau[my], 1e-9) << i << "," << j;
+    }
+  // Without a hole nothing is added (the notch alone is not one).
+  Grid notched = steel_plate(nx, ny);
+  for (int i = 0; i < 4; ++i) notched.make_air(notched.index(i, 30, 0));
+  EXPECT_TRUE(enclosed_holes(notched).empty());
+  for (double t : hole_shear(notched, 1, normal)) EXPECT_EQ(t, 0.0);
+  // A hole wider than its walls (30 x 30 agents in 40 x 40: 5 agents each side, radius 16.9) is a
+  // ring's inside, not Kirsch's hole: nothing added.
+  Grid ring = steel_plate(nx, ny);
+  for (int j = 5; j < 35; ++j)
+    for (int i = 5; i < 35; ++i) ring.make_air(ring.index(i, j, 0));
+  ASSERT_EQ(enclosed_holes(ring).size(), 1u);
+  for (double t : hole_shear(ring, 1, normal)) EXPECT_EQ(t, 0.0);
+}
+
 TEST(Turning, ACentredLoadGivesSymmetricSigmaXAndAntisymmetricShearAndUx) {
   const int nx = 20, ny = 16;
   const Grid g = steel_plate(nx, ny);

@@ -35,12 +35,33 @@ double von_mises_3d(const double* s);
 ///            lower end (0 there), what is left at the upper end taken out linearly;
 ///   the layer on a bonded rigid face the loads march onto: sigma across a += nu sigma_a
 ///            max(0, 1 - y / ell) (1 - exp(-d_side / y)), ell = k.base_layer x the width of the
-///            pressure on that face, and its shear by horizontal equilibrium.
+///            pressure on that face, and its shear by horizontal equilibrium;
+///   2D, before the tie: each hole's shear (hole_shear), the stress concentration at its corners.
 /// `loads` give each march axis its direction (which end the rigid face of the layer is at).
 StressComponents agent_stress_components(const Grid& grid, const std::vector<double>& normal,
                                          const std::vector<double>& shear_flux, const std::vector<double>& balance,
                                          const DirectionalCoefficients& k, double poisson,
                                          const std::vector<EntryLoad>& loads);
+
+/// A hole of a 2D grid: a component of air slots (4-connected) that touches no side of the box.
+struct Hole {
+  double area = 0;              ///< [m^2]
+  double centre[2] = {0, 0};    ///< its centroid [m]
+};
+std::vector<Hole> enclosed_holes(const Grid& grid);
+
+/// Kirsch's shear about a circular hole of `radius` in an infinite plate under a uniaxial stress
+/// `remote` along the first axis (without the hole the plate has none): tau in the (along, across)
+/// frame at offset (along, across) from the hole's centre; at r < radius, r = radius.
+double kirsch_shear(double along, double across, double radius, double remote);
+
+/// 2D, loads marching along axis a: per agent the sum over enclosed_holes of kirsch_shear, the
+/// hole a circle of its area at its centroid, `remote` the gross stress along a of the row through
+/// its centre (the row's force over the row's extent, the hole's width included); only where that
+/// row holds at least the radius of body on each side of the hole (Kirsch's plate is infinite: not
+/// a ring's inside, whose walls are beams). The paths carry
+/// the load round a hole (docs/agent-model.md, "Holes and notches"); this is the shear they do not.
+std::vector<double> hole_shear(const Grid& grid, int a, const std::vector<double>& normal);
 
 /// d F / d(index) at every entry of a line of `count` values (stride `stride`), from the slope of a
 /// least-squares quadratic about each entry with Gaussian weights of standard deviation `window`

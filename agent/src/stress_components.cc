@@ -229,6 +229,10 @@ void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vecto
 
 }  // namespace
 
+namespace {
+constexpr double kHoleReach = 10;  // radii about a hole that its shear reaches (hole_shear)
+}  // namespace
+
 std::vector<Hole> enclosed_holes(const Grid& g) {
   std::vector<Hole> holes;
   if (g.dim != 2) return holes;
@@ -308,11 +312,23 @@ std::vector<double> hole_shear(const Grid& g, int a, const std::vector<double>& 
     // Kirsch's plate is infinite: a hole beside which the body is narrower than its radius (a
     // ring's inside, a slot) is not one; its walls carry the load as beams.
     if (!(hi > lo) || force == 0 || below < radius || above < radius) continue;
-    for (std::size_t c = 0; c < g.count(); ++c) {
-      if (g.is_air(c)) continue;
-      const Eigen::Vector3d x = g.centre(c);
-      tau[c] += kirsch_shear(x[a] - h.centre[a], x[l] - h.centre[l], radius, remote);
+    // The hole's disturbance of the uniform field falls off as (radius / r)^2: beyond kHoleReach
+    // radii it is a percent of the remote stress, and leaving it out keeps a hole's cost to the
+    // agents about it (a plate of many holes stays linear in its agents).
+    int from[2], to[2];
+    for (int d = 0; d < 2; ++d) {
+      from[d] = 0;
+      while (from[d] + 1 < g.cells[d] && g.plane(d, from[d] + 1) <= h.centre[d] - kHoleReach * radius) ++from[d];
+      to[d] = from[d];
+      while (to[d] + 1 < g.cells[d] && g.plane(d, to[d] + 1) < h.centre[d] + kHoleReach * radius) ++to[d];
     }
+    for (int j = from[1]; j <= to[1]; ++j)
+      for (int i = from[0]; i <= to[0]; ++i) {
+        const std::size_t c = g.index(i, j, 0);
+        if (c == Grid::npos || g.is_air(c)) continue;
+        const Eigen::Vector3d x = g.centre(c);
+        tau[c] += kirsch_shear(x[a] - h.centre[a], x[l] - h.centre[l], radius, remote);
+      }
   }
   return tau;
 }

@@ -232,6 +232,20 @@ TEST(Turning, AHoleIsTheEnclosedAirOnlyAndItsShearIsKirschs) {
       EXPECT_NEAR(tau[c], -tau[mx], 1e-9) << i << "," << j;
       EXPECT_NEAR(tau[c], -tau[my], 1e-9) << i << "," << j;
     }
+  // Beyond 10 radii of the hole nothing is added (Kirsch's disturbance there is under 1.5 % of the
+  // remote stress): a plate twice as wide, the same hole, an agent 40 agents to its right.
+  Grid wide = steel_plate(2 * nx, ny);
+  for (int j = 18; j < 22; ++j)
+    for (int i = 18; i < 22; ++i) wide.make_air(wide.index(i, j, 0));
+  std::vector<double> wide_normal(2 * wide.count(), 0.0);
+  for (std::size_t c = 0; c < wide.count(); ++c)
+    if (!wide.is_air(c)) wide_normal[2 * c + 1] = sigma;
+  const auto wide_tau = hole_shear(wide, 1, wide_normal);
+  const double wide_remote = sigma * 76 / 80;
+  const Eigen::Vector3d far = wide.centre(wide.index(60, 22, 0)), near = wide.centre(wide.index(22, 22, 0));
+  EXPECT_EQ(wide_tau[wide.index(60, 22, 0)], 0.0);
+  EXPECT_LT(std::abs(kirsch_shear(far[1] - 20 * h, far[0] - 20 * h, radius, wide_remote)), 0.015 * std::abs(wide_remote));
+  EXPECT_NEAR(wide_tau[wide.index(22, 22, 0)], kirsch_shear(near[1] - 20 * h, near[0] - 20 * h, radius, wide_remote), 1e-9);
   // Without a hole nothing is added (the notch alone is not one).
   Grid notched = steel_plate(nx, ny);
   for (int i = 0; i < 4; ++i) notched.make_air(notched.index(i, 30, 0));

@@ -59,7 +59,8 @@ double kirsch_shear(double along, double across, double radius, double remote);
 /// hole a circle of its area at its centroid, `remote` the gross stress along a of the row through
 /// its centre (the row's force over the row's extent, the hole's width included); only where that
 /// row holds at least the radius of body on each side of the hole (Kirsch's plate is infinite: not
-/// a ring's inside, whose walls are beams). The paths carry
+/// a ring's inside, whose walls are beams), over the agents within 10 radii of its centre (the
+/// disturbance there is a percent of the remote stress). The paths carry
 /// the load round a hole (docs/agent-model.md, "Holes and notches"); this is the shear they do not.
 std::vector<double> hole_shear(const Grid& grid, int a, const std::vector<double>& normal);
 

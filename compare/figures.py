@@ -14,10 +14,12 @@ Uses Debian's python3-matplotlib, python3-numpy and python3-pil only; call it wi
 """
 import argparse
 import csv
+import ctypes
 import gc
 import json
 import multiprocessing
 import os
+import signal
 import sys
 import time
 import types
@@ -488,8 +490,8 @@ def main():
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     if cpus and cpus > 1:
         gc.freeze()  # the collector in the drawing processes does not write to (and copy) the pages they share
-        # A daemon: ended with this process when this process's share fails.
-        child = multiprocessing.get_context("fork").Process(target=run_all, args=(jobs[1],), daemon=True)
+        parent = os.getpid()
+        child = multiprocessing.get_context("fork").Process(target=run_share, args=(jobs[1], parent), daemon=True)
         child.start()
         run_all(jobs[0])
         child.join()
@@ -501,6 +503,15 @@ def main():
         for j in jobs:
             run_all(j)
     print(f"figures: wrote {out}")
+
+
+def run_share(figures, parent):
+    """The forked child's share of the figures. It ends with its parent, however the parent ends (a
+    failed write ends it with os._exit, which runs no exit handler to end a daemon child)."""
+    ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    if os.getppid() != parent:  # the parent ended before the line above
+        os._exit(1)
+    run_all(figures)
 
 
 def run_all(figures, names=None):

@@ -21,6 +21,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import textwrap
 import time
 import types
 
@@ -113,35 +114,47 @@ def write_png(fig, path):
 
 
 # Fixed layouts, their margins in inches: room for tick labels and an axis label left of and below
-# each axes, a title above each and the figure's title at the top. matplotlib's constrained layout
-# measures every tick label's extent to place the axes: 30 % of the figures' CPU
-# (docs/performance.md). The margins hold what these figures draw (tick labels of up to six
-# characters).
+# each axes, a title above each and the figure's title at the top, wrapped to the figure's width
+# (each more line of it takes TITLE_LINE more). matplotlib's constrained layout measures every
+# tick label's extent to place the axes: 30 % of the figures' CPU (docs/performance.md). The
+# margins hold what these figures draw (tick labels of up to six characters).
 LEFT, RIGHT, BOTTOM, TOP = 0.85, 0.25, 0.6, 0.65
 BETWEEN = 0.95  # between two axes, across and down: the right one's labels, the lower one's title
+TITLE_LINE = 0.22
+CHARACTERS_PER_INCH = 9  # of the figure's title (12 pt)
 
 
-def panels(rows, cols, figsize):
-    """A figure of rows x cols axes (an array of rows), laid out as above."""
+def titled(fig, title):
+    """Sets the figure's title, wrapped to its width; the margin above the axes it needs [in]."""
+    lines = textwrap.wrap(title, width=int(CHARACTERS_PER_INCH * fig.get_figwidth())) or [""]
+    fig.suptitle("\n".join(lines))
+    return TOP + TITLE_LINE * (len(lines) - 1)
+
+
+def panels(rows, cols, figsize, title):
+    """A figure of rows x cols axes (an array of rows) under `title`, laid out as above."""
     width, height = figsize
+    fig, axes = plt.subplots(rows, cols, figsize=figsize, dpi=DPI, squeeze=False)
+    top = titled(fig, title)
     cell_w = (width - LEFT - RIGHT - (cols - 1) * BETWEEN) / cols
-    cell_h = (height - BOTTOM - TOP - (rows - 1) * BETWEEN) / rows
-    return plt.subplots(rows, cols, figsize=figsize, dpi=DPI, squeeze=False, gridspec_kw=dict(
-        left=LEFT / width, right=1 - RIGHT / width, bottom=BOTTOM / height, top=1 - TOP / height,
-        wspace=BETWEEN / cell_w, hspace=BETWEEN / cell_h))
+    cell_h = (height - BOTTOM - top - (rows - 1) * BETWEEN) / rows
+    fig.subplots_adjust(left=LEFT / width, right=1 - RIGHT / width, bottom=BOTTOM / height, top=1 - top / height,
+                        wspace=BETWEEN / cell_w, hspace=BETWEEN / cell_h)
+    return fig, axes
 
 
-def map_panels(rows, cols, figsize, aspect):
-    """A figure of rows x cols maps of one data aspect (height / width), each with a colour bar as
-    tall as the map beside it: (figure, axes, colour bar axes), arrays of rows. Titles of two lines."""
+def map_panels(rows, cols, figsize, aspect, title):
+    """A figure of rows x cols maps of one data aspect (height / width) under `title`, each with a
+    colour bar as tall as the map beside it: (figure, axes, colour bar axes), arrays of rows.
+    Titles of two lines."""
     width, height = figsize
     bar, gap, bar_labels = 0.15, 0.1, 0.75  # the colour bar's width, its gap, its ticks and label
-    top, between_y = TOP + 0.25, BETWEEN + 0.25
+    fig = plt.figure(figsize=figsize, dpi=DPI)
+    top, between_y = titled(fig, title) + 0.25, BETWEEN + 0.25
     cell_w = (width - LEFT - RIGHT - (cols - 1) * BETWEEN) / cols
     cell_h = (height - BOTTOM - top - (rows - 1) * between_y) / rows
     w = min(cell_w - gap - bar - bar_labels, cell_h / aspect)
     h = aspect * w
-    fig = plt.figure(figsize=figsize, dpi=DPI)
     axes = np.empty((rows, cols), dtype=object)
     bars = np.empty((rows, cols), dtype=object)
     for r in range(rows):
@@ -344,7 +357,8 @@ def main():
         # Fig. 8: ratio agent / FEM of sigma_x and sigma_y along the lines, masked where |FEM| is small
         # against the line's own maximum (a ratio blows up at a sign change), and beside it the signed
         # error over the line's maximum |FEM|, which does not.
-        fig, axes = panels(2, 4, (20, 8))
+        fig, axes = panels(2, 4, (20, 8), f"Fig. 8 - agent against FEM stress ({title}{slice_note}); ratio masked "
+                           f"where |FEM| < {args.mask:g} of the line's max|FEM|")
         for row, comp in enumerate(("sigma_x", "sigma_y")):
             for col, (group, what) in enumerate(groups):
                 ax_r, ax_e = axes[row, 2 * col], axes[row, 2 * col + 1]
@@ -368,13 +382,11 @@ def main():
                 ax_e.set_title(f"{what}: {comp} signed error")
                 legend(ax_r)
                 legend(ax_e)
-        fig.suptitle(f"Fig. 8 - agent against FEM stress ({title}{slice_note}); ratio masked where |FEM| < "
-                     f"{args.mask:g} of the line's max|FEM|")
         save(fig, out, "fig8_ratio", formats)
 
     def fig9_lines():
         # Fig. 9: sigma_x and sigma_y of both models, along the lines and as maps side by side.
-        fig, axes = panels(2, 2, (12, 8))
+        fig, axes = panels(2, 2, (12, 8), f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
         for row, comp in enumerate(("sigma_x", "sigma_y")):
             for col, (group, what) in enumerate(groups):
                 ax = axes[row, col]
@@ -387,7 +399,6 @@ def main():
                 ax.set_ylabel(f"{comp} [kPa]")
                 ax.set_title(f"{what}: {comp}")
                 legend(ax)
-        fig.suptitle(f"Fig. 9 - stress of agent (dashed) and FEM (solid) ({title}{slice_note})")
         save(fig, out, "fig9_stress_lines", formats)
 
     agents = agent_lattice(num(cells["x"]), num(cells["y"]), num(nodes["x"]), num(nodes["y"]))
@@ -397,7 +408,8 @@ def main():
         # Every stress field the comparison has (cells.csv): the seed's sigma_x, sigma_y, then tau_xy and
         # von Mises. A field whose body error is not below the zero model's (relative L2 1) says so.
         comps = [c for c in ("sigma_x", "sigma_y", "tau_xy", "von_mises") if f"fem_{c}" in cells]
-        fig, axes, bars = map_panels(len(comps), 2, (10, 4.5 * len(comps)), aspect)
+        fig, axes, bars = map_panels(len(comps), 2, (10, 4.5 * len(comps)), aspect,
+                                     f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
         for row, comp in enumerate(comps):
             f, a = num(cells[f"fem_{comp}"]), num(cells[f"agent_{comp}"])
             rel_l2 = np.linalg.norm(a - f) / (np.linalg.norm(f) or 1.0)
@@ -412,7 +424,6 @@ def main():
                 ax.set_xlabel("x [mm]")
                 ax.set_ylabel("y [mm]")
                 fig.colorbar(im.scale, cax=bars[row, col], label=f"{comp} [kPa] (clipped at the FEM 99th percentile)")
-        fig.suptitle(f"Fig. 9 - stress maps, FEM (left) and agent (right) ({title}{slice_note})")
         save(fig, out, "fig9_stress_maps", formats)
 
     def fig10():
@@ -440,7 +451,9 @@ def main():
             return np.insert(A[:, ::every], wide_y, np.nan, axis=0)
         def rows(A):  # the drawn node rows, broken at wide columns
             return np.insert(A[::every, :], wide_x, np.nan, axis=1).T
-        fig, axes = panels(1, 2, (12, 6))
+        fig, axes = panels(1, 2, (12, 6), f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} "
+                           f"(grey: undeformed); every {every}. grid line drawn (every {every * 1e3 * h:.3g} mm) "
+                           f"({title}{slice_note})")
         axes = axes[0]
         for ax, model, label in ((axes[0], "fem", "(a) FEM"), (axes[1], "agent", "(b) agents")):
             U, V = node_grid(num(nodes[f"{model}_u_x"])), node_grid(num(nodes[f"{model}_u_y"]))
@@ -453,14 +466,11 @@ def main():
             ax.set_title(f"{label}, |u|max = {np.nanmax(np.hypot(U, V)):.3g} m")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-        h_mm = 1e3 * h
-        fig.suptitle(f"Fig. 10 - deformed shape, displacements magnified x{magnification:.3g} (grey: undeformed); "
-                     f"every {every}. grid line drawn (every {every * h_mm:.3g} mm) ({title}{slice_note})")
         save(fig, out, "fig10_deformed", formats)
 
     def fig11():
         # Fig. 11: displacement of both models along the lines, both components.
-        fig, axes = panels(2, 2, (12, 9))
+        fig, axes = panels(2, 2, (12, 9), f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title}{slice_note})")
         for col, (group, what) in enumerate(groups):
             for row, comp in enumerate(("u_y", "u_x")):
                 ax = axes[row, col]
@@ -473,7 +483,6 @@ def main():
                 ax.set_ylabel(f"{comp} [nm]")
                 ax.set_title(f"{what}: {comp}")
                 legend(ax)
-        fig.suptitle(f"Fig. 11 - displacement of agent (dashed) and FEM (solid) ({title}{slice_note})")
         save(fig, out, "fig11_displacement", formats)
 
     print(f"figures: read the comparison's data in {time.process_time() - start:.2f} s CPU", flush=True)

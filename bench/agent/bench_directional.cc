@@ -9,7 +9,10 @@
 // into one agent, all directions together, so 1 per agent reached; the cost is that times the
 // directions, one Gaussian cdf per direction and agent edge), reached (agents), moves per agent
 // reached. Directional2DStress/n: the turning plate's stress components alone (the
-// shear, the tie scan, the base layer: agent_stress_components), per agent.
+// shear, the tie scan, the base layer: agent_stress_components), per agent;
+// Directional2DStressHoles/n: the same on a perforated plate, a hole of 4 x 4 agents every 20
+// agents each way ((n / 20)^2 holes, each one's Kirsch shear over the agents within 10 radii):
+// linear in the agents if its agents/s stay the same as n grows.
 #include <agent/fields.h>
 #include <agent/load_transfer.h>
 #include <agent/stress_components.h>
@@ -44,10 +47,15 @@ void Directional2D(benchmark::State& state) { directional(state, 2, 32); }
 void Directional2DMirror(benchmark::State& state) { directional(state, 2, 32, Paths::Mirror); }
 void Directional3D(benchmark::State& state) { directional(state, 3, 16); }
 
-void Directional2DStress(benchmark::State& state) {
+void stress_components(benchmark::State& state, bool holes) {
   const int n = int(state.range(0));
   Grid g = Grid::box(2, {n, n, 1}, Eigen::Vector3d::Constant(1e-3), 1e-3);
   g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
+  if (holes)
+    for (int j0 = 8; j0 + 4 < n - 8; j0 += 20)
+      for (int i0 = 8; i0 + 4 < n - 8; i0 += 20)
+        for (int j = j0; j < j0 + 4; ++j)
+          for (int i = i0; i < i0 + 4; ++i) g.make_air(g.index(i, j, 0));
   const Coefficients k;
   LoadTransfer m(g, {206e9, 0.3}, k, RuleSet::Directional);
   const std::vector<EntryLoad> loads{{g.index(n / 2, n - 1, 0), direction(1, false), 1.0}};
@@ -58,12 +66,17 @@ void Directional2DStress(benchmark::State& state) {
     benchmark::DoNotOptimize(s.sigma.data());
   }
   state.counters["agents/s"] = benchmark::Counter(double(g.count()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["holes"] = double(enclosed_holes(g).size());
 }
+
+void Directional2DStress(benchmark::State& state) { stress_components(state, false); }
+void Directional2DStressHoles(benchmark::State& state) { stress_components(state, true); }
 
 }  // namespace
 
 BENCHMARK(Directional2D)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Directional2DMirror)->Arg(200)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Directional2DStress)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(Directional2DStressHoles)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(Directional3D)->Arg(32)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -21,8 +21,6 @@ std::string mm(double x) {
   return s.str();
 }
 
-const char* kSideNames[4] = {"-x", "+x", "-y", "+y"};
-
 /// Centre of column i along `a` [m], as Grid::centre computes it.
 double column_centre(const Grid& g, int a, int i) {
   return g.planes[a].empty() ? g.origin[a] + (i + 0.5) * g.size[a] : 0.5 * (g.plane(a, i) + g.plane(a, i + 1));
@@ -34,6 +32,17 @@ struct Force {
 };
 
 }  // namespace
+
+std::string describe(const ColumnPlan& p) {
+  const char a = char('x' + p.axis);
+  std::ostringstream s;
+  s << "bending: columns along " << a << " to ";
+  if (p.holding == Holding::Clamp)
+    s << "the clamp at " << a << " = " << mm(p.at[0]);
+  else
+    s << "the supports at " << a << " = " << mm(p.at[0]) << " and " << mm(p.at[1]);
+  return s.str();
+}
 
 ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
   if (g.dim != 2) refuse("the columns rule set is 2D: a 3D body is not built");
@@ -69,7 +78,7 @@ ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
         refuse(std::string("rigid faces across the beam axis ") + an +
                " on more than one plane (clamped at both ends, or a stepped clamp): an indeterminate beam, not built");
     if (plane != (is_positive(p.clamp_side) ? g.cells[a] : 0))
-      refuse(std::string("the clamp (rigid faces ") + kSideNames[p.clamp_side] + " at " + an + " = " +
+      refuse(std::string("the clamp (rigid faces ") + kDirectionNames[p.clamp_side] + " at " + an + " = " +
              mm(g.plane(a, plane)) + ") is not at the end of the body: agents lie beyond it");
     p.at[0] = g.plane(a, plane);
     p.rigid_area = double(clamp.size()) * g.face_area(a);

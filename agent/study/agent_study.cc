@@ -334,8 +334,6 @@ workbench::OutputMesh output_mesh(const AgentStudy& study) {
 
 namespace {
 
-/// The faces of an agent in face_forces order: the face force components.
-const char* kDirections[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 /// The shears of AgentState::shear, in its order (2D: the first).
 const char* kShearNames[3] = {"tau_xy", "tau_yz", "tau_xz"};
 
@@ -346,7 +344,8 @@ std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentSt
   const auto& order = study.mesh.cell_of_element;
   std::vector<workbench::Field> fields;
   fields.push_back({"generation [-]", 1, {}, {}, {}});
-  fields.push_back({"face_force [N]", nd, {}, std::vector<std::string>(kDirections, kDirections + nd), {}});
+  fields.push_back(
+      {"face_force [N]", nd, {}, std::vector<std::string>(agent::kDirectionNames, agent::kDirectionNames + nd), {}});
   for (int a = 0; a < dim; ++a) fields.push_back({std::string("sigma_") + char('x' + a) + " [Pa]", 1, {}, {}, {}});
   const int shears = agent::shear_count(dim);
   for (int t = 0; t < shears; ++t) fields.push_back({std::string(kShearNames[t]) + " [Pa]", 1, {}, {}, {}});
@@ -383,7 +382,7 @@ void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentS
   const int dim = grid.dim, nd = 2 * dim;
   auto out = open_csv(file);
   out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",generation";
-  for (int f = 0; f < nd; ++f) out << ",f_" << kDirections[f] << " [N]";
+  for (int f = 0; f < nd; ++f) out << ",f_" << agent::kDirectionNames[f] << " [N]";
   for (int a = 0; a < dim; ++a) out << ",sigma_" << char('x' + a) << " [Pa]";
   const int shears = agent::shear_count(dim);
   for (int t = 0; t < shears; ++t) out << ',' << kShearNames[t] << " [Pa]";

@@ -10,10 +10,6 @@
 
 namespace agent_study {
 
-namespace {
-const char* kSides[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
-}
-
 Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry, int march, int widen) {
   const int a = agent::axis_of(march);
   const double area = grid.face_area(a);
@@ -61,7 +57,8 @@ std::string LoadCarry::describe(const AgentStudy& study) const {
   const auto& spec = study.setup.loads[load];
   std::ostringstream s;
   s << "load[" << load << "] (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
-    << kSides[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits " << 1e6 * exits.free << " mm^2";
+    << agent::kDirectionNames[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits "
+    << 1e6 * exits.free << " mm^2";
   if (refused())
     s << ": cannot carry: " << why;
   else if (!route.empty())
@@ -81,24 +78,6 @@ std::string columns_refusal(const agent::Grid& grid, const std::vector<agent::En
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
-}
-
-std::string mm(double x) {
-  std::ostringstream s;
-  s << 1e3 * x << " mm";
-  return s.str();
-}
-
-/// How the columns carry a load: "bending: columns along x to the clamp at x = 0 mm".
-std::string columns_route(const agent::ColumnPlan& p) {
-  const char a = char('x' + p.axis);
-  std::ostringstream s;
-  s << "bending: columns along " << a << " to ";
-  if (p.holding == agent::Holding::Clamp)
-    s << "the clamp at " << a << " = " << mm(p.at[0]);
-  else
-    s << "the supports at " << a << " = " << mm(p.at[0]) << " and " << mm(p.at[1]);
-  return s.str();
 }
 
 }  // namespace
@@ -122,7 +101,7 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
       if (study.rules == agent::RuleSet::Columns) {
         if (const auto columns_cannot = columns_refusal(grid, entries, plan); columns_cannot.empty()) {
           c.march = plan.holding == agent::Holding::Clamp ? plan.clamp_side : agent::direction(plan.axis, false);
-          c.exits.rigid = plan.rigid_area, c.route = columns_route(plan);
+          c.exits.rigid = plan.rigid_area, c.route = agent::describe(plan);
         } else {
           c.why = columns_cannot;
         }
@@ -133,13 +112,13 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
       if (c.refused()) {  // where a load path by shear and bending would go: the axes with a rigid face ahead
         for (int d = 0; d < 2 * grid.dim; ++d)
           if (agent::axis_of(d) != agent::axis_of(march) && exits_ahead(grid, cells, d, widen).rigid > 0)
-            c.across += std::string(c.across.empty() ? "" : ", ") + kSides[d];
-        c.why = std::string("no rigid face ahead of the loaded face (march ") + kSides[march] + "); the " +
-                agent::rule_set_name(study.rules) + " rule set passes it out through free faces";
+            c.across += std::string(c.across.empty() ? "" : ", ") + agent::kDirectionNames[d];
+        c.why = std::string("no rigid face ahead of the loaded face (march ") + agent::kDirectionNames[march] +
+                "); the " + agent::rule_set_name(study.rules) + " rule set passes it out through free faces";
         if (!c.across.empty()) {
           const auto columns_cannot = columns_refusal(grid, entries, plan);
           c.why += " (rigid faces lie ahead along " + c.across + ": reached by bending; " +
-                   (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + columns_route(plan)
+                   (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + agent::describe(plan)
                                            : "the columns rule set cannot: " + columns_cannot) + ")";
         }
       }

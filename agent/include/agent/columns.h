@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace agent {
@@ -40,6 +41,9 @@ struct ColumnPlan {
 /// clamps at both ends or on several planes, agents beyond the clamp, one support or more than two,
 /// supports on both sides or at two levels, a column along the beam axis without agents.
 ColumnPlan plan_columns(const Grid& grid, const std::vector<EntryLoad>& loads);
+
+/// How a plan carries its loads, in words: "bending: columns along x to the clamp at x = 0 mm".
+std::string describe(const ColumnPlan& plan);
 
 /// The columns of a plan and their section resultants (sign convention: the part of the body at
 /// lower a, its cut face's outward normal +a): per column (slot along a), the force across the

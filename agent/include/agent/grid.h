@@ -13,6 +13,8 @@ namespace agent {
 /// Face directions: 0 = -x, 1 = +x, 2 = -y, 3 = +y, 4 = -z, 5 = +z.
 /// direction = 2 * axis + (positive ? 1 : 0).
 constexpr int direction(int axis, bool positive) { return 2 * axis + (positive ? 1 : 0); }
+/// The name of each direction (and of the box side it points to), in direction() order.
+inline constexpr const char* kDirectionNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
 constexpr int axis_of(int dir) { return dir / 2; }
 constexpr bool is_positive(int dir) { return dir % 2 == 1; }
 constexpr int opposite(int dir) { return dir ^ 1; }

@@ -39,8 +39,6 @@ namespace {
 
 using workbench::open_csv;
 
-const char* const kSideNames[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
-
 using report::seconds_since;
 
 /// The entries of `v` (comps per entry) at the `ids` (in their order) that `keep` marks.
@@ -389,7 +387,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
     json["carry_check"] = nlohmann::json::array();
     for (const auto& c : carry)
-      json["carry_check"].push_back({{"load", c.load}, {"group", c.group}, {"march", kSideNames[c.march]},
+      json["carry_check"].push_back({{"load", c.load}, {"group", c.group}, {"march", agent::kDirectionNames[c.march]},
                                      {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
                                      {"carries", !c.refused()}, {"said", c.describe(in.study)}});
     for (const auto& r : outcome.refused) outcome.warnings.push_back("agent: carry check: " + r);

@@ -167,16 +167,111 @@ void derivative_along(const Grid& g, int a, const std::vector<double>& field, in
   });
 }
 
-/// The bonded rigid face's layer for loads marching along a toward `exit_side`, its part across
-/// lateral axis l: adds it to sigma_l and its shear to `shear` (stride, component).
-void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
-                    double nu, std::vector<double>& sigma, std::vector<double>& shear, int stride, int component,
-                    Scratch& scratch) {
+/// 2D, the bonded rigid face's layer for loads marching along a toward `exit_side`, across l:
+/// into `layer` (zeroed), per agent.
+///
+/// The face holds eps_l = 0, so on it sigma_l = nu sigma_a; the agents' march leaves sigma_l about
+/// 0 there. The layer is the elastic half-plane's answer to that restraint, per base run (the
+/// agents on the face that are neighbours along l, the columns standing on them) with its two
+/// ends free: the restraint's stress S(x) = nu p(x) (p the base agents' sigma_a) in sine modes of
+/// the run's width W (zero at the free ends), mode m (wave number k = m pi / W) reaching height y
+/// above the face as (1 - k y / 2) exp(-k y): Airy's phi = B y exp(-k y) sin(k x), which leaves the
+/// face's normal stress alone (docs/agent-model.md, "The bonded base layer"). No coefficient.
+void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double nu,
+                      std::vector<double>& layer, std::vector<double>& column_of_end) {
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
+  layer.assign(g.count(), 0.0);
+  // The columns along a that end on a rigid exit face, their agents from the face on, by end agent.
+  std::vector<std::vector<std::size_t>> columns;
+  column_of_end.assign(g.count(), -1.0);  // -1: not the end of such a column
+  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+    const std::size_t end = up ? run.back() : run.front();
+    if (g.boundary(exit_side, end) != Boundary::Rigid) return;
+    column_of_end[end] = double(columns.size());
+    columns.emplace_back(run);
+    if (up) std::reverse(columns.back().begin(), columns.back().end());
+  });
+  if (columns.empty()) return;
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kReach = 40;  // k y beyond which a mode adds less than 1e-16 of its amplitude
+  std::vector<std::size_t> base;
+  std::vector<double> sine, amplitude, reach;
+  auto layer_of = [&]() {  // one base run
+    const int count = int(base.size());
+    // Mode m at agent n: sin(pi m (2 n + 1) / (2 count)) = sine[m (2 n + 1) mod 4 count]; the
+    // sums over m step through the table by 2 n + 1 (a subtraction, not a division per term).
+    const std::size_t period = 4 * std::size_t(count);
+    sine.resize(period);
+    for (std::size_t q = 0; q < period; ++q) sine[q] = std::sin(kPi * double(q) / (2.0 * count));
+    // sum_{m = 1}^{modes} weight[m] sin(m theta_n)
+    auto sum_modes = [&](const std::vector<double>& weight, int modes, int n) {
+      const std::size_t step = 2 * std::size_t(n) + 1;
+      std::size_t q = step;
+      double sum = 0;
+      for (int m = 1; m <= modes; ++m) {
+        sum += weight[m] * sine[q];
+        q += step;
+        if (q >= period) q -= period;
+      }
+      return sum;
+    };
+    amplitude.assign(std::size_t(count) + 1, 0.0);  // S's sine amplitude per mode m = 1..count
+    for (int n = 0; n < count; ++n) {
+      const double s_n = nu * normal[base[n] * dim + a];
+      const std::size_t step = 2 * std::size_t(n) + 1;
+      std::size_t q = step;
+      for (int m = 1; m <= count; ++m) {
+        amplitude[m] += s_n * sine[q];
+        q += step;
+        if (q >= period) q -= period;
+      }
+    }
+    for (int m = 1; m <= count; ++m) amplitude[m] *= (m == count ? 1.0 : 2.0) / count;
+    std::size_t height = 0;
+    for (std::size_t c : base) height = std::max(height, columns[std::size_t(column_of_end[c])].size());
+    const double wave = kPi / (count * h_l);  // k of mode 1
+    for (std::size_t r = 0; r < height; ++r) {
+      const double y = (double(r) + 0.5) * h_a;
+      const int modes = int(std::min<double>(count, std::floor(kReach / (wave * y))));
+      reach.resize(std::size_t(modes) + 1);
+      for (int m = 1; m <= modes; ++m) {
+        const double ky = m * wave * y;
+        reach[m] = amplitude[m] * (1 - 0.5 * ky) * std::exp(-ky);
+      }
+      for (int n = 0; n < count; ++n) {
+        const std::vector<std::size_t>& column = columns[std::size_t(column_of_end[base[n]])];
+        if (r >= column.size()) continue;
+        layer[column[r]] = sum_modes(reach, modes, n);
+      }
+    }
+  };
+  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+    base.clear();
+    for (std::size_t c : run) {
+      if (column_of_end[c] >= 0) {
+        base.push_back(c);
+        continue;
+      }
+      if (!base.empty()) layer_of();
+      base.clear();
+    }
+    if (!base.empty()) layer_of();
+  });
+}
+
+/// 3D, the same face's layer, local: nu sigma_a max(0, 1 - y / ell) (1 - exp(-d_side / y)), y the
+/// height above the face, d_side the distance to the line's nearer end along l, ell = `ell_share`
+/// x the width of the pressure on the face (sqrt(12 variance) of its agents' |sigma_a|, at most
+/// their extent). Into `layer` (zeroed).
+void local_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
+                 double nu, std::vector<double>& layer, std::vector<double>& height) {
+  const int dim = g.dim;
+  const double h_a = g.size[a], h_l = g.size[l];
+  const bool up = is_positive(exit_side);
+  layer.assign(g.count(), 0.0);
   // Per agent: its height above a rigid exit face at the end of its run along a (-1: none).
-  std::vector<double>& height = scratch.first;
   height.assign(g.count(), -1.0);
   double weight = 0, mean = 0, square = 0, lo = 1e300, hi = -1e300;
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
@@ -196,10 +291,6 @@ void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vecto
   const double variance = std::max(0.0, square / weight - mean * mean);
   const double ell = ell_share * std::min(std::sqrt(12 * variance), hi - lo);
   if (!(ell > 0)) return;
-  std::vector<double>& layer = scratch.second;
-  std::vector<double>& gradient = scratch.third;
-  layer.assign(g.count(), 0.0);
-  gradient.assign(g.count(), 0.0);
   runs_along(g, l, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     for (int i = 0; i < count; ++i) {
@@ -208,13 +299,27 @@ void add_base_layer(const Grid& g, int a, int l, int exit_side, const std::vecto
       const double side = std::min(i + 0.5, count - i - 0.5) * h_l;
       layer[run[i]] = nu * normal[run[i] * dim + a] * std::max(0.0, 1 - y / ell) * (1 - std::exp(-side / y));
     }
-    for (int i = 0; i < count; ++i) {  // d layer / d(position along l)
+  });
+}
+
+/// Adds a layer across l to sigma_l and its shear (stride, component) by horizontal equilibrium:
+/// d tau / d(along a) = -d layer / d(along l), tau = 0 at each run's end away from the face
+/// (`exit_side`). `gradient` is scratch.
+void add_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& layer,
+               std::vector<double>& gradient, std::vector<double>& sigma, std::vector<double>& shear, int stride,
+               int component) {
+  const int dim = g.dim;
+  const double h_a = g.size[a], h_l = g.size[l];
+  const bool up = is_positive(exit_side);
+  gradient.assign(g.count(), 0.0);
+  runs_along(g, l, [&](const std::vector<std::size_t>& run) {  // d layer / d(position along l)
+    const int count = int(run.size());
+    for (int i = 0; i < count; ++i) {
       const int p = std::max(0, i - 1), q = std::min(count - 1, i + 1);
       if (q > p) gradient[run[i]] = (layer[run[q]] - layer[run[p]]) / ((q - p) * h_l);
     }
   });
   for (std::size_t c = 0; c < layer.size(); ++c) sigma[c * dim + l] += layer[c];
-  // d tau / d(along a) = -d layer / d(along l), tau = 0 at the run's end away from the face.
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const int count = int(run.size());
     double sum = 0;
@@ -401,8 +506,12 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
           for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
           for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
         });
-        add_base_layer(g, a, l, load->dir, normal, k.base_layer, nu_layer, out.sigma, out.shear, shears, component,
-                       scratch);
+        if (dim == 2) {
+          half_plane_layer(g, a, l, load->dir, normal, nu_layer, scratch.second, scratch.first);
+        } else {
+          local_layer(g, a, l, load->dir, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
+        }
+        add_layer(g, a, l, load->dir, scratch.second, scratch.third, out.sigma, out.shear, shears, component);
       }
     }
   }

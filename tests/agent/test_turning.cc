@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <utility>
 
 #include "../support/agent_fixtures.h"
 
@@ -197,6 +199,71 @@ TEST(Turning, KirschsShearClosedForms) {
   // Linear in s, odd in either offset.
   EXPECT_NEAR(kirsch_shear(0.013, 0.021, a, -2 * s), -2 * kirsch_shear(0.013, 0.021, a, s), 1e-12 * s);
   EXPECT_NEAR(kirsch_shear(-0.013, 0.021, a, s), -kirsch_shear(0.013, 0.021, a, s), 1e-12 * s);
+}
+
+namespace {
+
+/// The stress components of a plate with no shear flux and no balance (so no tie): what is left
+/// across the march is the bonded base's layer alone. sigma_y everywhere = p(x) of the column.
+StressComponents layer_only(const Grid& g, int nx, int ny, const std::function<double(double)>& p) {
+  std::vector<double> normal(g.count() * 2, 0.0);
+  for (std::size_t c = 0; c < g.count(); ++c)
+    if (!g.is_air(c)) normal[2 * c + 1] = p(g.centre(c)[0]);
+  const std::vector<double> no_shear(g.count(), 0.0), no_balance(2 * (nx + ny + 1), 0.0);
+  return agent_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
+                                 {{g.index(nx / 2, ny - 1, 0), direction(1, false), 1.0}});
+}
+
+}  // namespace
+
+TEST(Turning, TheBasesLayerIsTheHalfPlanesAnswerToItsRestraint) {
+  // A base pressure p = P1 sin(k1 x) + P3 sin(3 k1 x), k1 = pi / W (sampled at the agents'
+  // centres: exactly two sine modes of the run): the bonded base holds sigma_x = nu p on it, and
+  // the layer is Airy's phi = B y exp(-k y) sin(k x) per mode: sigma_x = nu P (1 - k y / 2)
+  // exp(-k y) sin(k x), tau_xy = nu P / 2 (1 - k y) exp(-k y) cos(k x) (zero normal stress on the
+  // face). The plate is tall (6 W) so the shear scanned down from its top starts from about 0.
+  const int nx = 24, ny = 144;
+  const Grid g = steel_plate(nx, ny);
+  const double h = 5e-3, W = nx * h, k1 = M_PI / W, P1 = -3000, P3 = 800, nu = 0.3;
+  const auto s = layer_only(g, nx, ny, [&](double x) { return P1 * std::sin(k1 * x) + P3 * std::sin(3 * k1 * x); });
+  double largest_tau_error = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0);
+      const double x = (i + 0.5) * h, y = (j + 0.5) * h;
+      double sx = 0, tau = 0;
+      for (const auto& [k, P] : {std::pair{k1, P1}, std::pair{3 * k1, P3}}) {
+        sx += nu * P * (1 - 0.5 * k * y) * std::exp(-k * y) * std::sin(k * x);
+        tau += 0.5 * nu * P * (1 - k * y) * std::exp(-k * y) * std::cos(k * x);
+      }
+      ASSERT_NEAR(s.sigma[2 * c], sx, 1e-12 * std::abs(nu * P1)) << i << "," << j;
+      EXPECT_EQ(s.sigma[2 * c + 1], P1 * std::sin(k1 * x) + P3 * std::sin(3 * k1 * x));  // sigma_y: the march's
+      largest_tau_error = std::max(largest_tau_error, std::abs(s.shear[c] - tau));
+    }
+  // The shear by horizontal equilibrium (central differences across, midpoints up): second order.
+  EXPECT_LT(largest_tau_error, 0.02 * 0.5 * nu * std::abs(P1));
+  EXPECT_GT(largest_tau_error, 0.0);
+}
+
+TEST(Turning, EachRunOnTheBaseHasItsOwnFreeEnds) {
+  // The base split by a notch of air in its lowest rows: each run on it is a half-plane of its own
+  // width with free ends. A pressure on the left run only leaves the right run's columns without
+  // layer, and the left run's is that of a plate as wide as it.
+  const int nx = 20, ny = 30, left = 8;
+  Grid g = steel_plate(nx, ny);
+  for (int j = 0; j < 3; ++j)
+    for (int i = left; i < left + 4; ++i) g.make_air(g.index(i, j, 0));
+  const double h = 5e-3;
+  const auto p = [&](double x) { return x < left * h ? -1000.0 - 2e5 * x : 0.0; };
+  const auto s = layer_only(g, nx, ny, p);
+  const Grid alone = steel_plate(left, ny);
+  const auto a = layer_only(alone, left, ny, p);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < left; ++i)
+      EXPECT_NEAR(s.sigma[2 * g.index(i, j, 0)], a.sigma[2 * alone.index(i, j, 0)], 1e-12 * 300) << i << "," << j;
+    for (int i = left + 4; i < nx; ++i) EXPECT_EQ(s.sigma[2 * g.index(i, j, 0)], 0.0) << i << "," << j;
+  }
+  EXPECT_LT(s.sigma[2 * g.index(3, 0, 0)], -0.5 * 0.3 * 1000);  // a layer there: the compression of nu p
 }
 
 TEST(Turning, AHoleIsTheEnclosedAirOnlyAndItsShearIsKirschs) {

@@ -48,9 +48,10 @@ struct DirectionalCoefficients {
   /// Lateral diffusion length [m]: each row adds diffusion_length * row height [m^2] of variance
   double diffusion_length = 2e-3;
   Paths paths = Paths::Turning;
-  /// Turning paths: height of the bonded rigid face's layer (sigma_x = nu sigma_y on the face)
-  /// as a share of the width of the pressure on that face
-  double base_layer = 0.25;
+  /// 3D turning paths: height of the bonded rigid face's local layer (sigma across = nu / (1 - nu)
+  /// sigma along on the face) as a share of the width of the pressure on that face (2D takes the
+  /// elastic half-plane's layer, which has no coefficient)
+  double base_layer_3d = 0.25;
   /// Turning paths: Gaussian window [m] of the local quadratic fit that takes d/d(depth) of the
   /// shear for the tie scan (docs/research/stress-components.md)
   double window_length = 5e-3;
@@ -169,10 +170,10 @@ inline constexpr std::array<CoefficientSpec, 15> kCoefficients{{
      rule_bit(RuleSet::Directional), 0, 1, false, false, true, 0.0, 0.02, false, false,
      [](const Coefficients& k) { return k.directional.diffusion_length; },
      [](Coefficients& k, double v) { k.directional.diffusion_length = v; }},
-    {"base_layer", "", "turning paths: the bonded rigid face's layer (eps_x = 0 there), as a share of its pressure's width",
+    {"base_layer_3d", "", "3D turning paths: the bonded rigid face's layer, as a share of its pressure's width (2D: the half-plane's)",
      rule_bit(RuleSet::Directional), 0, 10, false, false, true, 0.0, 1.0, false, false,
-     [](const Coefficients& k) { return k.directional.base_layer; },
-     [](Coefficients& k, double v) { k.directional.base_layer = v; }},
+     [](const Coefficients& k) { return k.directional.base_layer_3d; },
+     [](Coefficients& k, double v) { k.directional.base_layer_3d = v; }},
     {"window_length", "m", "turning paths: window of the fit that takes the shear's derivative along the march",
      rule_bit(RuleSet::Directional), 0, 1, true, false, true, 1e-3, 0.02, false, false,
      [](const Coefficients& k) { return k.directional.window_length; },

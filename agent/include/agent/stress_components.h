@@ -33,9 +33,12 @@ double von_mises_3d(const double* s);
 /// and with k.paths == Paths::Turning
 ///   sigma across a += the tie: horizontal equilibrium scanned along each run of agents from its
 ///            lower end (0 there), what is left at the upper end taken out linearly;
-///   the layer on a bonded rigid face the loads march onto: sigma across a += nu sigma_a
-///            max(0, 1 - y / ell) (1 - exp(-d_side / y)), ell = k.base_layer x the width of the
-///            pressure on that face, and its shear by horizontal equilibrium;
+///   the layer on a bonded rigid face the loads march onto (it holds sigma across a = nu sigma_a):
+///            the elastic half-plane's answer to that restraint, per run of agents on the face with
+///            free ends: nu sigma_a of the face's agents in sine modes of the run's width, mode k
+///            reaching height y as (1 - k y / 2) exp(-k y); in 3D a local layer, nu / (1 - nu)
+///            sigma_a max(0, 1 - y / ell) (1 - exp(-d_side / y)), ell = k.base_layer_3d x the
+///            width of the pressure on that face; either's shear by horizontal equilibrium;
 ///   2D, before the tie: each hole's shear (hole_shear), the stress concentration at its corners.
 /// `loads` give each march axis its direction (which end the rigid face of the layer is at).
 StressComponents agent_stress_components(const Grid& grid, const std::vector<double>& normal,

@@ -7,14 +7,16 @@ steel, directional rule set with turning paths). docs/agent-model.md, "Turning p
 
 The displacement march of agent/src/fields.cc (node_displacements_marched) re-done in numpy (it reproduces
 the folder's agent u_x to round-off), fed with the agents' stresses with one field swapped for FEM's, and
-with the bonded base layer (agent/src/stress_components.cc add_base_layer) replaced by a candidate: nu p(x)
-(p the base row's sigma_y) spread along x by a Gaussian of sd c y (mirrored at the free sides), over a
-height `share` x the pressure's width. Per row: the share of side nodes (above the lowest tenth) whose u_x
+with the bonded base layer (agent/src/stress_components.cc half_plane_layer, the elastic half-plane's) replaced
+by another: the local layer it replaced (nu sigma_y of the agent, over 0.25 x the pressure's width), or the
+candidate nu p(x) (p the base row's sigma_y) spread along x by a Gaussian of sd c y (mirrored at the free
+sides), over a height `share` x the pressure's width. Per row: the share of side nodes (above the lowest tenth) whose u_x
 has FEM's sign, the heights [mm] where u_x changes sign on the far side, far-field sigma_x and tau_xy."""
 import csv
 import sys
 
 import numpy as np
+from scipy.fft import dst, idst
 from scipy.special import erf
 
 E, NU = 206e9, 0.3
@@ -85,6 +87,17 @@ def layer(sy, h, share=0.25, spread=None):
     return L * shape
 
 
+def half_plane(sy, h):
+    """The C++ layer: nu p(x) in sine modes of the width, mode k reaching height y as (1 - k y / 2) exp(-k y)."""
+    nx, ny = sy.shape
+    amplitude, k = dst(NU * sy[:, 0], type=2, norm="ortho"), np.pi * np.arange(1, nx + 1) / (nx * h)
+    L = np.zeros((nx, ny))
+    for j in range(ny):
+        ky = k * (j + 0.5) * h
+        L[:, j] = idst(amplitude * (1 - ky / 2) * np.exp(-ky), type=2, norm="ortho")
+    return L
+
+
 def report(name, f, sx, sy, tau):
     h, nx, ny = f["h"], f["nx"], f["ny"]
     ux, fx = marched(sx, sy, tau, h), f["fem_u_x"]
@@ -113,8 +126,8 @@ def main():
             b = dict(a); b[swap] = f["fem_" + swap]
             report(name + ": FEM's " + swap, f, b["sigma_x"], b["sigma_y"], b["tau_xy"])
         report(name + ": FEM's all", f, f["fem_sigma_x"], f["fem_sigma_y"], f["fem_tau_xy"])
-        L0 = layer(a["sigma_y"], f["h"])
-        for share, spread in ((0.5, None), (0.25, 3.0), (0.5, 3.0), (0.4, 3.0)):
+        L0 = half_plane(a["sigma_y"], f["h"])
+        for share, spread in ((0.25, None), (0.5, 3.0), (0.4, 3.0)):
             L = layer(a["sigma_y"], f["h"], share, spread)
             report(name + ": layer %.2f, spread %s" % (share, "%gy" % spread if spread else "none"), f, a["sigma_x"] - L0 + L,
                    a["sigma_y"], a["tau_xy"] - layer_shear(L0, f["h"]) + layer_shear(L, f["h"]))

@@ -196,7 +196,7 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
   if (columns.empty()) return;
   constexpr double kPi = 3.14159265358979323846;
   constexpr double kReach = 40;  // k y beyond which a mode adds less than 1e-16 of its amplitude
-  std::vector<std::size_t> base;
+  std::vector<std::size_t> base, first;
   std::vector<double> sine, amplitude, reach;
   auto layer_of = [&]() {  // one base run
     const int count = int(base.size());
@@ -205,46 +205,54 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
     const std::size_t period = 4 * std::size_t(count);
     sine.resize(period);
     for (std::size_t q = 0; q < period; ++q) sine[q] = std::sin(kPi * double(q) / (2.0 * count));
-    // sum_{m = 1}^{modes} weight[m] sin(m theta_n)
-    auto sum_modes = [&](const std::vector<double>& weight, int modes, int n) {
+    // sum_{m = 1}^{modes} weight[m - 1] sin(m theta_n), in four partial sums (modes m, m + 4, ...)
+    // so that the adds do not wait on each other
+    auto sum_modes = [&](const double* weight, int modes, int n) {
       const std::size_t step = 2 * std::size_t(n) + 1;
-      std::size_t q = step;
-      double sum = 0;
-      for (int m = 1; m <= modes; ++m) {
-        sum += weight[m] * sine[q];
-        q += step;
-        if (q >= period) q -= period;
-      }
-      return sum;
+      const std::size_t step4 = (4 * step) % period;
+      std::size_t q[4] = {step % period, 2 * step % period, 3 * step % period, 4 * step % period};
+      double sum[4] = {0, 0, 0, 0};
+      int m = 0;
+      for (; m + 4 <= modes; m += 4)
+        for (int j = 0; j < 4; ++j) {
+          sum[j] += weight[m + j] * sine[q[j]];
+          q[j] += step4;
+          q[j] = q[j] >= period ? q[j] - period : q[j];
+        }
+      for (int j = 0; m < modes; ++m, ++j) sum[j] += weight[m] * sine[q[j]];
+      return (sum[0] + sum[1]) + (sum[2] + sum[3]);
     };
-    amplitude.assign(std::size_t(count) + 1, 0.0);  // S's sine amplitude per mode m = 1..count
+    amplitude.assign(std::size_t(count), 0.0);  // S's sine amplitude per mode m = 1..count
     for (int n = 0; n < count; ++n) {
       const double s_n = nu * normal[base[n] * dim + a];
       const std::size_t step = 2 * std::size_t(n) + 1;
       std::size_t q = step;
-      for (int m = 1; m <= count; ++m) {
+      for (int m = 0; m < count; ++m) {
         amplitude[m] += s_n * sine[q];
         q += step;
-        if (q >= period) q -= period;
+        q = q >= period ? q - period : q;
       }
     }
-    for (int m = 1; m <= count; ++m) amplitude[m] *= (m == count ? 1.0 : 2.0) / count;
+    for (int m = 0; m < count; ++m) amplitude[m] *= (m == count - 1 ? 1.0 : 2.0) / count;
+    // Per height r above the face, each mode's amplitude there: rows [first[r], first[r + 1]).
     std::size_t height = 0;
     for (std::size_t c : base) height = std::max(height, columns[std::size_t(column_of_end[c])].size());
     const double wave = kPi / (count * h_l);  // k of mode 1
+    first.assign(height + 1, 0);
+    reach.clear();
     for (std::size_t r = 0; r < height; ++r) {
       const double y = (double(r) + 0.5) * h_a;
       const int modes = int(std::min<double>(count, std::floor(kReach / (wave * y))));
-      reach.resize(std::size_t(modes) + 1);
       for (int m = 1; m <= modes; ++m) {
         const double ky = m * wave * y;
-        reach[m] = amplitude[m] * (1 - 0.5 * ky) * std::exp(-ky);
+        reach.push_back(amplitude[m - 1] * (1 - 0.5 * ky) * std::exp(-ky));
       }
-      for (int n = 0; n < count; ++n) {
-        const std::vector<std::size_t>& column = columns[std::size_t(column_of_end[base[n]])];
-        if (r >= column.size()) continue;
-        layer[column[r]] = sum_modes(reach, modes, n);
-      }
+      first[r + 1] = reach.size();
+    }
+    for (int n = 0; n < count; ++n) {
+      const std::vector<std::size_t>& column = columns[std::size_t(column_of_end[base[n]])];
+      for (std::size_t r = 0; r < column.size(); ++r)
+        layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), n);
     }
   };
   runs_along(g, l, [&](const std::vector<std::size_t>& run) {

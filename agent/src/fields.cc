@@ -175,53 +175,82 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
                                                const std::vector<double>& shear, const Material& material,
                                                const Datums& datums, int a) {
   auto u = node_displacements(grid, strains, datums);
-  const int l = 1 - a;
-  if (grid.dim != 2 || grid.tiled() || shear.size() != grid.count()) return u;
-  const int n_l = grid.cells[l], n_a = grid.cells[a];
+  const int dim = grid.dim, shears = dim == 3 ? 3 : 1;
+  if (grid.tiled() || shear.size() != grid.count() * std::size_t(shears)) return u;
+  const int n_a = grid.cells[a];
   const bool base_low = datums[a] == 0;
   if (!base_low && datums[a] != n_a) return u;
   for (std::size_t c = 0; c < grid.count(); ++c)
     if (grid.is_air(c)) return u;
-  // (i along l, k agents or nodes counted from the rigid face along a)
-  auto agent = [&](int i, int k) {
-    std::array<int, 3> c{0, 0, 0};
-    c[l] = i;
-    c[a] = base_low ? k : n_a - 1 - k;
-    return grid.index(c[0], c[1], c[2]);
-  };
-  auto node = [&](int i, int k) {
-    std::array<int, 3> c{0, 0, 0};
-    c[l] = i;
-    c[a] = base_low ? k : n_a - k;
-    return grid.node_index(c[0], c[1], c[2]);
-  };
-  const double h_l = grid.size[l], h_a = (base_low ? 1 : -1) * grid.size[a];
+  const double h_a = (base_low ? 1 : -1) * grid.size[a];
   const double shear_modulus = material.young / (2 * (1 + material.poisson));
-  // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at its nodes.
-  std::vector<double> march((n_l + 1) * std::size_t(n_a + 1), 0.0), line(march.size(), 0.0);
-  auto at = [&](int i, int k) { return std::size_t(i) + std::size_t(n_l + 1) * k; };
-  for (int i = 0; i < n_l; ++i) {
-    double carried = 0;
-    for (int k = 0; k < n_a; ++k) {
-      auto mid = [&](int column) { return 0.5 * (u[node(column, k) * 2 + a] + u[node(column, k + 1) * 2 + a]); };
-      const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
-      carried += (shear[agent(i, k)] / shear_modulus - dua_dl) * h_a;
-      const double share = 0.5;  // a node between two columns takes the mean of both
-      march[at(i, k + 1)] += (i == 0 ? 1.0 : share) * carried;
-      march[at(i + 1, k + 1)] += (i + 1 == n_l ? 1.0 : share) * carried;
-    }
-  }
-  // eps_l integrated along each row of nodes (a node row's strain: the mean of the agent rows beside it).
-  for (int k = 0; k <= n_a; ++k) {
-    const int below = std::max(k - 1, 0), above = std::min(k, n_a - 1);
-    double carried = 0, offset = 0;
-    for (int i = 0; i < n_l; ++i) {
-      carried += 0.5 * (strains[3 * agent(i, below) + l] + strains[3 * agent(i, above) + l]) * h_l;
-      line[at(i + 1, k)] = carried;
-    }
-    for (int i = 0; i <= n_l; ++i) offset += march[at(i, k)] - line[at(i, k)];
-    offset /= n_l + 1;
-    for (int i = 0; i <= n_l; ++i) u[node(i, k) * 2 + l] = line[at(i, k)] + offset;
+  const LateralAxes lat = lateral_axes(a);
+  // Each lateral axis l in turn, o the other one (in 2D a single line: n_o = 1 and no o nodes).
+  for (const int l : {lat.l0, lat.l1}) {
+    if (l >= dim) continue;
+    const int o = l == lat.l0 ? lat.l1 : lat.l0;
+    const int n_l = grid.cells[l], n_o = dim == 3 ? grid.cells[o] : 1, o_nodes = dim == 3 ? n_o + 1 : 1;
+    const int component = dim == 3 ? shear_pair(a, l) : 0;
+    const double h_l = grid.size[l];
+    // (i along l, k counted from the rigid face along a, j along o)
+    auto agent = [&](int i, int k, int j) {
+      std::array<int, 3> c{0, 0, 0};
+      c[l] = i;
+      c[a] = base_low ? k : n_a - 1 - k;
+      c[o] = j;
+      return grid.index(c[0], c[1], c[2]);
+    };
+    auto node = [&](int i, int k, int j) {
+      std::array<int, 3> c{0, 0, 0};
+      c[l] = i;
+      c[a] = base_low ? k : n_a - k;
+      c[o] = j;
+      return grid.node_index(c[0], c[1], c[2]);
+    };
+    // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at the nodes of
+    // its edges along a; a node takes the mean of the columns beside it.
+    std::vector<double> march(std::size_t(n_l + 1) * (n_a + 1) * o_nodes, 0.0), line(march.size(), 0.0);
+    auto at = [&](int i, int k, int j) { return std::size_t(i) + std::size_t(n_l + 1) * (k + std::size_t(n_a + 1) * j); };
+    auto share = [](int index, int count) { return index == 0 || index == count ? 1.0 : 0.5; };  // of a node
+    for (int j = 0; j < n_o; ++j)
+      for (int i = 0; i < n_l; ++i) {
+        double carried = 0;
+        for (int k = 0; k < n_a; ++k) {
+          // u_a on the column's face across l at mid-height of agent k (the mean of its nodes)
+          auto mid = [&](int column) {
+            double sum = 0;
+            for (int dj = 0; dj < o_nodes - n_o + 1; ++dj)
+              sum += u[node(column, k, j + dj) * dim + a] + u[node(column, k + 1, j + dj) * dim + a];
+            return sum / (2.0 * (o_nodes - n_o + 1));
+          };
+          const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
+          carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
+          for (int dj = 0; dj < o_nodes - n_o + 1; ++dj) {
+            const double w_o = dim == 3 ? share(j + dj, n_o) : 1.0;
+            march[at(i, k + 1, j + dj)] += share(i, n_l) * w_o * carried;
+            march[at(i + 1, k + 1, j + dj)] += share(i + 1, n_l) * w_o * carried;
+          }
+        }
+      }
+    // eps_l integrated along each line of nodes along l (a node line's strain: the mean of the agent
+    // lines beside it), the line's constant the mean over it of the marches.
+    for (int j = 0; j < o_nodes; ++j)
+      for (int k = 0; k <= n_a; ++k) {
+        const int below = std::max(k - 1, 0), above = std::min(k, n_a - 1);
+        const int before = std::max(j - 1, 0), after = std::min(j, n_o - 1);
+        double carried = 0, offset = 0;
+        for (int i = 0; i < n_l; ++i) {
+          const double strain =
+              dim == 3 ? 0.25 * (strains[3 * agent(i, below, before) + l] + strains[3 * agent(i, above, before) + l] +
+                                 strains[3 * agent(i, below, after) + l] + strains[3 * agent(i, above, after) + l])
+                       : 0.5 * (strains[3 * agent(i, below, 0) + l] + strains[3 * agent(i, above, 0) + l]);
+          carried += strain * h_l;
+          line[at(i + 1, k, j)] = carried;
+        }
+        for (int i = 0; i <= n_l; ++i) offset += march[at(i, k, j)] - line[at(i, k, j)];
+        offset /= n_l + 1;
+        for (int i = 0; i <= n_l; ++i) u[node(i, k, j) * dim + l] = line[at(i, k, j)] + offset;
+      }
   }
   return u;
 }

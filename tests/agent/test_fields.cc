@@ -1,5 +1,6 @@
 // Stress, strain and displacement from face forces, against closed forms.
 #include <agent/fields.h>
+#include <agent/transfer.h>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +52,46 @@ TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
           EXPECT_NEAR(u[n * dim + 1], -2e-3 * j * 0.25, 1e-15);
           if (dim == 3) {
             EXPECT_NEAR(u[n * dim + 2], 3e-3 * (k - 1.5) * 2.0, 1e-15);
+          }
+        }
+  }
+}
+
+TEST(AgentFields, TheMarchAcrossGivesLinearFieldsTheirClosedForms) {
+  // The march (node_displacements_marched) on a block with its rigid base at y = 0, in 2D and 3D:
+  // a uniform strain and a uniform shear strain gamma (tau = G gamma in the pairs with y) give
+  //   u_y = eps_y y (up the columns from the base),
+  //   u_l = eps_l (x_l - the line's centre) + gamma y  (l = x, and z in 3D: the line's constant the
+  //         mean of the columns' marches du_l/dy = gamma - du_y/dx_l = gamma),
+  // whatever the load's position: the march reads no datum across.
+  const Material m{200e9, 0.25};
+  const double G = m.young / (2 * (1 + m.poisson)), gamma = 4e-4;
+  for (int dim : {2, 3}) {
+    const std::array<int, 3> n{6, 5, 4};
+    const Eigen::Vector3d h(0.5, 0.25, 2.0);
+    Grid g = Grid::box(dim, n, h);
+    g.set_boundary(g.box_side(2), Boundary::Rigid);
+    const int shears = dim == 3 ? 3 : 1;
+    std::vector<double> eps(g.count() * 3), shear(g.count() * shears, 0.0);
+    for (std::size_t c = 0; c < g.count(); ++c) {
+      eps[3 * c] = 1e-3;
+      eps[3 * c + 1] = -2e-3;
+      eps[3 * c + 2] = 3e-3;
+      shear[c * shears + shear_pair(0, 1)] = G * gamma;        // tau_xy
+      if (dim == 3) shear[c * shears + shear_pair(1, 2)] = -0.5 * G * gamma;  // tau_yz
+    }
+    const std::vector<EntryLoad> loads{{g.index(1, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
+    const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
+    const auto nn = g.node_counts();
+    for (int k = 0; k < nn[2]; ++k)
+      for (int j = 0; j < nn[1]; ++j)
+        for (int i = 0; i < nn[0]; ++i) {
+          const std::size_t node = g.node_index(i, j, k);
+          const double y = j * h[1];
+          EXPECT_NEAR(u[node * dim + 0], 1e-3 * (i - 3) * h[0] + gamma * y, 1e-15) << dim << ": " << i << j << k;
+          EXPECT_NEAR(u[node * dim + 1], -2e-3 * y, 1e-15);
+          if (dim == 3) {
+            EXPECT_NEAR(u[node * dim + 2], 3e-3 * (k - 2) * h[2] - 0.5 * gamma * y, 1e-15) << i << j << k;
           }
         }
   }

@@ -44,12 +44,13 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
                                        const Datums& datums);
 
-/// 2D with a shear (agent_stress_components: `shear`, tau_xy per slot [Pa]) and loads marching
-/// along `march_axis` onto a rigid face: u along the march as node_displacements gives it (zero at
-/// the rigid face), u across it integrated along each row of nodes, the row's constant the mean
-/// over the row of the marches from the rigid face, du_l/da = gamma_xy - du_a/dl
-/// (docs/agent-model.md, "Displacement"). Other grids (3D, tiled, air in the box, a datum along
-/// the march that is not a whole side of the box): node_displacements as it is.
+/// With a shear (agent_stress_components' `shear`: tau_xy per slot in 2D; xy, yz, xz in 3D [Pa])
+/// and loads marching along `march_axis` onto a rigid face: u along the march as
+/// node_displacements gives it (zero at the rigid face), each u across it (u_l, l a lateral axis)
+/// integrated along each line of nodes along l, the line's constant the mean over the line of the
+/// marches from the rigid face, du_l/da = gamma_al - du_a/dl (docs/agent-model.md,
+/// "Displacement"). Other grids (tiled, air in the box, a datum along the march that is not a
+/// whole side of the box): node_displacements as it is.
 std::vector<double> node_displacements_marched(const Grid& grid, const std::vector<double>& strains,
                                                const std::vector<double>& shear, const Material& material,
                                                const Datums& datums, int march_axis);

@@ -12,22 +12,28 @@ waits for a line "steps" on its standard input, draws the animation from steps.c
 agent/agent_nodes.csv, then waits for a line "draw" before it reads the other files.
 Uses Debian's python3-matplotlib, python3-numpy and python3-pil only; call it with /usr/bin/python3.
 """
-import argparse
-import csv
+# glibc's malloc keeps the memory it frees and serves every block from its heap (no mmap of its own
+# per large block, no trimming): each figure's canvas and image buffers (8-16 MB) reuse the pages of
+# the last instead of mapping and zeroing new ones: 24 % fewer page faults, 0.93x the script's CPU
+# (docs/performance.md). Before the imports, whose allocations it then covers too.
 import ctypes
-import functools
-import gc
-import io
-import json
-import multiprocessing
-import os
-import signal
-import sys
-import textwrap
-import time
-import types
+ctypes.CDLL(None).mallopt(-4, 0)  # M_MMAP_MAX
+ctypes.CDLL(None).mallopt(-1, 1 << 30)  # M_TRIM_THRESHOLD, 1 GiB
+import argparse  # noqa: E402
+import csv  # noqa: E402
+import functools  # noqa: E402
+import gc  # noqa: E402
+import io  # noqa: E402
+import json  # noqa: E402
+import multiprocessing  # noqa: E402
+import os  # noqa: E402
+import signal  # noqa: E402
+import sys  # noqa: E402
+import textwrap  # noqa: E402
+import time  # noqa: E402
+import types  # noqa: E402
 
-import matplotlib
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -48,7 +48,8 @@ from matplotlib import font_manager, ft2font  # noqa: E402
 # every glyph is read with a seek and a read (73,000 lseek and 33,000 read system calls for the
 # seed study's figures); a BytesIO of the same bytes gives the same glyphs without them. As
 # matplotlib's own font_manager._get_font, cached per font and process (its cache is emptied in a
-# forked child: FreeType objects are not shared across a fork).
+# forked child: FreeType objects are not shared across a fork). For PNG figures only: the PDF
+# backend embeds the font it finds by the FT2Font's file name (main() installs it).
 @functools.lru_cache(64)
 def _font_bytes(path):
     with open(path, "rb") as f:
@@ -56,15 +57,17 @@ def _font_bytes(path):
 
 
 @functools.lru_cache(64)
-def _get_font(font_filepaths, hinting_factor, *, _kerning_factor, thread_id):
+def _get_font_from_memory(font_filepaths, hinting_factor, *, _kerning_factor, thread_id):
     first, *rest = font_filepaths
-    fallback = [ft2font.FT2Font(io.BytesIO(_font_bytes(p)), hinting_factor, _kerning_factor=_kerning_factor) for p in rest]
+    fallback = [ft2font.FT2Font(io.BytesIO(_font_bytes(p)), hinting_factor, _kerning_factor=_kerning_factor)
+                for p in rest]
     return ft2font.FT2Font(io.BytesIO(_font_bytes(first)), hinting_factor, _fallback_list=fallback,
                            _kerning_factor=_kerning_factor)
 
 
-font_manager._get_font = _get_font
-os.register_at_fork(after_in_child=_get_font.cache_clear)
+def fonts_from_memory():
+    font_manager._get_font = _get_font_from_memory
+    os.register_at_fork(after_in_child=_get_font_from_memory.cache_clear)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
 from child_report import DISK_ERRORS, WRITE_FAILED, guarded, write_failed  # noqa: E402
@@ -351,6 +354,8 @@ def main():
     os.makedirs(out, exist_ok=True)
     title = args.title
     formats = args.formats.split(",")
+    if set(formats) <= {"png"}:
+        fonts_from_memory()
 
     def wait_for(word, what):
         """--wait: blocks until the workbench writes `word` on our input (its files are complete)."""

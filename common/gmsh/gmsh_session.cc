@@ -416,6 +416,9 @@ int exit_status(int status) {
   if (::getppid() != server) ::_exit(1);
   // request: the workbench's folder, the log, GEO, MSH, NAME VALUE...
   if (::chdir(request[0].c_str()) != 0) ::_exit(71);
+  // Its scratch files (the size estimate's unrolled .geo) in the workbench's folder for this load,
+  // which the workbench removes, also when an interruption ends this process half-way.
+  ::setenv("TMPDIR", std::filesystem::path(request[1]).parent_path().c_str(), 1);
   const int log = ::open(request[1].c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (log >= 0) {
     ::dup2(log, 1);

@@ -20,14 +20,22 @@
 
 #include <fem_reference/mpi.h>
 #include <workbench/error.h>
+#include <gmsh_session.h>
 #include <workbench/interruption.h>
 
 #include <csignal>
 #include <iostream>
 
 int main(int argc, char** argv) {
-  fem_reference::configure_singleton_mpi();      // first: it sets the environment
+  // The subcommands that may mesh a .geo start the mesher server first: a fork, before MPI and any
+  // thread (gmsh_session.h); it saves the mesher program's start (loading gmsh's libraries again).
+  const std::string first = argc > 1 ? argv[1] : "";
+  const bool meshes = first == "agent" || first == "voxelize" || first == "pbd" || first == "fem" || first == "compare" ||
+                      first == "calibrate";
+  if (meshes) workbench::start_geo_mesher_server();
+  fem_reference::configure_singleton_mpi();      // it sets the environment
   workbench::handle_interruptions("workbench");  // before any thread starts
+  if (meshes) workbench::register_geo_mesher_server();
   // A file-size limit (`ulimit -f`) makes a write fail with EFBIG, reported as a failed write
   // (workbench/output_file.h), instead of killing the process; the scripts inherit it.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -20,14 +20,17 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace workbench {
@@ -195,8 +198,11 @@ std::string file_text(const std::filesystem::path& file) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-/// Meshes the .geo with `mesher` (workbench-geo-mesher) in a child process and loads its .msh.
-std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, const std::filesystem::path& file,
+std::optional<int> mesh_in_server(const std::vector<std::string>& request, std::string& report);
+
+/// Meshes the .geo in a child process, one the mesher server forks (start_geo_mesher_server) or else
+/// the mesher program `mesher` (workbench-geo-mesher), and loads its .msh.
+std::vector<std::string> load_geo_in_child(std::filesystem::path mesher, const std::filesystem::path& file,
                                            const std::map<std::string, double>& parameters) {
   const std::string name = file.string();
   const MesherFolder folder(name);
@@ -214,13 +220,22 @@ std::vector<std::string> load_geo_in_child(const std::filesystem::path& mesher, 
     report = last_meshed->report;
     write_file(msh, last_meshed->msh);
   } else {
-    std::vector<std::string> argv{mesher.string(), name, msh.string()};
-    argv.insert(argv.end(), request.begin() + 1, request.end());
+    std::vector<std::string> server_request{std::filesystem::current_path().string(),
+                                            (folder.path() / "mesher.log").string(), name, msh.string()};
+    server_request.insert(server_request.end(), request.begin() + 1, request.end());
     int status = 0;
-    try {
-      status = run_child(argv, folder.path() / "mesher.log", &report);
-    } catch (const std::runtime_error& e) {  // it could not be started
-      throw std::runtime_error(name + ": " + e.what());
+    if (const auto served = mesh_in_server(server_request, report)) {
+      status = *served;
+    } else {
+      if (mesher.empty()) mesher = find_beside_program(kGeoMesherPath);
+      if (mesher.empty()) throw std::runtime_error(name + ": gmsh failed meshing it (the mesher server ended)");
+      std::vector<std::string> argv{mesher.string(), name, msh.string()};
+      argv.insert(argv.end(), request.begin() + 1, request.end());
+      try {
+        status = run_child(argv, folder.path() / "mesher.log", &report);
+      } catch (const std::runtime_error& e) {  // it could not be started
+        throw std::runtime_error(name + ": " + e.what());
+      }
     }
     if (status == kMesherRefused && report.rfind("error\n", 0) == 0)
       throw std::runtime_error(report.substr(6, report.find('\n', 6) - 6));
@@ -305,37 +320,64 @@ void write_checked(const std::string& msh) {
   if (!copy_error.empty()) throw std::runtime_error(copy_error);
 }
 
-}  // namespace
-
-std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
-  check_load_request(file, parameters);
-  if (file.extension() == ".geo")
-    if (const auto mesher = find_beside_program(kGeoMesherPath); !mesher.empty())
-      return load_geo_in_child(mesher, file, parameters);
-  return load_here(file, parameters);
+/// Sends all of `text` on socket `fd` (never a SIGPIPE); false when the other end is gone.
+bool send_all(int fd, const std::string& text) {
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t n = ::send(fd, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += std::size_t(n);
+  }
+  return true;
 }
 
-int geo_mesher_main(int argc, char** argv) {
-  if (argc < 3 || argc % 2 == 0) {
-    std::fprintf(stderr, "usage: %s GEO MSH [NAME VALUE]...  (run by the workbench, which reads the MSH)\n", argv[0]);
-    return 64;
+/// Receives exactly `size` bytes from `fd`; false at the end of input or on an error.
+bool receive_all(int fd, char* data, std::size_t size) {
+  for (std::size_t done = 0; done < size;) {
+    const ssize_t n = ::recv(fd, data + done, size - done, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += std::size_t(n);
   }
-  // The report goes back on standard input, a socket (workbench/child_process.h).
-  const auto send_report = [](const std::string& text) {
-    for (std::size_t done = 0; done < text.size();) {
-      const ssize_t n = ::send(0, text.data() + done, text.size() - done, MSG_NOSIGNAL);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return;
-      done += std::size_t(n);
-    }
-  };
+  return true;
+}
+
+/// A message between the workbench and the mesher server: a count of strings, then each string
+/// with its length before it.
+bool send_message(int fd, const std::vector<std::string>& parts) {
+  std::string text;
+  const auto put = [&](std::uint64_t n) { text.append(reinterpret_cast<const char*>(&n), sizeof n); };
+  put(parts.size());
+  for (const auto& p : parts) {
+    put(p.size());
+    text += p;
+  }
+  return send_all(fd, text);
+}
+
+bool receive_message(int fd, std::vector<std::string>& parts) {
+  std::uint64_t count = 0;
+  if (!receive_all(fd, reinterpret_cast<char*>(&count), sizeof count) || count > 4096) return false;
+  parts.assign(count, {});
+  for (auto& p : parts) {
+    std::uint64_t size = 0;
+    if (!receive_all(fd, reinterpret_cast<char*>(&size), sizeof size) || size > (std::uint64_t(1) << 32)) return false;
+    p.resize(size);
+    if (!receive_all(fd, p.data(), size)) return false;
+  }
+  return true;
+}
+
+/// The mesher's work, in the mesher program or in a process the server forked: GEO loaded as
+/// gmsh_load does in this process, the meshed model written to MSH (binary MSH 4.1, every element);
+/// the report ("ok NODES ELEMENTS" and the declared names, or "error" and the message) sent on
+/// socket `report`. Returns the exit status: 0, or kMesherRefused.
+int mesh_and_report(int report_fd, const std::string& geo, const std::string& msh,
+                    const std::map<std::string, double>& parameters) {
   std::signal(SIGXFSZ, SIG_IGN);  // a file-size limit is a failed write (EFBIG), as in the workbench
-  std::map<std::string, double> parameters;
-  for (int i = 3; i + 1 < argc; i += 2) parameters[argv[i]] = std::strtod(argv[i + 1], nullptr);
-  const std::string msh = argv[2];
   try {
-    check_load_request(argv[1], parameters);
-    const auto declared = load_here(argv[1], parameters);
+    check_load_request(geo, parameters);
+    const auto declared = load_here(geo, parameters);
     // Binary, so that every coordinate comes back exactly; every element, not only those of
     // physical groups; no scaling a .geo may have asked for (the in-process load had none).
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
@@ -346,12 +388,176 @@ int geo_mesher_main(int argc, char** argv) {
     write_checked(msh);
     std::string report = "ok " + model_counts() + "\n";
     for (const auto& n : declared) report += n + "\n";
-    send_report(report);
+    send_all(report_fd, report);
     return 0;
   } catch (const std::exception& e) {
-    send_report(std::string("error\n") + e.what() + "\n");
+    send_all(report_fd, std::string("error\n") + e.what() + "\n");
     return kMesherRefused;
   }
+}
+
+/// The mesher server (start_geo_mesher_server): its channel to the workbench, its pid.
+int server_channel = -1;
+pid_t server_pid = 0;
+int server_requests = 0;  // answered
+std::mutex server_mutex;  // one request at a time
+
+/// The exit status as ChildProcess::wait gives it: 128 + signal when a signal ended the process.
+int exit_status(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 1;
+}
+
+/// A process forked for one .geo by the server: it ends with the server; its output goes to the
+/// log, its report to `report_fd`. Never returns.
+[[noreturn]] void mesher_worker(const std::vector<std::string>& request, int report_fd, pid_t server) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != server) ::_exit(1);
+  // request: the workbench's folder, the log, GEO, MSH, NAME VALUE...
+  if (::chdir(request[0].c_str()) != 0) ::_exit(71);
+  // Its scratch files (the size estimate's unrolled .geo) in the workbench's folder for this load,
+  // which the workbench removes, also when an interruption ends this process half-way.
+  ::setenv("TMPDIR", std::filesystem::path(request[1]).parent_path().c_str(), 1);
+  const int log = ::open(request[1].c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log >= 0) {
+    ::dup2(log, 1);
+    ::dup2(log, 2);
+    ::close(log);
+  }
+  std::map<std::string, double> parameters;
+  for (std::size_t i = 4; i + 1 < request.size(); i += 2) parameters[request[i]] = std::strtod(request[i + 1].c_str(), nullptr);
+  const int code = mesh_and_report(report_fd, request[2], request[3], parameters);
+  std::fflush(nullptr);
+  ::_exit(code);  // no exit handlers: they belong to the workbench this process was forked from
+}
+
+/// The server's loop: a request in, a process forked to mesh it, its exit status and report out.
+/// It ends when the workbench closes the channel (or ends: PR_SET_PDEATHSIG).
+[[noreturn]] void serve(int channel) {
+  for (std::vector<std::string> request; receive_message(channel, request);) {
+    std::vector<std::string> reply{"71", ""};  // EX_OSERR: could not fork
+    int ends[2];
+    if (request.size() >= 4 && ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) == 0) {
+      const pid_t server = ::getpid();
+      const pid_t pid = ::fork();
+      if (pid == 0) {
+        ::close(ends[0]);
+        ::close(channel);
+        mesher_worker(request, ends[1], server);
+      }
+      ::close(ends[1]);
+      if (pid > 0) {
+        char text[4096];
+        for (ssize_t n; (n = ::recv(ends[0], text, sizeof text, 0)) != 0;) {
+          if (n < 0 && errno == EINTR) continue;
+          if (n < 0) break;
+          reply[1].append(text, std::size_t(n));
+        }
+        int status = 0;
+        while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        reply[0] = std::to_string(exit_status(status));
+      }
+      ::close(ends[0]);
+    }
+    if (!send_message(channel, reply)) break;
+  }
+  ::_exit(0);
+}
+
+/// Meshes through the server: `request` as mesher_worker reads it; the worker's exit status and its
+/// report, or nothing when no server runs (it was not started, or it ended: then none is used again).
+std::optional<int> mesh_in_server(const std::vector<std::string>& request, std::string& report) {
+  const std::lock_guard<std::mutex> lock(server_mutex);
+  if (server_channel < 0) return std::nullopt;
+  std::vector<std::string> reply;
+  const bool answered = send_message(server_channel, request) && receive_message(server_channel, reply) && reply.size() == 2;
+  while (interruption_under_way()) ::pause();  // the watcher ended the server and ends this process
+  if (!answered) {  // the server ended (killed from outside): reaped, not used again
+    ::close(server_channel);
+    server_channel = -1;
+    ::waitpid(server_pid, nullptr, WNOHANG);
+    forget_child_group(server_pid);
+    server_pid = 0;
+    return std::nullopt;
+  }
+  ++server_requests;
+  report = reply[1];
+  return std::stoi(reply[0]);
+}
+
+}  // namespace
+
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+  check_load_request(file, parameters);
+  if (file.extension() == ".geo") {
+    bool served;
+    {
+      const std::lock_guard<std::mutex> lock(server_mutex);
+      served = server_channel >= 0;
+    }
+    if (served) return load_geo_in_child({}, file, parameters);
+    if (const auto mesher = find_beside_program(kGeoMesherPath); !mesher.empty())
+      return load_geo_in_child(mesher, file, parameters);
+  }
+  return load_here(file, parameters);
+}
+
+int start_geo_mesher_server() {
+  if (server_pid > 0) return server_pid;
+  int ends[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return 0;
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Its own process group (the terminal's Ctrl-C goes to the workbench, whose interruption ends
+    // this group); it ends with the workbench; nothing of the workbench's open but its channel.
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(0);
+    ::prctl(PR_SET_NAME, "geo-mesher");
+    if (const int null = ::open("/dev/null", O_RDWR); null >= 0)
+      for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
+    ::dup2(ends[1], 3);
+    ::close_range(4, ~0U, 0);
+    serve(3);
+  }
+  ::close(ends[1]);
+  if (pid < 0) {
+    ::close(ends[0]);
+    return 0;
+  }
+  ::setpgid(pid, pid);  // here too, so that the group exists when it is registered
+  server_channel = ends[0];
+  server_pid = pid;
+  return pid;
+}
+
+void register_geo_mesher_server() {
+  const auto lock = hold_interruptions();
+  if (server_pid > 0) add_child_group(server_pid);
+}
+
+int geo_mesher_server_pid() {
+  const std::lock_guard<std::mutex> lock(server_mutex);
+  return server_pid;
+}
+
+int geo_mesher_server_requests() {
+  const std::lock_guard<std::mutex> lock(server_mutex);
+  return server_requests;
+}
+
+int geo_mesher_main(int argc, char** argv) {
+  if (argc < 3 || argc % 2 == 0) {
+    std::fprintf(stderr, "usage: %s GEO MSH [NAME VALUE]...  (run by the workbench, which reads the MSH)\n", argv[0]);
+    return 64;
+  }
+  std::map<std::string, double> parameters;
+  for (int i = 3; i + 1 < argc; i += 2) parameters[argv[i]] = std::strtod(argv[i + 1], nullptr);
+  // The report goes back on standard input, a socket (workbench/child_process.h).
+  return mesh_and_report(0, argv[1], argv[2], parameters);
 }
 
 std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim) {

@@ -24,6 +24,27 @@ namespace workbench {
 /// loaded until the next gmsh_load().
 std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
 
+/// Starts the mesher server: a child forked from this process (no exec), which has gmsh's
+/// libraries loaded already, so that meshing a .geo does not pay for loading them again in the
+/// mesher program (docs/performance.md, "Meshing a .geo in a child process"). Each .geo is then
+/// meshed in a process the server forks for it, as the mesher program would mesh it: a crash or
+/// abort of gmsh ends that process only and is the same one error; the server goes on serving. The
+/// server is in a process group of its own, ends with this process, and is ended by an
+/// interruption (call register_geo_mesher_server() once handle_interruptions() ran). Call it first
+/// in main(), before MPI starts and before any thread (a fork copies the calling thread only);
+/// gmsh_load() falls back to the mesher program when the server is not running. Returns its pid
+/// (0 if it could not be started).
+int start_geo_mesher_server();
+
+/// Adds the server's process group to those an interruption ends (workbench/interruption.h).
+void register_geo_mesher_server();
+
+/// The server's pid, 0 when none runs (not started, or it ended).
+int geo_mesher_server_pid();
+
+/// How many .geo files the server has meshed (or refused) for this process (tests).
+int geo_mesher_server_requests();
+
 /// The mesher program, relative to a folder beside the running program (or up to two above it).
 inline constexpr const char* kGeoMesherPath = "libexec/workbench/workbench-geo-mesher";
 

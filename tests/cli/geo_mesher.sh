@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# gmsh meshes a .geo in a child process (workbench-geo-mesher, common/gmsh/gmsh_session.h): the .geo
+# gmsh meshes a .geo in a child process (forked by the workbench's mesher server, common/gmsh/gmsh_session.h): the .geo
 # files on which gmsh 4.8 crashed inside the workbench (tests/data/gmsh_crashes, found by the
 # fuzzer's long mode, docs/reliability.md) end `agent` and `fem` with exit 2, one error line naming
 # the .geo, no output folder and no temporary folder left; an interruption while the mesher runs
@@ -51,12 +51,14 @@ mkdir -p "$work/tmp/int"
 sed 's/^n = .*/n = 1000/' "$work/cook.toml" >"$work/large.toml"
 TMPDIR="$work/tmp/int" env --default-signal=INT "$bin" fem "$work/large.toml" -o "$work/out_int" 2>"$logs/int.err" &
 pid=$!
-mesher=
+# The workbench's mesher server (a child named geo-mesher, forked at its start) meshes it in a
+# process of its own (the server's child).
+server= mesher=
 for _ in $(seq 600); do
-  mesher=$(pgrep -P $pid -f workbench-geo-mesher) && break
+  server=$(pgrep -P $pid -x geo-mesher) && mesher=$(pgrep -P "$server") && break
   sleep 0.1
 done
-check interrupt_mesher_started $([ -n "$mesher" ]; echo $?) "no mesher process seen"
+check interrupt_mesher_started $([ -n "$mesher" ]; echo $?) "no mesher process seen (server: $server)"
 kill -INT $pid
 wait $pid
 rc=$?
@@ -64,9 +66,9 @@ check interrupt_exit $((rc != 130)) "exit $rc, expected 130: $(cat "$logs/int.er
 [ "$(tail -1 "$logs/int.err")" = "workbench: interrupted by SIGINT; unfinished output removed" ]
 check interrupt_message $? "stderr: $(cat "$logs/int.err")"
 sleep 0.2
-[ -z "$mesher" ] || ! running "$mesher"
-check interrupt_mesher_ended $? "the mesher ($mesher) is still running"
-[ -n "$mesher" ] && kill -KILL "$mesher" 2>/dev/null  # (only if the check failed: a process this test started)
+{ [ -z "$mesher" ] || ! running "$mesher"; } && { [ -z "$server" ] || ! running "$server"; }
+check interrupt_mesher_ended $? "the mesher ($mesher) or its server ($server) is still running"
+for p in $mesher $server; do kill -KILL "$p" 2>/dev/null; done  # (only if the check failed: processes this test started)
 [ -z "$(workbench_files "$work/tmp/int")" ] && [ ! -e "$work/out_int" ]
 check interrupt_nothing_left $? "left: $(workbench_files "$work/tmp/int") $(ls -d "$work/out_int" 2>/dev/null)"
 

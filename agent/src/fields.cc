@@ -190,6 +190,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
     if (l >= dim) continue;
     const int o = l == lat.l0 ? lat.l1 : lat.l0;
     const int n_l = grid.cells[l], n_o = dim == 3 ? grid.cells[o] : 1, o_nodes = dim == 3 ? n_o + 1 : 1;
+    const int o_sides = dim == 3 ? 2 : 1;  // the node lines along o beside a column
     const int component = dim == 3 ? shear_pair(a, l) : 0;
     const double h_l = grid.size[l];
     // (i along l, k counted from the rigid face along a, j along o)
@@ -219,13 +220,13 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
           // u_a on the column's face across l at mid-height of agent k (the mean of its nodes)
           auto mid = [&](int column) {
             double sum = 0;
-            for (int dj = 0; dj < o_nodes - n_o + 1; ++dj)
+            for (int dj = 0; dj < o_sides; ++dj)
               sum += u[node(column, k, j + dj) * dim + a] + u[node(column, k + 1, j + dj) * dim + a];
-            return sum / (2.0 * (o_nodes - n_o + 1));
+            return sum / (2.0 * (o_sides));
           };
           const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
           carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
-          for (int dj = 0; dj < o_nodes - n_o + 1; ++dj) {
+          for (int dj = 0; dj < o_sides; ++dj) {
             const double w_o = dim == 3 ? share(j + dj, n_o) : 1.0;
             march[at(i, k + 1, j + dj)] += share(i, n_l) * w_o * carried;
             march[at(i + 1, k + 1, j + dj)] += share(i + 1, n_l) * w_o * carried;

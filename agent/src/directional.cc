@@ -189,7 +189,8 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
     // along (s, -1) for a march down y: +F s / A; marching up (or along +x), -F s / A.
     const double tau_sign = forward ? -1.0 : 1.0, area_across = g.face_area(a);
     // The shear components of (march, lateral) in TransferResults::shear: 2D tau_xy; 3D xy, yz, xz.
-    const int shears = dim == 3 ? 3 : 1, pair_u = shear_pair(a, l0), pair_v = shear_pair(a, l1);
+    const int shears = dim == 3 ? 3 : 1, pair_u = shear_pair(a, l0), pair_v = shear_pair(a, l1),
+              pair_uv = shear_pair(l0, l1);
     // Rows of body along the march from `layer` in the entry's column: the depth the paths turn in.
     auto depth_of_body = [&](int layer) {
       int rows = 0;
@@ -383,7 +384,11 @@ void march(const Grid& g, const Slots& layout, const DirectionalCoefficients& k,
             row_force[u + std::size_t(n0) * v] += f_uv;
             if (shear) {
               shear[cell * shears + pair_u] += tau_sign * rest * pu.shear[u] * pv.force[v] / area_across;
-              if (dim == 3) shear[cell * shears + pair_v] += tau_sign * rest * pu.force[u] * pv.shear[v] / area_across;
+              if (dim == 3) {
+                shear[cell * shears + pair_v] += tau_sign * rest * pu.force[u] * pv.shear[v] / area_across;
+                // Across the two lateral axes the ray's stress has -F s_u s_v / A, whichever way it marches.
+                shear[cell * shears + pair_uv] -= rest * pu.shear[u] * pv.shear[v] / area_across;
+              }
             }
             if (leaves(here, past, u, v, last_layer, goes_on)) {
               left += f_uv;

@@ -426,6 +426,22 @@ TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
         EXPECT_NEAR(s.shear[3 * c], -s.shear[3 * mx], 1e-9 * txy_max);
         EXPECT_NEAR(s.shear[3 * c], s.shear[3 * mz], 1e-9 * txy_max);
         EXPECT_NEAR(s.shear[3 * c + 1], -s.shear[3 * mz + 1], 1e-9 * txy_max);
-        EXPECT_EQ(s.shear[3 * c + 2], 0.0);  // tau_xz is not modelled
+        // tau_xz is odd in x and in z and the same under x <-> z
+        EXPECT_NEAR(s.shear[3 * c + 2], -s.shear[3 * mx + 2], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c + 2], -s.shear[3 * mz + 2], 1e-9 * txy_max);
+        EXPECT_NEAR(s.shear[3 * c + 2], s.shear[3 * swap + 2], 1e-9 * txy_max);
       }
+  // A packet of force F with slopes (s_x, s_z) is the ray's stress -F n n^T / A: tau_xy = F s_x / A,
+  // tau_yz = F s_z / A, tau_xz = -F s_x s_z / A. A row's packets are the product of one
+  // distribution per axis, so at every agent the transfer's shears and the force through it
+  // (sigma = F / A) keep tau_xz sigma = -tau_xy tau_yz.
+  const auto& flux = m.shear_flux();
+  const double area = g.face_area(1);
+  double txz_max = 0;
+  for (std::size_t c = 0; c < g.count(); ++c) {
+    const double sigma = m.face_forces()[c * 6 + kPlusY] / area;
+    EXPECT_NEAR(flux[3 * c + 2] * sigma, -flux[3 * c] * flux[3 * c + 1], 1e-9 * txy_max * txy_max) << c;
+    txz_max = std::max(txz_max, std::abs(flux[3 * c + 2]));
+  }
+  EXPECT_GT(txz_max, 0.01 * txy_max);
 }

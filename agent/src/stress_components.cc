@@ -462,7 +462,7 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
     Scratch scratch;
     std::vector<double>& field = scratch.first;
     std::vector<double>& derivative = scratch.second;
-    std::vector<double> sum_layer, count_layer;
+    std::vector<double> sum_layer, count_layer, across;
     for (int a = 0; a < dim; ++a) {
       const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
       if (load == loads.end()) continue;  // no load marches along a: nothing written for it
@@ -504,6 +504,11 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
         // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
         // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
         derivative_along(g, a, out.shear, shears, component, window, derivative);
+        if (dim == 3) {  // and -d tau_lo / d(along o), o the other lateral axis (the packets' tau_xz)
+          const int o = l == lat.l0 ? lat.l1 : lat.l0;
+          derivative_along(g, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
+          for (std::size_t c = 0; c < n; ++c) derivative[c] += across[c];
+        }
         const std::vector<double>& dtau = derivative;
         std::vector<double> faces;
         runs_along(g, l, [&](const std::vector<std::size_t>& run) {

@@ -125,6 +125,34 @@ TEST(Turning, TheTieIsHorizontalEquilibriumZeroAtTheFreeSides) {
   }
 }
 
+TEST(Turning, TheTieIn3DReadsTheShearAcrossBothLateralAxes) {
+  // 3D, loads along y: x equilibrium is d sigma_x/dx = -d tau_xy/dy - d tau_xz/dz. With tau_xy = 0
+  // and tau_xz = c z (x - W / 2): sigma_x(x) = -int_0^x c (x' - W/2) dx' = c (W x / 2 - x^2 / 2),
+  // zero at both free sides, an agent the mean of its faces (as the 2D closed form); sigma_z gets
+  // d sigma_z/dz = -d tau_xz/dx = -c z (below). No rigid face: no layer.
+  const int nx = 8, ny = 5, nz = 6;
+  const double h = 5e-3, W = nx * h, c = 3e7;
+  Grid g = Grid::box(3, {nx, ny, nz}, Eigen::Vector3d(h, h, h));
+  std::vector<double> flux(g.count() * 3, 0.0), normal(g.count() * 3, 0.0), no_balance(2 * (nx + ny + nz), 0.0);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) flux[3 * g.index(i, j, k) + 2] = c * (k + 0.5) * h * ((i + 0.5) * h - W / 2);
+  const auto s = agent_stress_components(g, normal, flux, no_balance, DirectionalCoefficients{}, 0.3,
+                                         {{g.index(3, ny - 1, 2), direction(1, false), 1.0}});
+  auto at_face = [&](double x) { return c * (W * x / 2 - x * x / 2); };
+  const double D = nz * h;
+  // along z the scan leaves -c D^2 / 2 at the upper side, taken out linearly: c (D z / 2 - z^2 / 2)
+  auto at_face_z = [&](double z) { return c * (D * z / 2 - z * z / 2); };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::size_t cell = g.index(i, j, k);
+        EXPECT_NEAR(s.sigma[3 * cell], 0.5 * (at_face(i * h) + at_face((i + 1) * h)), 1e-6) << i << j << k;
+        EXPECT_NEAR(s.sigma[3 * cell + 2], 0.5 * (at_face_z(k * h) + at_face_z((k + 1) * h)), 1e-6) << i << j << k;
+        EXPECT_NEAR(s.shear[3 * cell + 2], flux[3 * cell + 2], 1e-9);
+      }
+}
+
 TEST(Turning, EveryRowCarriesTheLoadAndTheBaseReturnsIt) {
   // A load off centre on a plate: every row's agents pass on exactly the load (the deposit is
   // normalised over the row and the moment balance adds nothing net), and the base returns it.

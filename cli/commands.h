@@ -46,6 +46,10 @@ using Action = std::function<int()>;
 /// main() runs every other one on rank 0 alone.
 inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate"};
 
+/// The subcommands that may mesh a .geo: main() starts the mesher server for them, before MPI and
+/// any thread (gmsh_session.h).
+inline const std::set<std::string> kMeshing{"agent", "voxelize", "pbd", "fem", "compare", "calibrate"};
+
 /// The output folder `dir` staged by rank 0 (a collective step: a refusal ends every rank), null on
 /// the other ranks; `path` is set to the staging folder's path on every rank.
 std::unique_ptr<workbench::StagedDirectory> stage_on_rank_0(const std::string& dir, const workbench::CaseFile& file,

@@ -29,9 +29,7 @@
 int main(int argc, char** argv) {
   // The subcommands that may mesh a .geo start the mesher server first: a fork, before MPI and any
   // thread (gmsh_session.h); it saves the mesher program's start (loading gmsh's libraries again).
-  const std::string first = argc > 1 ? argv[1] : "";
-  const bool meshes = first == "agent" || first == "voxelize" || first == "pbd" || first == "fem" || first == "compare" ||
-                      first == "calibrate";
+  const bool meshes = argc > 1 && cli::kMeshing.count(argv[1]);
   if (meshes) workbench::start_geo_mesher_server();
   fem_reference::configure_singleton_mpi();      // it sets the environment
   workbench::handle_interruptions("workbench");  // before any thread starts

@@ -227,7 +227,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
           const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
           carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
           for (int dj = 0; dj < o_sides; ++dj) {
-            const double w_o = dim == 3 ? share(j + dj, n_o) : 1.0;
+            const double w_o = share(j + dj, n_o);  // 1 in 2D: a single line
             march[at(i, k + 1, j + dj)] += share(i, n_l) * w_o * carried;
             march[at(i + 1, k + 1, j + dj)] += share(i + 1, n_l) * w_o * carried;
           }
@@ -241,6 +241,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
         const int before = std::max(j - 1, 0), after = std::min(j, n_o - 1);
         double carried = 0, offset = 0;
         for (int i = 0; i < n_l; ++i) {
+          // (2D: the two agents' mean as 0.5 (a + b), which the 3D sum of four would round differently)
           const double strain =
               dim == 3 ? 0.25 * (strains[3 * agent(i, below, before) + l] + strains[3 * agent(i, above, before) + l] +
                                  strains[3 * agent(i, below, after) + l] + strains[3 * agent(i, above, after) + l])

@@ -23,6 +23,8 @@ double von_mises_3d(const double* s) {
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 /// fitted_slope's weights for one window. The slope is linear in the values: per entry, weights
 /// c_i = e1' M^-1 w_i p_i of its neighbours. They depend only on the entry's offsets to its
 /// neighbours, so on a line longer than two reaches every interior entry has the same weights and
@@ -185,7 +187,7 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
   layer.assign(g.count(), 0.0);
   // The columns along a that end on a rigid exit face, their agents from the face on, by end agent.
   std::vector<std::vector<std::size_t>> columns;
-  column_of_end.assign(g.count(), -1.0);  // -1: not the end of such a column
+  column_of_end.assign(g.count(), -1.0);  // -1: not the end of such a column (a scratch field of doubles)
   runs_along(g, a, [&](const std::vector<std::size_t>& run) {
     const std::size_t end = up ? run.back() : run.front();
     if (g.boundary(exit_side, end) != Boundary::Rigid) return;
@@ -194,7 +196,6 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
     if (up) std::reverse(columns.back().begin(), columns.back().end());
   });
   if (columns.empty()) return;
-  constexpr double kPi = 3.14159265358979323846;
   constexpr double kReach = 40;  // k y beyond which a mode adds less than 1e-16 of its amplitude
   std::vector<std::size_t> base, first;
   std::vector<double> sine, amplitude, reach;
@@ -405,7 +406,6 @@ std::vector<double> hole_shear(const Grid& g, int a, const std::vector<double>& 
   std::vector<double> tau(g.count(), 0.0);
   if (g.dim != 2) return tau;
   const int l = 1 - a;
-  const double pi = std::acos(-1.0);
   for (const Hole& h : enclosed_holes(g)) {
     // The remote stress: the force through the row at the hole's centre over the row's extent
     // (the gross section: a row through a hole carries the load of the whole width).
@@ -421,7 +421,7 @@ std::vector<double> hole_shear(const Grid& g, int a, const std::vector<double>& 
       hi = std::max(hi, g.plane(l, i + 1));
       (g.plane(l, i) < h.centre[l] ? below : above) += width;
     }
-    const double remote = force / (hi - lo), radius = std::sqrt(h.area / pi);
+    const double remote = force / (hi - lo), radius = std::sqrt(h.area / kPi);
     // Kirsch's plate is infinite: a hole beside which the body is narrower than its radius (a
     // ring's inside, a slot) is not one; its walls carry the load as beams.
     if (!(hi > lo) || force == 0 || below < radius || above < radius) continue;

@@ -182,9 +182,25 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
   if (!base_low && datums[a] != n_a) return u;
   for (std::size_t c = 0; c < grid.count(); ++c)
     if (grid.is_air(c)) return u;
+  // u_a on the box's sides across the march: the columns' lines extrapolated to the side (2 u(side)
+  // - u(next node) = 1.5 c_0 - 0.5 c_1), not the side column's own line half an agent inside it,
+  // which would halve du_a/dl in the side columns and tilt every line across by the difference.
+  const LateralAxes lat = lateral_axes(a);
+  const auto nodes = grid.node_counts();
+  for (const int l : {lat.l0, lat.l1}) {
+    if (l >= dim) continue;
+    for (int k = 0; k < nodes[2]; ++k)
+      for (int j = 0; j < nodes[1]; ++j)
+        for (int i = 0; i < nodes[0]; ++i) {
+          std::array<int, 3> p{i, j, k};
+          if (p[l] != 0 && p[l] != grid.cells[l]) continue;
+          const std::size_t side = grid.node_index(p[0], p[1], p[2]);
+          p[l] += p[l] == 0 ? 1 : -1;
+          u[side * dim + a] = 2 * u[side * dim + a] - u[grid.node_index(p[0], p[1], p[2]) * dim + a];
+        }
+  }
   const double h_a = (base_low ? 1 : -1) * grid.size[a];
   const double shear_modulus = material.young / (2 * (1 + material.poisson));
-  const LateralAxes lat = lateral_axes(a);
   // Each lateral axis l in turn, o the other one (in 2D a single line: n_o = 1 and no o nodes).
   for (const int l : {lat.l0, lat.l1}) {
     if (l >= dim) continue;

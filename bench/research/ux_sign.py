@@ -46,6 +46,7 @@ def marched(sx, sy, tau, h):
     ex, ey, G = (sx - NU * sy) / E, (sy - NU * sx) / E, E / (2 * (1 + NU))
     col = np.zeros((nx, ny + 1)); col[:, 1:] = np.cumsum(ey * h, axis=1)
     uy = np.zeros((nx + 1, ny + 1)); uy[:-1] += col; uy[1:] += col; uy[1:-1] /= 2
+    uy[0], uy[nx] = 1.5 * col[0] - 0.5 * col[1], 1.5 * col[nx - 1] - 0.5 * col[nx - 2]  # the sides: extrapolated
     mid = 0.5 * (uy[:, :-1] + uy[:, 1:])
     carried = np.cumsum((tau / G - np.diff(mid, axis=0) / h) * h, axis=1)  # (nx, ny): at node rows 1..ny
     march = np.zeros((nx + 1, ny + 1))

@@ -96,3 +96,38 @@ TEST(AgentFields, TheMarchAcrossGivesLinearFieldsTheirClosedForms) {
         }
   }
 }
+
+TEST(AgentFields, TheMarchGivesABendingFieldItsClosedFormOnTheSidesToo) {
+  // eps_y = c x + d z (d = 0 in 2D), no other strain: a compatible field (every second derivative
+  // of a linear strain is 0), the plane sections of a column bent about the base. Its closed form
+  // with the base at y = 0 held: u_y = (c x + d z) y, u_x = -c y^2 / 2, u_z = -d y^2 / 2. The side
+  // nodes' u_y is the columns' lines extrapolated to the side; taking the side column's own line
+  // (its value half an agent inside) would be off there by c h_x / 2 y, halve du_y/dx in the side
+  // columns, and leave u_x off by a rotation on every line across.
+  const Material m{200e9, 0.25};
+  const double c = 3e-3, d = -2e-3;
+  for (int dim : {2, 3}) {
+    const std::array<int, 3> n{6, 5, 4};
+    const Eigen::Vector3d h(0.5, 0.25, 2.0);
+    Grid g = Grid::box(dim, n, h);
+    g.set_boundary(g.box_side(2), Boundary::Rigid);
+    const int shears = dim == 3 ? 3 : 1;
+    std::vector<double> eps(g.count() * 3, 0.0), shear(g.count() * shears, 0.0);
+    for (int k = 0; k < (dim == 3 ? n[2] : 1); ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+          eps[3 * g.index(i, j, k) + 1] = c * (i + 0.5) * h[0] + (dim == 3 ? d * (k + 0.5) * h[2] : 0.0);
+    const std::vector<EntryLoad> loads{{g.index(1, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
+    const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
+    const auto nn = g.node_counts();
+    for (int k = 0; k < nn[2]; ++k)
+      for (int j = 0; j < nn[1]; ++j)
+        for (int i = 0; i < nn[0]; ++i) {
+          const std::size_t node = g.node_index(i, j, k);
+          const double x = i * h[0], y = j * h[1], z = dim == 3 ? k * h[2] : 0.0;
+          EXPECT_NEAR(u[node * dim + 1], (c * x + (dim == 3 ? d * z : 0.0)) * y, 1e-15) << dim << ": " << i << j << k;
+          EXPECT_NEAR(u[node * dim + 0], -c * y * y / 2, 1e-15) << dim << ": " << i << j << k;
+          if (dim == 3) EXPECT_NEAR(u[node * dim + 2], -d * y * y / 2, 1e-15) << i << j << k;
+        }
+  }
+}

@@ -10,6 +10,7 @@
 #include <compare/reference.h>
 #include <compare/summarize.h>
 #include <fem_reference/fem_case.h>
+#include <fem_reference/mpi.h>
 #include <pbd_study.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
@@ -515,6 +516,7 @@ PYBIND11_MODULE(workbench, m) {
   m.doc() = "The deformation-model workbench from Python: agent model, FEM reference, comparison, calibration, "
             "PBD model (docs/python.md)";
   py::register_exception<workbench::Error>(m, "Error", PyExc_RuntimeError);
+  fem_reference::configure_singleton_mpi();  // as the command line does: the same start-up, a session folder of its own
 
   py::class_<Case>(m, "Case", "A study's case: a case file, or a dict with the same tables (docs/case-file.md)")
       .def(py::init([](const fs::path& path) {

@@ -6,6 +6,9 @@
 . "$(dirname "$0")/common.sh"
 py=/usr/bin/python3
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+# mpirun's session files in this test's own folder: in the shared /tmp/ompi.<host>.<uid> a job that
+# ends removes the folder another test's job is creating its own in (open-mpi/ompi#8510).
+export OMPI_MCA_orte_tmpdir_base="$logs/ompi"
 mpi() { mpirun -q -np 2 "$bin" "$@"; }  # -q: no banner of its own beside our one line
 
 # The gated plate at 10 mm agents (quick; its figures are off: what is compared is numbers and files).

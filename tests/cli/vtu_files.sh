@@ -44,7 +44,7 @@ sed -e 's|^mesh = "\(.*\)"|mesh = "'"$src"'/cases/\1"|' -e 's|^frames = .*|frame
 run pbd "$bin" pbd "$work/strip.toml" -o "$work/pbd"
 if command -v mpirun >/dev/null; then
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 \
-    run fem_mpi mpirun -np 2 "$bin" fem "$src/tests/fem/cases/small_plate.toml" -o "$work/fem_mpi"
+    OMPI_MCA_orte_tmpdir_base="$logs/ompi" run fem_mpi mpirun -np 2 "$bin" fem "$src/tests/fem/cases/small_plate.toml" -o "$work/fem_mpi"
   test -f "$work/fem_mpi/fem_000.pvtu"
   check fem_mpi_pvtu $? "no fem_000.pvtu"
 fi

@@ -702,7 +702,7 @@ TEST(FemProbes, PointValuesReproduceALinearFieldAndMissOutsidePoints) {
 // when mpirun did not start the process, never over what the user or mpirun set.
 TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
   const char* names[] = {"OMPI_MCA_pml", "OMPI_MCA_osc", "OMPI_MCA_ess_singleton_isolated", "OMPI_COMM_WORLD_SIZE",
-                         "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"};
+                         "PMIX_RANK", "PMI_RANK", "SLURM_PROCID", "OMPI_MCA_orte_tmpdir_base", "TMPDIR"};
   std::vector<std::pair<std::string, std::optional<std::string>>> saved;
   for (const char* n : names) {
     const char* v = std::getenv(n);
@@ -711,17 +711,27 @@ TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
   auto value = [](const char* n) { const char* v = std::getenv(n); return std::string(v ? v : "(unset)"); };
   auto clear = [&] { for (const char* n : names) ::unsetenv(n); };
 
+  // The session files get a folder of this process's own in TMPDIR (the first call makes it; it is
+  // removed at exit), so that two runs at once do not share OpenMPI's /tmp/ompi.<host>.<uid>.
+  const std::filesystem::path scratch = test_support::scratch_folder();
   clear();
+  ::setenv("TMPDIR", scratch.c_str(), 1);
   fem_reference::configure_singleton_mpi();
   EXPECT_EQ(value("OMPI_MCA_pml"), "ob1");
   EXPECT_EQ(value("OMPI_MCA_osc"), "^ucx");
   EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "1");
+  const std::filesystem::path session = value("OMPI_MCA_orte_tmpdir_base");
+  EXPECT_EQ(session.parent_path(), scratch);
+  EXPECT_EQ(session.filename().string().rfind("workbench-mpi-", 0), 0u) << session;
+  EXPECT_TRUE(std::filesystem::is_directory(session)) << session;
 
   clear();
   ::setenv("OMPI_MCA_pml", "ucx", 1);  // the user's choice stays
+  ::setenv("OMPI_MCA_orte_tmpdir_base", "/var/tmp", 1);
   fem_reference::configure_singleton_mpi();
   EXPECT_EQ(value("OMPI_MCA_pml"), "ucx");
   EXPECT_EQ(value("OMPI_MCA_osc"), "^ucx");
+  EXPECT_EQ(value("OMPI_MCA_orte_tmpdir_base"), "/var/tmp");
 
   for (const char* launcher : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"}) {  // mpirun, srun
     clear();
@@ -729,6 +739,7 @@ TEST(SingletonMpi, FastStartUpUnlessMpirunOrTheUserDecided) {
     fem_reference::configure_singleton_mpi();
     EXPECT_EQ(value("OMPI_MCA_pml"), "(unset)") << launcher;
     EXPECT_EQ(value("OMPI_MCA_ess_singleton_isolated"), "(unset)") << launcher;
+    EXPECT_EQ(value("OMPI_MCA_orte_tmpdir_base"), "(unset)") << launcher;
   }
 
   clear();

@@ -22,6 +22,10 @@ namespace fem_reference {
 /// no UCX one-sided component (both serve networks one process does not use) and no orted helper
 /// for the singleton. A variable already set is kept; under mpirun or srun nothing changes. Call it
 /// first in main(), before any thread starts (setenv is not safe beside another thread's getenv).
+/// It also gives the run's MPI session files a folder of its own, $TMPDIR/workbench-mpi-XXXXXX
+/// (unless OMPI_MCA_orte_tmpdir_base is set), removed when the process exits or is interrupted:
+/// in OpenMPI's shared /tmp/ompi.<host>.<uid> a run that finishes removes the folder another run
+/// is creating its own in, and that run's MPI_Init aborts (two studies at once; open-mpi/ompi#3818).
 void configure_singleton_mpi();
 
 /// MPI rank of this process and the number of ranks (1 without mpirun); these initialise MPI

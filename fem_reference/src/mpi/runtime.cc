@@ -4,6 +4,7 @@
 #include "runtime.h"
 
 #include <workbench/error.h>
+#include <workbench/interruption.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
@@ -16,7 +17,10 @@
 #include <chrono>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <thread>
+
+#include <unistd.h>
 
 namespace fem_reference {
 
@@ -88,6 +92,19 @@ bool started_by_launcher() {
   return false;
 }
 
+namespace {
+
+std::string session_folder;  // the folder this process made for its MPI session files, if any
+pid_t session_folder_owner = 0;
+
+void remove_session_folder() {
+  if (session_folder.empty() || ::getpid() != session_folder_owner) return;  // not a forked child's
+  std::error_code ec;
+  std::filesystem::remove_all(session_folder, ec);  // after MPI_Finalize (registered before it)
+}
+
+}  // namespace
+
 void configure_singleton_mpi() {
   if (started_by_launcher()) return;  // mpirun's or srun's settings stand
   // Measured with MPI_Init_thread alone (docs/performance.md): 0.26 s as configured by Debian,
@@ -95,6 +112,16 @@ void configure_singleton_mpi() {
   ::setenv("OMPI_MCA_pml", "ob1", 0);
   ::setenv("OMPI_MCA_osc", "^ucx", 0);
   ::setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  if (std::getenv("OMPI_MCA_orte_tmpdir_base") || !session_folder.empty()) return;
+  const char* tmp = std::getenv("TMPDIR");
+  std::string folder = std::string(tmp && *tmp ? tmp : "/tmp") + "/workbench-mpi-XXXXXX";
+  if (!::mkdtemp(folder.data())) return;  // OpenMPI's own default then, shared with other runs
+  session_folder = folder;
+  session_folder_owner = ::getpid();
+  ::setenv("OMPI_MCA_orte_tmpdir_base", folder.c_str(), 1);
+  std::atexit(remove_session_folder);
+  auto lock = workbench::hold_interruptions();
+  workbench::remove_on_interruption(folder);
 }
 
 int mpi_rank() {

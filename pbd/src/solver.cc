@@ -35,7 +35,8 @@ void Solver::substep(double h, const StepSettings& s) {
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     predict(h, s);
-    for (int it = 0; it < std::max(1, s.iterations); ++it) project(h, it == 0);
+    const int iterations = std::max(1, s.iterations);
+    for (int it = 0; it < iterations; ++it) project(h, it == 0, it + 1 == iterations);
     update_velocities(h, s);
   }
 }
@@ -66,7 +67,7 @@ void Solver::update_velocities(double h, const StepSettings& s) {
     if (P.w[i] != 0) P.v[i] = (P.x[i] - P.x_prev[i]) * (keep / h);
 }
 
-void Solver::project(double h, bool first) {
+void Solver::project(double h, bool first, bool last) {
   auto& P = model_.particles;
   Vec3* x = P.x.data();
   const double* w = P.w.data();
@@ -78,31 +79,36 @@ void Solver::project(double h, bool first) {
   const Colouring& ac = model_.angle_colouring;
   double* ld = lambda_distance_.data();
   double* la = lambda_angle_.data();
-  // The XPBD multipliers start each substep at 0: set where the first sweep meets them (in parallel,
-  // and no pass of its own over them).
+  // The XPBD multipliers start each substep at 0 and live only through its sweeps: the first sweep
+  // does not read them (a local 0 instead) and the last does not store them, so with one iteration
+  // they cost no memory traffic at all (the same arithmetic as reading a stored 0).
   auto distance = [&](long c) {
     const auto& d = D[c];
-    if (first) ld[c] = 0;
-    project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, ld[c]);
+    double l = first ? 0.0 : ld[c];
+    project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, l);
+    if (!last) ld[c] = l;
   };
   auto bend = [&](long c) {
     const auto& a = A[c];
-    if (first) la[c] = 0;
+    double l = first ? 0.0 : la[c];
     project_angle(x[a.best], x[a.k], x[a.i], w[a.best], w[a.k], w[a.i], a.rest_cos, a.rest_sin,
-                  a.compliance * inv_h2, la[c], axis);
+                  a.compliance * inv_h2, l, axis);
+    if (!last) la[c] = l;
   };
   // The arrays are in colour-major block order: one thread goes through them in order, several
   // split each colour's blocks, and as a colour's constraints share no node the results do not
-  // depend on the thread count.
+  // depend on the thread count. The split is static: a colour's blocks are in geometric order, so
+  // each thread gets the same region of the body in every colour, sweep and step, and its
+  // particles stay in its core's cache instead of moving between the cores at every colour.
   for (std::size_t col = 0; col < dc.colours(); ++col) {
     const long b = long(dc.colour_begin[col]), e = long(dc.colour_begin[col + 1]);
-#pragma omp for schedule(dynamic, 4)
+#pragma omp for schedule(static)
     for (long k = b; k < e; ++k)
       for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) distance(c);
   }
   for (std::size_t col = 0; col < ac.colours(); ++col) {
     const long b = long(ac.colour_begin[col]), e = long(ac.colour_begin[col + 1]);
-#pragma omp for schedule(dynamic, 4)
+#pragma omp for schedule(static)
     for (long k = b; k < e; ++k)
       for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) bend(c);
   }

@@ -58,8 +58,9 @@ class Solver {
  private:
   // The parts of a substep, each run by every thread of the substep's parallel region (or by one).
   void predict(double h, const StepSettings& settings);
-  /// One Gauss-Seidel sweep; `first`: the substep's first, which starts the multipliers at 0.
-  void project(double h, bool first);
+  /// One Gauss-Seidel sweep; `first`: the substep's first, which starts the multipliers at 0;
+  /// `last`: the substep's last, after which the multipliers are not needed.
+  void project(double h, bool first, bool last);
   void update_velocities(double h, const StepSettings& settings);
   Model& model_;
   std::vector<double> lambda_distance_, lambda_angle_;

@@ -56,14 +56,22 @@ class Solver {
   static bool parallel_available();
 
  private:
-  // The parts of a substep, each run by every thread of the substep's parallel region (or by one).
-  void predict(double h, const StepSettings& settings);
+  // The parts of a substep, each run by every thread t of the substep's team (or by one); each
+  // ends with a barrier.
+  void predict(double h, const StepSettings& settings, int t, int team);
   /// One Gauss-Seidel sweep; `first`: the substep's first, which starts the multipliers at 0;
   /// `last`: the substep's last, after which the multipliers are not needed.
-  void project(double h, bool first, bool last);
-  void update_velocities(double h, const StepSettings& settings);
+  void project(double h, bool first, bool last, int t, int team);
+  void update_velocities(double h, const StepSettings& settings, int t, int team);
+  /// Splits the particles among `threads` threads by the constraints each thread projects.
+  void own_particles(int threads);
   Model& model_;
   std::vector<double> lambda_distance_, lambda_angle_;
+  /// The particles of thread t: owned_[owned_begin_[t] .. owned_begin_[t + 1]), made for a team of
+  /// owned_threads_ (0: not made yet).
+  std::vector<int> owned_;
+  std::vector<std::size_t> owned_begin_;
+  int owned_threads_ = 0;
 };
 
 }  // namespace pbd

@@ -48,6 +48,11 @@ std::pair<long, long> share(long b, long e, int t, int threads) {
 void Solver::substep(double h, const StepSettings& s) {
   const int threads = std::max(1, s.threads);
   if (threads > 1 && owned_threads_ != threads) own_particles(threads);
+  if (threads > claim_threads_) {
+    claims_.reset(new Claim[2 * std::size_t(threads)]);
+    claim_threads_ = threads;
+  }
+  const int iterations = std::max(1, s.iterations);
   // One parallel region for the whole substep (prediction, sweeps, velocities): threads are woken
   // once, and the only waits are the barriers between colours.
 #pragma omp parallel num_threads(threads) if (threads > 1)
@@ -59,8 +64,9 @@ void Solver::substep(double h, const StepSettings& s) {
 #endif
     const int t = thread_id();
     predict(h, s, t, team);
-    const int iterations = std::max(1, s.iterations);
-    for (int it = 0; it < iterations; ++it) project(h, it == 0, it + 1 == iterations, t, team);
+    if (team > 1) arm(0, t, team);
+#pragma omp barrier
+    for (int it = 0; it < iterations; ++it) project(h, it, iterations, t, team);
     update_velocities(h, s, t, team);
   }
 }
@@ -130,7 +136,6 @@ void Solver::predict(double h, const StepSettings& s, int t, int team) {
     P.v[i] += h * (s.gravity + P.w[i] * s.node_force);
     P.x[i] += h * P.v[i];
   });
-#pragma omp barrier
 }
 
 void Solver::update_velocities(double h, const StepSettings& s, int t, int team) {
@@ -140,10 +145,46 @@ void Solver::update_velocities(double h, const StepSettings& s, int t, int team)
   for_own_particles(P.size(), owned_, owned_begin_, owned_threads_, t, team, [&](std::size_t i) {
     if (P.w[i] != 0) P.v[i] = (P.x[i] - P.x_prev[i]) * (keep / h);
   });
-#pragma omp barrier
 }
 
-void Solver::project(double h, bool first, bool last, int t, int team) {
+namespace {
+constexpr std::uint64_t pack(long front, long back) { return std::uint64_t(front) | std::uint64_t(back) << 32; }
+}  // namespace
+
+// A colour's blocks are split among the threads by share(): contiguous and in geometric order, so
+// each thread gets the same region of the body in every colour, sweep and step, and its particles
+// stay in its core's cache (a dynamic schedule moved them between the cores at every colour: 2
+// threads were 1.3-1.5x faster than 1). Each thread's share is a claim [front, back): the thread
+// takes its blocks from the front and, when done, the other threads' last blocks from their backs,
+// so a thread that the system deschedules for a while holds up the colour by at most a block.
+// Phase g (colour g % colours of a sweep) uses the claims of parity g % 2: a thread arms its claim
+// for phase g + 1 before the barrier that ends phase g, while the others may still be taking
+// from phase g's.
+void Solver::arm(long g, int t, int team) {
+  const Colouring& dc = model_.distance_colouring;
+  const Colouring& ac = model_.angle_colouring;
+  const long colours = long(dc.colours() + ac.colours());
+  if (colours == 0) return;
+  const long q = g % colours;
+  const Colouring& C = q < long(dc.colours()) ? dc : ac;
+  const long col = q < long(dc.colours()) ? q : q - long(dc.colours());
+  const auto [lo, hi] = share(long(C.colour_begin[col]), long(C.colour_begin[col + 1]), t, team);
+  claims_[std::size_t(g % 2) * team + t].range.store(pack(lo, hi), std::memory_order_release);
+}
+
+long Solver::take(long g, int owner, int team, bool from_front) {
+  auto& range = claims_[std::size_t(g % 2) * team + owner].range;
+  std::uint64_t r = range.load(std::memory_order_acquire);
+  for (;;) {
+    const long front = long(r & 0xffffffffu), back = long(r >> 32);
+    if (front >= back) return -1;
+    const std::uint64_t next = from_front ? pack(front + 1, back) : pack(front, back - 1);
+    if (range.compare_exchange_weak(r, next, std::memory_order_acq_rel, std::memory_order_acquire))
+      return from_front ? front : back - 1;
+  }
+}
+
+void Solver::project(double h, int it, int iterations, int t, int team) {
   auto& P = model_.particles;
   Vec3* x = P.x.data();
   const double* w = P.w.data();
@@ -155,41 +196,45 @@ void Solver::project(double h, bool first, bool last, int t, int team) {
   const Colouring& ac = model_.angle_colouring;
   double* ld = lambda_distance_.data();
   double* la = lambda_angle_.data();
+  const bool first = it == 0, last = it + 1 == iterations;
   // The XPBD multipliers start each substep at 0 and live only through its sweeps: the first sweep
   // does not read them (a local 0 instead) and the last does not store them, so with one iteration
   // they cost no memory traffic at all (the same arithmetic as reading a stored 0).
-  auto distance = [&](long c) {
-    const auto& d = D[c];
-    double l = first ? 0.0 : ld[c];
-    project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, l);
-    if (!last) ld[c] = l;
+  auto distances = [&](long k) {
+    for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) {
+      const auto& d = D[c];
+      double l = first ? 0.0 : ld[c];
+      project_distance(x[d.a], x[d.b], w[d.a], w[d.b], d.rest, d.compliance * inv_h2, l);
+      if (!last) ld[c] = l;
+    }
   };
-  auto bend = [&](long c) {
-    const auto& a = A[c];
-    double l = first ? 0.0 : la[c];
-    project_angle(x[a.best], x[a.k], x[a.i], w[a.best], w[a.k], w[a.i], a.rest_cos, a.rest_sin,
-                  a.compliance * inv_h2, l, axis);
-    if (!last) la[c] = l;
+  auto bends = [&](long k) {
+    for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) {
+      const auto& a = A[c];
+      double l = first ? 0.0 : la[c];
+      project_angle(x[a.best], x[a.k], x[a.i], w[a.best], w[a.k], w[a.i], a.rest_cos, a.rest_sin,
+                    a.compliance * inv_h2, l, axis);
+      if (!last) la[c] = l;
+    }
   };
   // The arrays are in colour-major block order: one thread goes through them in order, several
-  // split each colour's blocks, and as a colour's constraints share no node the results do not
-  // depend on the thread count. The split is static and contiguous: a colour's blocks are in
-  // geometric order, so each thread gets the same region of the body in every colour, sweep and
-  // step, and its particles stay in its core's cache instead of moving between the cores at every
-  // colour (with a dynamic schedule 2 threads were 1.3-1.5x faster than 1, the thread CPU time
-  // per colour as large as one thread's).
-  for (std::size_t col = 0; col < dc.colours(); ++col) {
-    const auto [lo, hi] = share(long(dc.colour_begin[col]), long(dc.colour_begin[col + 1]), t, team);
-    for (long k = lo; k < hi; ++k)
-      for (long c = long(dc.block_begin[k]); c < long(dc.block_begin[k + 1]); ++c) distance(c);
+  // split each colour's blocks (see arm()), and as a colour's constraints share no node the results
+  // do not depend on the thread count nor on which thread projects which block.
+  const long colours = long(dc.colours() + ac.colours());
+  auto colour = [&](const Colouring& C, long col, long g, auto blocks) {
+    if (team == 1) {
+      for (long k = long(C.colour_begin[col]); k < long(C.colour_begin[col + 1]); ++k) blocks(k);
+      return;
+    }
+    for (long k; (k = take(g, t, team, true)) >= 0;) blocks(k);
+    for (int u = 1; u < team; ++u)
+      for (long k; (k = take(g, (t + u) % team, team, false)) >= 0;) blocks(k);
+    if (!(last && g % colours == colours - 1)) arm(g + 1, t, team);
 #pragma omp barrier
-  }
-  for (std::size_t col = 0; col < ac.colours(); ++col) {
-    const auto [lo, hi] = share(long(ac.colour_begin[col]), long(ac.colour_begin[col + 1]), t, team);
-    for (long k = lo; k < hi; ++k)
-      for (long c = long(ac.block_begin[k]); c < long(ac.block_begin[k + 1]); ++c) bend(c);
-#pragma omp barrier
-  }
+  };
+  const long g0 = long(it) * colours;
+  for (long col = 0; col < long(dc.colours()); ++col) colour(dc, col, g0 + col, distances);
+  for (long col = 0; col < long(ac.colours()); ++col) colour(ac, col, g0 + long(dc.colours()) + col, bends);
 }
 
 Residuals Solver::residuals() const {

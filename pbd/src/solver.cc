@@ -47,7 +47,7 @@ std::pair<long, long> share(long b, long e, int t, int threads) {
 
 void Solver::substep(double h, const StepSettings& s) {
   const int threads = std::max(1, s.threads);
-  if (threads > 1 && owned_threads_ != threads) own_particles(threads);
+  if (threads > 1 && (owned_threads_ != threads || owned_.size() != model_.particles.size())) own_particles(threads);
   if (threads > claim_threads_) {
     claims_.reset(new Claim[2 * std::size_t(threads)]);
     claim_threads_ = threads;

@@ -74,7 +74,8 @@ class Solver {
   Model& model_;
   std::vector<double> lambda_distance_, lambda_angle_;
   /// The particles of thread t: owned_[owned_begin_[t] .. owned_begin_[t + 1]), made for a team of
-  /// owned_threads_ (0: not made yet).
+  /// owned_threads_ (0: not made yet) and remade when the particle count changes (the split only
+  /// places work; any split of all the particles gives the same results).
   std::vector<int> owned_;
   std::vector<std::size_t> owned_begin_;
   int owned_threads_ = 0;

@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 #ifdef _OPENMP
 #include <omp.h>

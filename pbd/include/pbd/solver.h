@@ -6,6 +6,9 @@
 // threads > 1), v = (x - x_prev) / h, damping v *= exp(-damping h).
 #include <pbd/model.h>
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace pbd {
@@ -56,13 +59,32 @@ class Solver {
   static bool parallel_available();
 
  private:
-  // The parts of a substep, each run by every thread of the substep's parallel region (or by one).
-  void predict(double h, const StepSettings& settings);
-  /// One Gauss-Seidel sweep; `first`: the substep's first, which starts the multipliers at 0.
-  void project(double h, bool first);
-  void update_velocities(double h, const StepSettings& settings);
+  // The parts of a substep, each run by every thread t of the substep's team (or by one).
+  void predict(double h, const StepSettings& settings, int t, int team);
+  /// Sweep `it` of `iterations` (Gauss-Seidel): the first starts the multipliers at 0, after the
+  /// last they are not needed.
+  void project(double h, int it, int iterations, int t, int team);
+  void update_velocities(double h, const StepSettings& settings, int t, int team);
+  /// Sets thread t's claim on the blocks of phase g (colour g of the sweeps, counted on through the
+  /// substep's sweeps), and takes a block from `owner`'s claim (-1: none left).
+  void arm(long g, int t, int team);
+  long take(long g, int owner, int team, bool from_front);
+  /// Splits the particles among `threads` threads by the constraints each thread projects.
+  void own_particles(int threads);
   Model& model_;
   std::vector<double> lambda_distance_, lambda_angle_;
+  /// The particles of thread t: owned_[owned_begin_[t] .. owned_begin_[t + 1]), made for a team of
+  /// owned_threads_ (0: not made yet) and remade when the particle count changes (the split only
+  /// places work; any split of all the particles gives the same results).
+  std::vector<int> owned_;
+  std::vector<std::size_t> owned_begin_;
+  int owned_threads_ = 0;
+  /// The blocks of a phase not yet taken, per parity and thread: front | back << 32.
+  struct alignas(64) Claim {
+    std::atomic<std::uint64_t> range{0};
+  };
+  std::unique_ptr<Claim[]> claims_;
+  int claim_threads_ = 0;
 };
 
 }  // namespace pbd

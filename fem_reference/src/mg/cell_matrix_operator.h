@@ -50,9 +50,13 @@ class CellMatrixOperator : public Subscriptor {
     IndexSet relevant;
     DoFTools::extract_locally_relevant_level_dofs(dof, level, relevant);
     build_cells(mapping, dof, dof.locally_owned_mg_dofs(level), relevant, mg_constrained.get_boundary_indices(level),
-                dof.mg_cell_iterators_on_level(level), lambda, mu, [](const auto& cell, auto& dofs) {
+                dof.mg_cell_iterators_on_level(level), lambda, mu, [level](const auto& cell, auto& dofs, bool vertices) {
                   if (!cell->is_locally_owned_on_level()) return false;
-                  cell->get_mg_dof_indices(dofs);
+                  if (vertices)  // Q1: the DoFs are the vertices' (3D get_mg_dof_indices walks lines and faces too)
+                    for (unsigned v = 0, i = 0; v < cell->n_vertices(); ++v)
+                      for (int c = 0; c < dim; ++c, ++i) dofs[i] = cell->mg_vertex_dof_index(int(level), v, unsigned(c));
+                  else
+                    cell->get_mg_dof_indices(dofs);
                   return true;
                 });
   }
@@ -64,9 +68,13 @@ class CellMatrixOperator : public Subscriptor {
     IndexSet relevant;
     DoFTools::extract_locally_relevant_dofs(dof, relevant);
     build_cells(mapping, dof, dof.locally_owned_dofs(), relevant, constrained, dof.active_cell_iterators(), lambda, mu,
-                [](const auto& cell, auto& dofs) {
+                [](const auto& cell, auto& dofs, bool vertices) {
                   if (!cell->is_locally_owned()) return false;
-                  cell->get_dof_indices(dofs);
+                  if (vertices)
+                    for (unsigned v = 0, i = 0; v < cell->n_vertices(); ++v)
+                      for (int c = 0; c < dim; ++c, ++i) dofs[i] = cell->vertex_dof_index(v, unsigned(c));
+                  else
+                    cell->get_dof_indices(dofs);
                   return true;
                 });
   }
@@ -111,6 +119,11 @@ class CellMatrixOperator : public Subscriptor {
   static constexpr unsigned kLanes = 32 / sizeof(Number);
   static constexpr unsigned padded(unsigned n) { return (n + kLanes - 1) / kLanes * kLanes; }
 
+  static bool owned_cell(const typename DoFHandler<dim>::level_cell_iterator& cell) {
+    return cell->is_locally_owned_on_level();
+  }
+  static bool owned_cell(const typename DoFHandler<dim>::active_cell_iterator& cell) { return cell->is_locally_owned(); }
+
   template <typename Cells, typename CellDofs>
   void build_cells(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const IndexSet& owned,
                    const IndexSet& relevant, const IndexSet& constrained, const Cells& cells, double lambda, double mu,
@@ -130,26 +143,57 @@ class CellMatrixOperator : public Subscriptor {
     for (unsigned i = 0; i < n_; ++i) comp[i] = fe.system_to_component_index(i).first;
     const double quanta = std::is_same_v<Number, float> ? 4194304.0 : 1099511627776.0;  // 2^22, 2^40
     std::map<std::vector<long long>, unsigned> shapes;  // shape (vertices - vertex 0) and constrained pattern
-    std::vector<long long> key;
+    std::vector<long long> key, last_key;
+    unsigned last_shape = 0;
     std::vector<Tensor<1, dim>> grads(n_);
     std::vector<unsigned> local(n_);
+    // Q1 (the DoFs those of the vertices, vertex by vertex, component by component): the indices
+    // read per vertex, checked against get_(mg_)dof_indices on the first cell.
+    bool vertices = fe.n_dofs_per_cell() == fe.n_dofs_per_vertex() * GeometryInfo<dim>::vertices_per_cell &&
+                    fe.n_dofs_per_vertex() == unsigned(dim);
+    bool checked = !vertices;
+    std::vector<types::global_dof_index> check(n_);
+    Point<dim> vertex[GeometryInfo<dim>::vertices_per_cell];
+    // Sized once: grown by doubling, the stores into fresh pages and the copies were half of this loop.
+    std::size_t n_cells = 0;
+    for (const auto& cell : cells) n_cells += owned_cell(cell);
+    cell_dofs_.reserve(n_cells * n_);
+    cell_matrix_.reserve(n_cells);
     for (const auto& cell : cells) {
-      if (!cell_dofs(cell, dofs)) continue;
+      if (!cell_dofs(cell, dofs, vertices)) continue;
+      if (!checked) {
+        cell_dofs(cell, check, false);
+        vertices = check == dofs;
+        dofs = check;
+        checked = true;
+      }
+      const unsigned n_vertices = cell->n_vertices();
+      for (unsigned v = 0; v < n_vertices; ++v) vertex[v] = cell->vertex(v);
       double scale = 0;
-      for (unsigned v = 1; v < cell->n_vertices(); ++v)
-        for (int a = 0; a < dim; ++a) scale = std::max(scale, std::abs(cell->vertex(v)[a] - cell->vertex(0)[a]));
+      for (unsigned v = 1; v < n_vertices; ++v)
+        for (int a = 0; a < dim; ++a) scale = std::max(scale, std::abs(vertex[v][a] - vertex[0][a]));
       int exponent = 0;
       const double mantissa = std::frexp(scale, &exponent);
       key.assign({exponent, std::llround(mantissa * quanta)});
-      for (unsigned v = 1; v < cell->n_vertices(); ++v)
-        for (int a = 0; a < dim; ++a) key.push_back(std::llround((cell->vertex(v)[a] - cell->vertex(0)[a]) / scale * quanta));
+      for (unsigned v = 1; v < n_vertices; ++v)
+        for (int a = 0; a < dim; ++a) key.push_back(std::llround((vertex[v][a] - vertex[0][a]) / scale * quanta));
       for (unsigned i = 0; i < n_; ++i) {
         local[i] = partitioner_->global_to_local(dofs[i]);
         key.push_back(is_constrained[local[i]]);
         cell_dofs_.push_back(local[i]);
       }
-      auto [it, added] = shapes.emplace(key, unsigned(shapes.size()));
+      // Neighbouring cells mostly share a shape: the last one's first, then the map (no node made
+      // unless the shape is new).
+      if (!last_key.empty() && key == last_key) {
+        cell_matrix_.push_back(last_shape);
+        continue;
+      }
+      auto it = shapes.find(key);
+      const bool added = it == shapes.end();
+      if (added) it = shapes.emplace(key, unsigned(shapes.size())).first;
       cell_matrix_.push_back(it->second);
+      last_key = key;
+      last_shape = it->second;
       if (!added) continue;
       fe_values.reinit(cell);
       std::vector<double> m(std::size_t(n_) * stride_, 0.0);

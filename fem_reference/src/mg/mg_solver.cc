@@ -7,6 +7,7 @@
 
 #include "amg/amg.h"
 #include "elasticity.h"
+#include "mpi/runtime.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -434,6 +435,19 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     smoother_data[level].preconditioner = levels[level].inverse_diagonal();
   }
   smoother.initialize(levels, smoother_data);
+  // The finest level's eigenvalue bound is the next coarser one's (the Lanczos estimate times 1.2,
+  // computed here rather than in the first V-cycle): the largest eigenvalue of diag(K)^-1 K belongs to
+  // the element-scale modes, the same on every level of a uniform refinement, and its 12 CG steps on
+  // the finest level cost as much as a V-cycle's smoothing there.
+  if (n_levels > 2) {
+    LevelVector v;
+    levels[n_levels - 2].initialize_dof_vector(v);
+    v = 1.;
+    const auto info = smoother[n_levels - 2].estimate_eigenvalues(v);
+    smoother_data[n_levels - 1].eig_cg_n_iterations = 0;
+    smoother_data[n_levels - 1].max_eigenvalue = info.max_eigenvalue_estimate;
+    smoother[n_levels - 1].initialize(levels[n_levels - 1], smoother_data[n_levels - 1]);
+  }
   profile("coarse solver");
   std::string coarse_name;
   std::unique_ptr<CoarseLevel> coarse_level;
@@ -511,6 +525,7 @@ MgOutcome solve_mg(const Mapping<dim>& mapping, DoFHandler<dim>& dof, const Affi
                    const MgBoundaries& boundaries, const TrilinosWrappers::MPI::Vector& rhs,
                    TrilinosWrappers::MPI::Vector& solution, const MgSettings& s,
                    const std::function<void(const char*)>& profile, TrilinosWrappers::MPI::Vector* coarser) {
+  huge_page_heap();
   if (dof.get_fe().degree == 1)
     return solve_mg_degree<dim, 1>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);
   return solve_mg_degree<dim, 2>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);

@@ -10,11 +10,19 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <mpi.h>
+
+#if defined(__linux__) && defined(__GLIBC__)
+#include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 #include <p4est_base.h>
 #include <sc.h>
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -47,9 +55,40 @@ void finalize_mpi() {
 
 }  // namespace
 
+/// Transparent huge pages for what the FEM allocates (Linux with glibc; the kernel's THP mode is
+/// usually "madvise", so malloc's memory gets 4 KiB pages): the heap is grown once by a 1 GiB pad
+/// (address space, not memory: only touched pages are backed) and marked MADV_HUGEPAGE, and blocks
+/// up to 32 MiB come from it instead of their own mmap. The mesh, the DoF tables, the multigrid's
+/// vectors, element indices and transfer arrays are then touched in 2 MiB pages: on the 1e6-DoF
+/// problems their page faults and TLB misses were a fifth to a third of the solve's CPU time
+/// (GLIBC_TUNABLES=glibc.malloc.hugetlb=1 measured the same). The heap is no longer trimmed (freed
+/// memory stays with the process, below 2 GiB of free top). Once per process; a no-op elsewhere.
+void huge_page_heap() {
+#if defined(__linux__) && defined(__GLIBC__)
+  static bool done = false;
+  if (done) return;
+  done = true;
+  constexpr std::size_t pad = std::size_t(1) << 30, huge = std::size_t(2) << 20;
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // the largest glibc allows
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);    // the pad is not given back (a trim would drop the advice)
+  mallopt(M_TOP_PAD, int(pad));
+  char* const start = static_cast<char*>(sbrk(0));
+  if (start == reinterpret_cast<char*>(-1)) return;
+  void* volatile block = std::malloc(16 << 20);  // below the mmap threshold: grows the heap by it plus
+  std::free(block);                              // the pad (volatile: a malloc/free pair may be elided)
+  char* const end = static_cast<char*>(sbrk(0));
+  mallopt(M_TOP_PAD, 0);
+  const auto first = (reinterpret_cast<std::uintptr_t>(start) + huge - 1) / huge * huge;
+  const auto last = reinterpret_cast<std::uintptr_t>(end) / huge * huge;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
+}
+
+
 void ensure_mpi() {
   deal_II_exceptions::disable_abort_on_exception();
   deal_II_exceptions::suppress_stacktrace_in_exceptions();
+  huge_page_heap();
   int init = 0;
   MPI_Initialized(&init);
   if (init) return;

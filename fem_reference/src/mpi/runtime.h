@@ -11,4 +11,8 @@ namespace fem_reference {
 /// builds the problem.
 void ensure_mpi();
 
+/// Transparent huge pages for the FEM's allocations (Linux with glibc; runtime.cc says how and why):
+/// ensure_mpi and solve_mg call it; once per process.
+void huge_page_heap();
+
 }  // namespace fem_reference

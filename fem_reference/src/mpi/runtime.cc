@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <mutex>
 #include <thread>
 
 #include <unistd.h>
@@ -65,25 +66,24 @@ void finalize_mpi() {
 /// memory stays with the process, below 2 GiB of free top). Once per process; a no-op elsewhere.
 void huge_page_heap() {
 #if defined(__linux__) && defined(__GLIBC__)
-  static bool done = false;
-  if (done) return;
-  done = true;
-  constexpr std::size_t pad = std::size_t(1) << 30, huge = std::size_t(2) << 20;
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // the largest glibc allows
-  mallopt(M_TRIM_THRESHOLD, INT_MAX);    // the pad is not given back (a trim would drop the advice)
-  mallopt(M_TOP_PAD, int(pad));
-  char* const start = static_cast<char*>(sbrk(0));
-  if (start == reinterpret_cast<char*>(-1)) return;
-  void* volatile block = std::malloc(16 << 20);  // below the mmap threshold: grows the heap by it plus
-  std::free(block);                              // the pad (volatile: a malloc/free pair may be elided)
-  char* const end = static_cast<char*>(sbrk(0));
-  mallopt(M_TOP_PAD, 0);
-  const auto first = (reinterpret_cast<std::uintptr_t>(start) + huge - 1) / huge * huge;
-  const auto last = reinterpret_cast<std::uintptr_t>(end) / huge * huge;
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  static std::once_flag once;  // the comparison starts the FEM beside the agent model's thread
+  std::call_once(once, [] {
+    constexpr std::size_t pad = std::size_t(1) << 30, huge = std::size_t(2) << 20;
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);  // the largest glibc allows
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);    // the pad is not given back (a trim would drop the advice)
+    mallopt(M_TOP_PAD, int(pad));
+    char* const start = static_cast<char*>(sbrk(0));
+    if (start == reinterpret_cast<char*>(-1)) return;
+    void* volatile block = std::malloc(16 << 20);  // below the mmap threshold: grows the heap by it plus
+    std::free(block);                              // the pad (volatile: a malloc/free pair may be elided)
+    char* const end = static_cast<char*>(sbrk(0));
+    mallopt(M_TOP_PAD, 0);
+    const auto first = (reinterpret_cast<std::uintptr_t>(start) + huge - 1) / huge * huge;
+    const auto last = reinterpret_cast<std::uintptr_t>(end) / huge * huge;
+    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  });
 #endif
 }
-
 
 void ensure_mpi() {
   deal_II_exceptions::disable_abort_on_exception();

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 using namespace agent;
 
 TEST(AgentFields, StressIsMeanFaceForceOverAreaCompressionNegative) {
@@ -57,44 +59,60 @@ TEST(AgentFields, UniformStrainIntegratesToLinearDisplacementFromTheDatum) {
   }
 }
 
+namespace {
+
+/// The march (node_displacements_marched) on a block of 6 x 5 (x 4) agents of 0.5 x 0.25 (x 2) m with
+/// its rigid base at y = 0, loaded down at agent (1, 4, 1): each agent's strain is strain(its
+/// centre), its shear tau_xy (and tau_yz in 3D) the given constants; every node's displacement
+/// must be expected(the node).
+void check_march(int dim, const Material& m, const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& strain,
+                 double tau_xy, double tau_yz,
+                 const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& expected) {
+  const std::array<int, 3> n{6, 5, 4};
+  const Eigen::Vector3d h(0.5, 0.25, 2.0);
+  Grid g = Grid::box(dim, n, h);
+  g.set_boundary(g.box_side(2), Boundary::Rigid);
+  const int shears = dim == 3 ? 3 : 1;
+  std::vector<double> eps(g.count() * 3), shear(g.count() * shears, 0.0);
+  for (int k = 0; k < (dim == 3 ? n[2] : 1); ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const std::size_t c = g.index(i, j, k);
+        const Eigen::Vector3d e = strain(Eigen::Vector3d(i + 0.5, j + 0.5, dim == 3 ? k + 0.5 : 0.0).cwiseProduct(h));
+        for (int a = 0; a < 3; ++a) eps[3 * c + a] = e[a];
+        shear[c * shears + shear_pair(0, 1)] = tau_xy;
+        if (dim == 3) shear[c * shears + shear_pair(1, 2)] = tau_yz;
+      }
+  const std::vector<EntryLoad> loads{{g.index(1, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
+  const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
+  const auto nn = g.node_counts();
+  for (int k = 0; k < nn[2]; ++k)
+    for (int j = 0; j < nn[1]; ++j)
+      for (int i = 0; i < nn[0]; ++i) {
+        const std::size_t node = g.node_index(i, j, k);
+        const Eigen::Vector3d want = expected(Eigen::Vector3d(i, j, k).cwiseProduct(h));
+        for (int a = 0; a < dim; ++a)
+          EXPECT_NEAR(u[node * dim + a], want[a], 1e-15) << dim << "D, u_" << "xyz"[a] << " at node " << i << j << k;
+      }
+}
+
+}  // namespace
+
 TEST(AgentFields, TheMarchAcrossGivesLinearFieldsTheirClosedForms) {
-  // The march (node_displacements_marched) on a block with its rigid base at y = 0, in 2D and 3D:
-  // a uniform strain and a uniform shear strain gamma (tau = G gamma in the pairs with y) give
+  // A uniform strain and a uniform shear strain gamma (tau = G gamma in the pairs with y) give
   //   u_y = eps_y y (up the columns from the base),
   //   u_l = eps_l (x_l - the line's centre) + gamma y  (l = x, and z in 3D: the line's constant the
   //         mean of the columns' marches du_l/dy = gamma - du_y/dx_l = gamma),
-  // whatever the load's position: the march reads no datum across.
+  // whatever the load's position: the march reads no datum across. The lines' centres: x = 1.5 m,
+  // z = 4 m; tau_yz = -G gamma / 2.
   const Material m{200e9, 0.25};
   const double G = m.young / (2 * (1 + m.poisson)), gamma = 4e-4;
-  for (int dim : {2, 3}) {
-    const std::array<int, 3> n{6, 5, 4};
-    const Eigen::Vector3d h(0.5, 0.25, 2.0);
-    Grid g = Grid::box(dim, n, h);
-    g.set_boundary(g.box_side(2), Boundary::Rigid);
-    const int shears = dim == 3 ? 3 : 1;
-    std::vector<double> eps(g.count() * 3), shear(g.count() * shears, 0.0);
-    for (std::size_t c = 0; c < g.count(); ++c) {
-      eps[3 * c] = 1e-3;
-      eps[3 * c + 1] = -2e-3;
-      eps[3 * c + 2] = 3e-3;
-      shear[c * shears + shear_pair(0, 1)] = G * gamma;        // tau_xy
-      if (dim == 3) shear[c * shears + shear_pair(1, 2)] = -0.5 * G * gamma;  // tau_yz
-    }
-    const std::vector<EntryLoad> loads{{g.index(1, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
-    const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
-    const auto nn = g.node_counts();
-    for (int k = 0; k < nn[2]; ++k)
-      for (int j = 0; j < nn[1]; ++j)
-        for (int i = 0; i < nn[0]; ++i) {
-          const std::size_t node = g.node_index(i, j, k);
-          const double y = j * h[1];
-          EXPECT_NEAR(u[node * dim + 0], 1e-3 * (i - 3) * h[0] + gamma * y, 1e-15) << dim << ": " << i << j << k;
-          EXPECT_NEAR(u[node * dim + 1], -2e-3 * y, 1e-15);
-          if (dim == 3) {
-            EXPECT_NEAR(u[node * dim + 2], 3e-3 * (k - 2) * h[2] - 0.5 * gamma * y, 1e-15) << i << j << k;
-          }
-        }
-  }
+  for (int dim : {2, 3})
+    check_march(
+        dim, m, [](const Eigen::Vector3d&) { return Eigen::Vector3d(1e-3, -2e-3, 3e-3); }, G * gamma, -0.5 * G * gamma,
+        [&](const Eigen::Vector3d& p) {
+          return Eigen::Vector3d(1e-3 * (p.x() - 1.5) + gamma * p.y(), -2e-3 * p.y(), 3e-3 * (p.z() - 4) - 0.5 * gamma * p.y());
+        });
 }
 
 TEST(AgentFields, TheMarchGivesABendingFieldItsClosedFormOnTheSidesToo) {
@@ -105,29 +123,13 @@ TEST(AgentFields, TheMarchGivesABendingFieldItsClosedFormOnTheSidesToo) {
   // (its value half an agent inside) would be off there by c h_x / 2 y, halve du_y/dx in the side
   // columns, and leave u_x off by a rotation on every line across.
   const Material m{200e9, 0.25};
-  const double c = 3e-3, d = -2e-3;
+  const double c = 3e-3;
   for (int dim : {2, 3}) {
-    const std::array<int, 3> n{6, 5, 4};
-    const Eigen::Vector3d h(0.5, 0.25, 2.0);
-    Grid g = Grid::box(dim, n, h);
-    g.set_boundary(g.box_side(2), Boundary::Rigid);
-    const int shears = dim == 3 ? 3 : 1;
-    std::vector<double> eps(g.count() * 3, 0.0), shear(g.count() * shears, 0.0);
-    for (int k = 0; k < (dim == 3 ? n[2] : 1); ++k)
-      for (int j = 0; j < n[1]; ++j)
-        for (int i = 0; i < n[0]; ++i)
-          eps[3 * g.index(i, j, k) + 1] = c * (i + 0.5) * h[0] + (dim == 3 ? d * (k + 0.5) * h[2] : 0.0);
-    const std::vector<EntryLoad> loads{{g.index(1, 4, dim == 3 ? 1 : 0), direction(1, false), 1.0}};
-    const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
-    const auto nn = g.node_counts();
-    for (int k = 0; k < nn[2]; ++k)
-      for (int j = 0; j < nn[1]; ++j)
-        for (int i = 0; i < nn[0]; ++i) {
-          const std::size_t node = g.node_index(i, j, k);
-          const double x = i * h[0], y = j * h[1], z = dim == 3 ? k * h[2] : 0.0;
-          EXPECT_NEAR(u[node * dim + 1], (c * x + (dim == 3 ? d * z : 0.0)) * y, 1e-15) << dim << ": " << i << j << k;
-          EXPECT_NEAR(u[node * dim + 0], -c * y * y / 2, 1e-15) << dim << ": " << i << j << k;
-          if (dim == 3) EXPECT_NEAR(u[node * dim + 2], -d * y * y / 2, 1e-15) << i << j << k;
-        }
+    const double d = dim == 3 ? -2e-3 : 0.0;
+    check_march(
+        dim, m, [&](const Eigen::Vector3d& p) { return Eigen::Vector3d(0, c * p.x() + d * p.z(), 0); }, 0, 0,
+        [&](const Eigen::Vector3d& p) {
+          return Eigen::Vector3d(-c * p.y() * p.y() / 2, (c * p.x() + d * p.z()) * p.y(), -d * p.y() * p.y() / 2);
+        });
   }
 }

@@ -1,6 +1,7 @@
-// The FEM reference's MPI runtime (fem_reference/mpi.h): start-up, the singleton's settings and the
-// collectives by which the ranks agree. Plain MPI calls rather than deal.II's Utilities::MPI, so
-// that this translation unit stays light (of deal.II only the exception and thread settings).
+// The FEM reference's MPI runtime (fem_reference/mpi.h): start-up (MPI, and the heap in huge
+// pages), the singleton's settings and session folder, and the collectives by which the ranks
+// agree. Plain MPI calls rather than deal.II's Utilities::MPI, so that this translation unit stays
+// light (of deal.II only the exception and thread settings).
 #include "runtime.h"
 
 #include <workbench/error.h>
@@ -10,12 +11,6 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <mpi.h>
-
-#if defined(__linux__) && defined(__GLIBC__)
-#include <malloc.h>
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
 #include <p4est_base.h>
 #include <sc.h>
 
@@ -30,6 +25,10 @@
 #include <thread>
 
 #include <unistd.h>
+#if defined(__linux__) && defined(__GLIBC__)
+#include <malloc.h>
+#include <sys/mman.h>
+#endif
 
 namespace fem_reference {
 

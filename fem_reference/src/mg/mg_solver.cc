@@ -7,7 +7,6 @@
 
 #include "amg/amg.h"
 #include "elasticity.h"
-#include "mpi/runtime.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -525,7 +524,6 @@ MgOutcome solve_mg(const Mapping<dim>& mapping, DoFHandler<dim>& dof, const Affi
                    const MgBoundaries& boundaries, const TrilinosWrappers::MPI::Vector& rhs,
                    TrilinosWrappers::MPI::Vector& solution, const MgSettings& s,
                    const std::function<void(const char*)>& profile, TrilinosWrappers::MPI::Vector* coarser) {
-  huge_page_heap();
   if (dof.get_fe().degree == 1)
     return solve_mg_degree<dim, 1>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);
   return solve_mg_degree<dim, 2>(mapping, dof, constraints, boundaries, rhs, solution, s, profile, coarser);

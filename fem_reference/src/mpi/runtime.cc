@@ -151,9 +151,13 @@ void configure_singleton_mpi() {
   ::setenv("OMPI_MCA_osc", "^ucx", 0);
   ::setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   if (std::getenv("OMPI_MCA_orte_tmpdir_base") || !session_folder.empty()) return;
-  const char* tmp = std::getenv("TMPDIR");
-  std::string folder = std::string(tmp && *tmp ? tmp : "/tmp") + "/workbench-mpi-XXXXXX";
-  if (!::mkdtemp(folder.data())) return;  // OpenMPI's own default then, shared with other runs
+  // Absolute: a later change of the working directory (a notebook's os.chdir) must not move the
+  // folder removed at exit onto another one.
+  std::error_code ec;
+  const auto tmp = std::filesystem::absolute(std::filesystem::temp_directory_path(ec), ec);
+  if (ec) return;  // OpenMPI's own default then, shared with other runs
+  std::string folder = (tmp / "workbench-mpi-XXXXXX").string();
+  if (!::mkdtemp(folder.data())) return;  // likewise
   session_folder = folder;
   session_folder_owner = ::getpid();
   ::setenv("OMPI_MCA_orte_tmpdir_base", folder.c_str(), 1);

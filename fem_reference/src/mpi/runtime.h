@@ -12,7 +12,7 @@ namespace fem_reference {
 void ensure_mpi();
 
 /// Transparent huge pages for the FEM's allocations (Linux with glibc; runtime.cc says how and why):
-/// ensure_mpi and solve_mg call it; once per process.
+/// ensure_mpi calls it, before the mesh is built (every solve starts there); once per process.
 void huge_page_heap();
 
 }  // namespace fem_reference

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figures 8-11 of WO2001052193 and the load-step animation, from a comparison's CSV output.
 
-    /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01] [--formats png,pdf] [--wait]
+    /usr/bin/python3 compare/figures.py OUT_DIR [--title TITLE] [--mask 0.01] [--formats png,pdf] [--wait [--report]]
 
 Reads OUT_DIR/{lines,cells,nodes,steps}.csv and lines.json (written by `workbench compare`) and
 writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_deformed,
@@ -9,7 +9,11 @@ fig11_displacement (in each of --formats, default png) and agent_steps.gif. Line
 their coordinates and described in the legends; 3D studies are drawn in the slice through the
 first load's centre. With --wait (how `workbench compare` runs it, beside the FEM reference) it
 waits for a line "steps" on its standard input, draws the animation from steps.csv, lines.json and
-agent/agent_nodes.csv, then waits for a line "draw" before it reads the other files.
+agent/agent_nodes.csv, then waits for a line "draw" before it reads the other files. With --report
+too, once the figures are written it says "drawn" back on its standard input (the workbench's
+socket), waits for a line "report" (summary.json written) and renders report.html itself
+(compare/report_html.py, its output into OUT_DIR/report.log): the study's last step then needs no
+interpreter of its own.
 Uses Debian's python3-matplotlib, python3-numpy and python3-pil only; call it with /usr/bin/python3.
 """
 # glibc's malloc keeps the memory it frees and serves every block from its heap (no mmap of its own
@@ -71,7 +75,7 @@ def fonts_from_memory():
     os.register_at_fork(after_in_child=_get_font_from_memory.cache_clear)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
-from child_report import DISK_ERRORS, WRITE_FAILED, guarded, write_failed  # noqa: E402
+from child_report import DISK_ERRORS, WRITE_FAILED, guarded, tell_workbench, write_failed  # noqa: E402
 
 # The cyclic garbage collector: the modules' objects, made once, are frozen out of its scans, and it
 # runs after 10,000 new objects instead of 700 (a figure makes hundreds of thousands): 0.35 s of
@@ -350,7 +354,11 @@ def main():
     ap.add_argument("--formats", default="png", help="comma-separated: png, pdf ([compare] figure_formats)")
     ap.add_argument("--wait", action="store_true",
                     help="draw the animation, then wait for 'draw' on stdin before reading the other files")
+    ap.add_argument("--report", action="store_true",
+                    help="with --wait: say 'drawn' back on stdin, wait for 'report', render report.html")
     args = ap.parse_args()
+    if args.report and not args.wait:
+        ap.error("--report needs --wait")
     out = os.path.join(args.dir, "figures")
     os.makedirs(out, exist_ok=True)
     title = args.title
@@ -533,6 +541,9 @@ def main():
         jobs = ([fig9_maps, fig11], [fig8, fig9_lines, fig10])
     else:
         jobs = ([fig9_maps, fig10, lambda: animation_gif(steps, agent_nodes, out)], [fig8, fig9_lines, fig11])
+    # --report: the page's template is compiled (Jinja2 loaded) once this process's share is drawn,
+    # while the other drawing process finishes.
+    page = None
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     if cpus and cpus > 1:
         gc.freeze()  # the collector in the drawing processes does not write to (and copy) the pages they share
@@ -540,6 +551,7 @@ def main():
         child = multiprocessing.get_context("fork").Process(target=run_share, args=(jobs[1], parent), daemon=True)
         child.start()
         run_all(jobs[0])
+        page = report_template() if args.report else None
         child.join()
         if child.exitcode == WRITE_FAILED:
             os._exit(WRITE_FAILED)  # the drawing process has sent the report
@@ -548,7 +560,29 @@ def main():
     else:
         for j in jobs:
             run_all(j)
-    print(f"figures: wrote {out}")
+    print(f"figures: wrote {out}", flush=True)
+    if args.report:
+        page = page or report_template()
+        tell_workbench("drawn")
+        wait_for("report", "summary.json")
+        render_report(args.dir, page)
+
+
+def report_template():
+    import report_html  # compare/report_html.py, beside this script (Jinja2)
+    return report_html.template()
+
+
+def render_report(out, page):
+    """report.html, as `report_html.py OUT` writes it, its output into OUT/report.log."""
+    import report_html
+    log = os.open(os.path.join(out, "report.log"), os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os.dup2(log, 1)
+    os.dup2(log, 2)
+    os.close(log)
+    report_html.render(out, page)
 
 
 def run_share(figures, parent):

@@ -30,6 +30,7 @@ except ImportError as e:
     raise SystemExit(f"report_html.py: {e.name} is missing: install Debian's python3-jinja2 (scripts/setup.sh)")
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+TEMPLATE = "report.html.j2"
 IMAGES = {".png": "image/png", ".gif": "image/gif"}  # embedded; other figure files (PDF) are linked
 FIELDS = ("sigma_x", "sigma_y", "displacement")  # the headline errors' rows, as the metric names spell them
 MANY = 12  # a folder with more files than this is listed folded
@@ -108,7 +109,20 @@ def files(out):
     return sorted(groups.items())
 
 
-def render(out):
+def template():
+    """report.html.j2 beside this script, compiled (figures.py compiles it while its other drawing
+    process finishes, then renders the page itself: no second interpreter at the study's end)."""
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(HERE), undefined=jinja2.StrictUndefined,
+                             autoescape=True, trim_blocks=True, lstrip_blocks=True)
+    try:
+        return env.get_template(TEMPLATE)
+    except jinja2.TemplateError as e:
+        raise SystemExit(f"report_html.py: {os.path.join(HERE, TEMPLATE)}: cannot compile it ({type(e).__name__}: {e})")
+
+
+def render(out, page_template=None):
+    """Writes OUT/report.html with `page_template` (template() when None)."""
+    page_template = page_template or template()
     summary = os.path.join(out, "summary.json")
     source = summary if os.path.exists(summary) else os.path.join(out, "report.json")
     try:
@@ -117,10 +131,8 @@ def render(out):
     except (OSError, ValueError) as e:
         raise SystemExit(f"report_html.py: {source}: cannot read it ({e})")
     kind = "calibration" if source.endswith("report.json") else data.get("model", "agent")
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(HERE), undefined=jinja2.StrictUndefined,
-                             autoescape=True, trim_blocks=True, lstrip_blocks=True)
     try:
-        html = env.get_template("report.html.j2").render(
+        html = page_template.render(
             kind=kind, page=Page(data), d=data, source=os.path.basename(source), fields=FIELDS,
             figures=figures(out), files=files(out), many=MANY)
     except (jinja2.TemplateError, KeyError, IndexError, TypeError, ValueError) as e:

@@ -32,6 +32,12 @@ def write_failed(path, err):
     os._exit(WRITE_FAILED)  # no exit handlers: flushing the log could fail again
 
 
+def tell_workbench(line):
+    """Writes `line` back to the workbench on standard input, the socket it runs this script with
+    (workbench::ChildProcess::receive)."""
+    os.write(0, (line + "\n").encode())
+
+
 def disk_error_text(text):
     """The strerror text of a disk error found in a tool's message (ffmpeg's), else None."""
     for code in DISK_ERRORS:

@@ -132,6 +132,22 @@ bool ChildProcess::send(const std::string& line) {
   return input_ >= 0;
 }
 
+std::optional<std::string> ChildProcess::receive() {
+  for (;;) {
+    if (const auto end = report_.find('\n', received_); end != std::string::npos) {
+      std::string line = report_.substr(received_, end - received_);
+      received_ = end + 1;
+      return line;
+    }
+    if (input_ < 0) return std::nullopt;
+    char text[4096];
+    const ssize_t n = ::recv(input_, text, sizeof text, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return std::nullopt;
+    report_.append(text, std::size_t(n));
+  }
+}
+
 int ChildProcess::wait() {
   if (input_ >= 0) ::shutdown(input_, SHUT_WR);  // the child sees the end of its input
   int status = 0;

@@ -74,16 +74,19 @@ $render "$work/flagged" >/dev/null && $checker "$work/flagged" >/dev/null &&
 check worse_than_zero_flag $? "the flag is not shown (or shown when false)"
 
 # A template that does not render: the study fails (exit 2, the error as its last line), the
-# previous result stays whole and no page is left half written.
+# previous result stays whole and no page is left half written. The strip's page is rendered by
+# report_html.py, the plate's by figures.py, which drew the plate's figures beside the study.
 scripts=$(dirname "$bin")/../share/workbench
 cp -r "$scripts" "$work/scripts"
 echo '{{ d.no_such_key }}' >>"$work/scripts/compare/report.html.j2"
-before=$(snapshot "$work/strip")
-WORKBENCH_SCRIPT_DIR="$work/scripts" "$bin" compare "$work/strip.toml" -o "$work/strip" >"$work/broken.log" 2>&1
-rc=$?
-[ $rc -eq 2 ] && tail -1 "$work/broken.log" | grep -q "^workbench: error: report_html.py failed: .*no_such_key" &&
-  [ "$(grep -c '^workbench: error' "$work/broken.log")" -eq 1 ] && [ "$before" = "$(snapshot "$work/strip")" ]
-check broken_report_fails_the_study $? "exit $rc: $(tail -1 "$work/broken.log")"
+for study in strip plate; do
+  before=$(snapshot "$work/$study")
+  WORKBENCH_SCRIPT_DIR="$work/scripts" "$bin" compare "$work/$study.toml" -o "$work/$study" >"$work/broken.log" 2>&1
+  rc=$?
+  [ $rc -eq 2 ] && tail -1 "$work/broken.log" | grep -q "^workbench: error: report_html.py failed: .*no_such_key" &&
+    [ "$(grep -c '^workbench: error' "$work/broken.log")" -eq 1 ] && [ "$before" = "$(snapshot "$work/$study")" ]
+  check "broken_report_fails_the_study ($study)" $? "exit $rc: $(tail -1 "$work/broken.log")"
+done
 rm "$work/flagged/report.html"
 $py "$work/scripts/compare/report_html.py" "$work/flagged" 2>"$work/render.err"
 [ $? -eq 1 ] && [ ! -e "$work/flagged/report.html" ] && [ ! -e "$work/flagged/report.html.part" ] && [ "$(wc -l <"$work/render.err")" -eq 1 ]

@@ -180,6 +180,19 @@ TEST(ChildProcess, ReadsWhatIsSentAndSeesTheEndOfItsInput) {
   EXPECT_EQ(child.pid(), 0);
 }
 
+TEST(ChildProcess, ReceivesTheLinesItWritesBackAndSeesItEnd) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  // It writes two lines back on its standard input (the socket), then reads one and ends.
+  ChildProcess child({"/bin/sh", "-c", "echo drawn >&0; echo 'two words' >&0; read a; echo \"got $a\"; exit 3"}, log);
+  EXPECT_EQ(child.receive(), "drawn");
+  EXPECT_EQ(child.receive(), "two words");
+  EXPECT_TRUE(child.send("report"));
+  EXPECT_EQ(child.receive(), std::nullopt);  // it ended: nothing more comes back
+  EXPECT_EQ(child.wait(), 3);
+  EXPECT_EQ(read_file(log), "got report\n");
+  EXPECT_EQ(child.report(), "drawn\ntwo words\n");
+}
+
 TEST(ChildProcess, SendingToAnEndedChildFailsWithoutASignal) {
   const fs::path log = test_support::scratch_folder() / "child.log";
   ChildProcess child({"/bin/sh", "-c", "exit 5"}, log);

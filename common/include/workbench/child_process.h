@@ -3,6 +3,7 @@
 // them): an argument vector, no shell, its output to a log file, in its own process group so that
 // an interruption (workbench/interruption.h) ends it and everything it started.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,18 +51,23 @@ class ChildProcess {
   /// Writes `line` and a newline to the child's standard input; false when the child no longer
   /// reads it (it ended), never a SIGPIPE.
   bool send(const std::string& line);
+  /// Waits for a line the child writes back on its standard input (figures.py's "drawn"): the
+  /// line without its newline, or nothing when the child closed its input first (it ended). The
+  /// lines are kept in report() too.
+  std::optional<std::string> receive();
   /// Closes the child's standard input (it sees end of input) and waits for it to end; its exit
   /// status, 128 + signal when a signal ended it.
   int wait();
   /// The child's process id, also its process group's (0 once waited for).
   int pid() const { return pid_; }
-  /// What the child wrote back on its standard input before it ended (read by wait()).
+  /// What the child wrote back on its standard input before it ended (read by receive() and wait()).
   const std::string& report() const { return report_; }
 
  private:
   int pid_ = 0;
   int input_ = -1;  // this end of the child's standard input
   std::string report_;
+  std::size_t received_ = 0;  // the length of report_ that receive() has handed out
 };
 
 /// Runs `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log` and

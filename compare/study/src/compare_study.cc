@@ -377,12 +377,12 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
     // 8. The figures: what is left of them once the rest is done.
     t = std::chrono::steady_clock::now();
-    if (figures) figures->finish();
+    if (figures) figures->drawn();
     outcome.metrics.push_back({"time.figures_wait_s", seconds_since(t),
                                "waiting for the figures after the rest (they are drawn beside the FEM reference) [s]"});
     outcome.metrics.push_back({"time.total_s", seconds_since(start), "the whole study [s]"});
 
-    // 9. The gate, summary.json / summary.txt / junit.xml.
+    // 9. The gate, summary.json / summary.txt / junit.xml, then report.html (rendered by the figures' process).
     outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
     auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
     json["carry_check"] = nlohmann::json::array();
@@ -403,7 +403,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
                       "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
                       std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
                       "nearest element's stress / nearest node's displacement");
-    report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero);
+    report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero,
+                   figures ? &*figures : nullptr);
   });
   return outcome;
 }

@@ -5,6 +5,7 @@
 #include <workbench/child_process.h>
 #include <workbench/error.h>
 #include <workbench/output_file.h>
+#include <workbench/staged_directory.h>
 
 #include <algorithm>
 #include <cmath>
@@ -97,7 +98,7 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
 
 void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
-            std::ostream& log, const std::vector<std::string>& better_than_zero) {
+            std::ostream& log, const std::vector<std::string>& better_than_zero, BackgroundFigures* figures) {
   const std::string case_name = case_file.stem().string();
   // Nothing non-finite is written with exit 0: a metric that is not a number is an error (a zero
   // reference norm, a non-finite field), named with the metric, before any summary is written.
@@ -219,7 +220,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             << "\"/></testcase>\n";
   junit << "  </testsuite>\n</testsuites>\n";
   write_text(dir / "junit.xml", junit.str());
-  render_html(dir, log);
+  if (figures) figures->render_report(log);
+  else render_html(dir, log);
 }
 
 void render_html(const fs::path& dir, std::ostream& log) {
@@ -248,8 +250,10 @@ BackgroundFigures::BackgroundFigures(const fs::path& dir, const std::string& tit
                                      const std::vector<std::string>& formats, std::ostream& log)
     : log_file_(dir / "figures.log"),
       child_(workbench::python_script_command(
-                 "compare/figures.py", {dir.string(), "--title", title, "--formats", format_list(formats), "--wait"}),
-             log_file_) {
+                 "compare/figures.py",
+                 {dir.string(), "--title", title, "--formats", format_list(formats), "--wait", "--report"}),
+             log_file_),
+      report_log_(dir / "report.log") {
   log << "compare: drawing figures (figures.py) beside the FEM reference\n" << std::flush;
 }
 
@@ -261,9 +265,18 @@ void BackgroundFigures::data_ready() {
   child_.send("draw");  // a script that already ended says why in finish()
 }
 
-void BackgroundFigures::finish() {
-  const int status = child_.wait();
-  workbench::check_script_status(status, log_file_, "figures.py", child_.report());
+void BackgroundFigures::drawn() {
+  if (child_.receive() == "drawn") return;
+  // It ended (or wrote back a failed write's message): its status and last line say why.
+  workbench::check_script_status(child_.wait(), log_file_, "figures.py", child_.report());
+  throw workbench::Error("figures.py ended before it had drawn the figures (see " +
+                         workbench::shown_text(log_file_.string()) + ")");
+}
+
+void BackgroundFigures::render_report(std::ostream& log) {
+  log << "report: writing report.html\n" << std::flush;
+  child_.send("report");  // a script that already ended says why below
+  workbench::check_script_status(child_.wait(), report_log_, "report_html.py", child_.report());
 }
 
 }  // namespace compare::report

@@ -24,6 +24,8 @@ std::vector<std::string> pbd_metric_names();
 
 namespace compare::report {
 
+class BackgroundFigures;
+
 double seconds_since(std::chrono::steady_clock::time_point t);
 
 /// Writes `text` to `file` (JSON, text, XML; CSV tables go through workbench::CsvFile); throws
@@ -46,11 +48,14 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem);
 /// every body and far-field error that is worse than zero) and writes summary.json
 /// (`header` plus every metric with meaning, limit and verdict, and the gate's counts),
 /// summary.txt (`notes`, then the metric table, also on `log`) and junit.xml (one test case per
-/// gated metric, a <failure> for each one over its limit) into `dir`, then report.html (render_html). A metric that is not finite
-/// is a workbench::Error naming it and `case_file`, before anything is written.
+/// gated metric, a <failure> for each one over its limit) into `dir`, then report.html: by
+/// `figures` when they were drawn beside the study (BackgroundFigures::render_report), else by
+/// render_html. A metric that is not finite is a workbench::Error naming it and `case_file`, before
+/// anything is written.
 void finish(const std::filesystem::path& dir, const std::filesystem::path& case_file, nlohmann::json header,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
-            std::ostream& log, const std::vector<std::string>& better_than_zero = {});
+            std::ostream& log, const std::vector<std::string>& better_than_zero = {},
+            BackgroundFigures* figures = nullptr);
 
 /// Whether `m` is a relative L2 error not below the zero model's (kZeroModelRelL2): the model
 /// does no better than predicting zero there. The gate's test (`better_than_zero`); the summaries
@@ -69,11 +74,12 @@ void render_html(const std::filesystem::path& dir, std::ostream& log);
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
                        const std::vector<std::string>& formats, std::ostream& log);
 
-/// compare/figures.py drawing beside the comparison (`--wait`): started before the agent model runs,
-/// it loads matplotlib, waits for steps_ready() (steps.csv, lines.json, agent/ written) and
-/// draws the load-step animation while the FEM reference solves, then waits for data_ready()
+/// compare/figures.py drawing beside the comparison (`--wait --report`): started before the agent
+/// model runs, it loads matplotlib, waits for steps_ready() (steps.csv, lines.json, agent/ written)
+/// and draws the load-step animation while the FEM reference solves, then waits for data_ready()
 /// (lines.csv, cells.csv, nodes.csv complete) and draws Figures 8-11 while the reference's error
-/// estimate solves. Destroyed without finish() (an error in between), it ends the script.
+/// estimate solves; once the summaries are written it renders report.html in the same process
+/// (render_report). Destroyed before that (an error in between), it ends the script.
 class BackgroundFigures {
  public:
   BackgroundFigures(const std::filesystem::path& dir, const std::string& title, const std::vector<std::string>& formats,
@@ -82,12 +88,17 @@ class BackgroundFigures {
   void steps_ready();
   /// The files the figures need besides the agent's are complete.
   void data_ready();
-  /// Waits for the script; throws workbench::Error with its last line when it failed.
-  void finish();
+  /// Waits until the figures are written (the script says "drawn"); throws workbench::Error with
+  /// its last line when it failed.
+  void drawn();
+  /// Has the script render report.html (summary.json written) and waits for it to end; throws
+  /// workbench::Error with the renderer's last line (report.log) when it failed.
+  void render_report(std::ostream& log);
 
  private:
   std::filesystem::path log_file_;
   workbench::ChildProcess child_;
+  std::filesystem::path report_log_;  // the renderer's output (render_report)
 };
 
 }  // namespace compare::report

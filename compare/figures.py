@@ -8,7 +8,8 @@ writes OUT_DIR/figures/fig8_ratio, fig9_stress_lines, fig9_stress_maps, fig10_de
 fig11_displacement (in each of --formats, default png) and agent_steps.gif. Lines are named by
 their coordinates and described in the legends; 3D studies are drawn in the slice through the
 first load's centre. With --wait (how `workbench compare` runs it, beside the FEM reference) it
-waits for a line "steps" on its standard input, draws the animation from steps.csv, lines.json and
+loads matplotlib, takes the title from a line "title TEXT" on its standard input (instead of
+--title), waits for a line "steps", draws the animation from steps.csv, lines.json and
 agent/agent_nodes.csv, then waits for a line "draw" before it reads the other files. With --report
 too, once the figures are written it says "drawn" back on its standard input (the workbench's
 socket), waits for a line "report" (summary.json written) and renders report.html itself
@@ -367,13 +368,17 @@ def main():
         fonts_from_memory()
 
     def wait_for(word, what):
-        """--wait: blocks until the workbench writes `word` on our input (its files are complete)."""
+        """--wait: blocks until the workbench writes a line `word` [TEXT] on our input (what it
+        names is ready); gives TEXT."""
         start = time.time()
-        if sys.stdin.readline().strip() != word:
+        said, _, text = sys.stdin.readline().rstrip("\n").partition(" ")
+        if said != word:
             sys.exit(f"figures: the workbench stopped before {what} was complete")
         print(f"figures: waited {time.time() - start:.2f} s for {what}", flush=True)
+        return text
 
     if args.wait:
+        title = wait_for("title", "the case's title")
         wait_for("steps", "steps.csv")
     with open(os.path.join(args.dir, "lines.json")) as f:
         meta = json.load(f)
@@ -385,8 +390,11 @@ def main():
     agent_nodes = read_csv(os.path.join(args.dir, "agent", "agent_nodes.csv"))  # for the agent size
     slice_note = f", slice z = {1e3 * zc:.4g} mm" if "z" in steps else ""
     print(f"figures: read steps.csv in {time.process_time():.2f} s CPU (with the imports)", flush=True)
+    def animation():
+        animation_gif(steps, agent_nodes, out)
+
     if args.wait:  # the animation needs only the agents: drawn while the workbench solves the FEM reference
-        run_all([lambda: animation_gif(steps, agent_nodes, out)], ["animation_gif"])
+        run_all([animation])
         wait_for("draw", "the comparison's data")
     start = time.process_time()
 
@@ -531,26 +539,26 @@ def main():
         save(fig, out, "fig11_displacement", formats)
 
     print(f"figures: read the comparison's data in {time.process_time() - start:.2f} s CPU", flush=True)
-    # The figures are independent: drawn in two processes, this one and a forked child sharing the
-    # data read above, which halves the wall time on two cores (docs/performance.md); the jobs are
-    # balanced by their measured CPU time (figures.log). This process draws its share itself: a
-    # second child would copy the pages it shares with this one as Python writes their reference
-    # counts. On one core (the CPUs this process may run on, as taskset sets them) this process
-    # draws them all: two would cost more CPU for no gain.
-    if args.wait:
-        jobs = ([fig9_maps, fig11], [fig8, fig9_lines, fig10])
-    else:
-        jobs = ([fig9_maps, fig10, lambda: animation_gif(steps, agent_nodes, out)], [fig8, fig9_lines, fig11])
-    # --report: the page's template is compiled (Jinja2 loaded) once this process's share is drawn,
-    # while the other drawing process finishes.
+    # The figures are independent: drawn by two processes, this one and a forked child sharing the
+    # data read above, which halves the wall time on two cores (docs/performance.md). Each takes the
+    # next figure from a queue, the dearest first (their CPU times in figures.log), whenever it is
+    # free: neither waits for a share the other was given in advance, whose cost varies with what
+    # else runs. This process draws its share itself: a second child would copy the pages it shares
+    # with this one as Python writes their reference counts. On one core (the CPUs this process
+    # may run on, as taskset sets them) this process draws them all: two would cost more CPU for no
+    # gain.
+    jobs = [fig9_maps, fig8] + ([] if args.wait else [animation]) + [fig11, fig9_lines, fig10]
+    # --report: the page's template is compiled (Jinja2 loaded) once the queue is empty, while the
+    # other drawing process finishes its last figure.
     page = None
     cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     if cpus and cpus > 1:
         gc.freeze()  # the collector in the drawing processes does not write to (and copy) the pages they share
+        queue = job_queue(len(jobs))
         parent = os.getpid()
-        child = multiprocessing.get_context("fork").Process(target=run_share, args=(jobs[1], parent), daemon=True)
+        child = multiprocessing.get_context("fork").Process(target=run_share, args=(jobs, queue, parent), daemon=True)
         child.start()
-        run_all(jobs[0])
+        run_queue(jobs, queue)
         page = report_template() if args.report else None
         child.join()
         if child.exitcode == WRITE_FAILED:
@@ -558,8 +566,7 @@ def main():
         if child.exitcode != 0:
             sys.exit("figures: a drawing process failed")
     else:
-        for j in jobs:
-            run_all(j)
+        run_all(jobs)
     print(f"figures: wrote {out}", flush=True)
     if args.report:
         page = page or report_template()
@@ -585,21 +592,36 @@ def render_report(out, page):
     report_html.render(out, page)
 
 
-def run_share(figures, parent):
-    """The forked child's share of the figures. It ends with its parent, however the parent ends (a
-    failed write ends it with os._exit, which runs no exit handler to end a daemon child)."""
+def job_queue(n):
+    """The numbers 0..n-1 in a pipe, its writing end closed: read one byte at a time by several
+    processes, each number goes to exactly one (a read of one byte from a pipe is atomic)."""
+    read_end, write_end = os.pipe()
+    os.write(write_end, bytes(range(n)))
+    os.close(write_end)
+    return read_end
+
+
+def run_queue(figures, queue):
+    """Draws figures[k] for every number k it takes from `queue` (job_queue), until it is empty."""
+    while k := os.read(queue, 1):
+        run_all([figures[k[0]]])
+
+
+def run_share(figures, queue, parent):
+    """The forked child's share of the figures (run_queue). It ends with its parent, however the
+    parent ends (a failed write ends it with os._exit, which runs no exit handler to end a daemon
+    child)."""
     LIBC.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
     if os.getppid() != parent:  # the parent ended before the line above
         os._exit(1)
-    run_all(figures)
+    run_queue(figures, queue)
 
 
-def run_all(figures, names=None):
-    for k, draw in enumerate(figures):
+def run_all(figures):
+    for draw in figures:
         start = time.process_time()
         draw()
-        name = names[k] if names else draw.__name__
-        print(f"figures: {name} {time.process_time() - start:.2f} s CPU", flush=True)
+        print(f"figures: {draw.__name__} {time.process_time() - start:.2f} s CPU", flush=True)
 
 
 if __name__ == "__main__":

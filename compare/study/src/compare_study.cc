@@ -284,13 +284,23 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // alone runs the agent model, compares and writes, each such step collective (a failure ends
   // every rank). One rank: every step runs here.
   using fem_reference::mpi_on_root;
-  // 1. Read and check everything before running anything (every rank: bad input is one line).
+  // 1. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
+  // the script starts now, loading matplotlib while the case's mesh is read and the agent model
+  // runs, draws the animation, which needs only the agents, while the FEM reference solves, and the
+  // figures once the comparison's data is written (an error before then ends it).
+  std::optional<report::BackgroundFigures> figures;
+  mpi_on_root([&] {
+    if (options.figures) figures.emplace(dir, options.figure_formats, log);
+  });
+
+  // 2. Read and check everything before running anything (every rank: bad input is one line).
   std::optional<AgentCompareInput> input;
   fem_reference::mpi_collective([&] { input.emplace(read_input(file, options)); });
   const auto& in = *input;
   const auto& grid = in.study.mesh.grid;
+  if (figures) figures->title(in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title);
 
-  // 1b. The carry check: a load the rule set cannot carry to a rigid face is named, with the
+  // 2b. The carry check: a load the rule set cannot carry to a rigid face is named, with the
   // reason, before anything runs (docs/compare.md); it fails the gate after the run.
   const auto carry = agent_study::carry_check(in.study);
   CompareOutcome outcome;
@@ -299,16 +309,6 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
     if (c.refused()) outcome.refused.push_back(line);
   }
-
-  // 2. Figures 8-11 and the animation (compare/figures.py, matplotlib) are drawn beside the rest:
-  // the script starts now (its imports beside the agent model), draws the animation, which needs
-  // only the agents, while the FEM reference solves, and the figures once the comparison's data is
-  // written.
-  const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
-  std::optional<report::BackgroundFigures> figures;
-  mpi_on_root([&] {
-    if (options.figures) figures.emplace(dir, title, options.figure_formats, log);
-  });
 
   // 3. The agent model, every load step, on rank 0 beside the FEM reference (step 4), on a thread
   // of its own that then writes the animation's data and tells the script (figures is used by one

@@ -246,15 +246,18 @@ void run_figure_script(const std::string& script, const fs::path& dir, const std
                                dir / "figures.log", name);
 }
 
-BackgroundFigures::BackgroundFigures(const fs::path& dir, const std::string& title,
-                                     const std::vector<std::string>& formats, std::ostream& log)
+BackgroundFigures::BackgroundFigures(const fs::path& dir, const std::vector<std::string>& formats, std::ostream& log)
     : log_file_(dir / "figures.log"),
-      child_(workbench::python_script_command(
-                 "compare/figures.py",
-                 {dir.string(), "--title", title, "--formats", format_list(formats), "--wait", "--report"}),
+      child_(workbench::python_script_command("compare/figures.py",
+                                              {dir.string(), "--formats", format_list(formats), "--wait", "--report"}),
              log_file_),
       report_log_(dir / "report.log") {
   log << "compare: drawing figures (figures.py) beside the FEM reference\n" << std::flush;
+}
+
+void BackgroundFigures::title(std::string text) {
+  std::replace_if(text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  child_.send("title " + text);  // a script that already ended says why in drawn()
 }
 
 void BackgroundFigures::steps_ready() {

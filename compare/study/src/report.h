@@ -74,16 +74,18 @@ void render_html(const std::filesystem::path& dir, std::ostream& log);
 void run_figure_script(const std::string& script, const std::filesystem::path& dir, const std::string& title,
                        const std::vector<std::string>& formats, std::ostream& log);
 
-/// compare/figures.py drawing beside the comparison (`--wait --report`): started before the agent
-/// model runs, it loads matplotlib, waits for steps_ready() (steps.csv, lines.json, agent/ written)
+/// compare/figures.py drawing beside the comparison (`--wait --report`): started before the case's
+/// mesh is read, it loads matplotlib, takes the title (title()), waits for steps_ready() (steps.csv,
+/// lines.json, agent/ written)
 /// and draws the load-step animation while the FEM reference solves, then waits for data_ready()
 /// (lines.csv, cells.csv, nodes.csv complete) and draws Figures 8-11 while the reference's error
 /// estimate solves; once the summaries are written it renders report.html in the same process
 /// (render_report). Destroyed before that (an error in between), it ends the script.
 class BackgroundFigures {
  public:
-  BackgroundFigures(const std::filesystem::path& dir, const std::string& title, const std::vector<std::string>& formats,
-                    std::ostream& log);
+  BackgroundFigures(const std::filesystem::path& dir, const std::vector<std::string>& formats, std::ostream& log);
+  /// The figures' title (one line: a line break in it becomes a space).
+  void title(std::string text);
   /// steps.csv and lines.json are complete: the animation can be drawn.
   void steps_ready();
   /// The files the figures need besides the agent's are complete.

@@ -170,6 +170,20 @@ TEST(ChildProcess, PassesArgumentsVerbatimAndReportsTheExitStatus) {
             "/nonexistent/program: cannot run (No such file or directory)");
 }
 
+TEST(ChildProcess, MallocOnHugePagesUnlessTheUserTunesGlibc) {
+  const fs::path log = test_support::scratch_folder() / "child.log";
+  const char* saved = std::getenv("GLIBC_TUNABLES");
+  const std::string keep = saved ? saved : "";
+  ::unsetenv("GLIBC_TUNABLES");
+  EXPECT_EQ(run_child({"/bin/sh", "-c", "printf %s \"$GLIBC_TUNABLES\""}, log), 0);
+  EXPECT_EQ(read_file(log), "glibc.malloc.hugetlb=1");
+  ::setenv("GLIBC_TUNABLES", "glibc.malloc.arena_max=1", 1);
+  EXPECT_EQ(run_child({"/bin/sh", "-c", "printf %s \"$GLIBC_TUNABLES\""}, log), 0);
+  EXPECT_EQ(read_file(log), "glibc.malloc.arena_max=1");
+  if (saved) ::setenv("GLIBC_TUNABLES", keep.c_str(), 1);
+  else ::unsetenv("GLIBC_TUNABLES");
+}
+
 TEST(ChildProcess, ReadsWhatIsSentAndSeesTheEndOfItsInput) {
   const fs::path log = test_support::scratch_folder() / "child.log";
   ChildProcess child({"/bin/sh", "-c", "read a; read b; echo \"$a|$b\"; if read c; then exit 1; fi; exit 4"}, log);

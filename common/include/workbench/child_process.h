@@ -42,8 +42,9 @@ std::filesystem::path find_script(const std::string& relative);
 /// wait() (an error in between) ends the child and its group and reaps it.
 class ChildProcess {
  public:
-  /// Starts `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log`;
-  /// throws Error when it cannot be started.
+  /// Starts `argv` (argv[0] a path or a name looked up on PATH) with stdout and stderr to `log`,
+  /// this process's environment and, unless it has GLIBC_TUNABLES, glibc's malloc on transparent
+  /// huge pages (GLIBC_TUNABLES=glibc.malloc.hugetlb=1); throws Error when it cannot be started.
   ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& log);
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;

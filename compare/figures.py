@@ -410,6 +410,7 @@ def main():
     agent_nodes = read_csv(os.path.join(args.dir, "agent", "agent_nodes.csv"))  # for the agent size
     slice_note = f", slice z = {1e3 * zc:.4g} mm" if "z" in steps else ""
     print(f"figures: read steps.csv in {time.process_time():.2f} s CPU (with the imports)", flush=True)
+
     def animation():
         animation_gif(steps, agent_nodes, out)
 
@@ -596,7 +597,8 @@ def main():
 
 
 def report_template():
-    import report_html  # compare/report_html.py, beside this script (Jinja2)
+    """report.html's template, compiled (Jinja2 is loaded only by a run that renders the page)."""
+    import report_html  # compare/report_html.py, beside this script
     return report_html.template()
 
 

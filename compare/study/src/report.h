@@ -75,12 +75,12 @@ void run_figure_script(const std::string& script, const std::filesystem::path& d
                        const std::vector<std::string>& formats, std::ostream& log);
 
 /// compare/figures.py drawing beside the comparison (`--wait --report`): started before the case's
-/// mesh is read, it loads matplotlib, takes the title (title()), waits for steps_ready() (steps.csv,
-/// lines.json, agent/ written)
-/// and draws the load-step animation while the FEM reference solves, then waits for data_ready()
-/// (lines.csv, cells.csv, nodes.csv complete) and draws Figures 8-11 while the reference's error
-/// estimate solves; once the summaries are written it renders report.html in the same process
-/// (render_report). Destroyed before that (an error in between), it ends the script.
+/// mesh is read, it loads matplotlib, takes the title (title()), waits for steps_ready()
+/// (steps.csv, lines.json, agent/ written) and draws the load-step animation while the FEM
+/// reference solves, then waits for data_ready() (lines.csv, cells.csv, nodes.csv complete) and
+/// draws Figures 8-11 while the reference's error estimate solves; once the summaries are written
+/// it renders report.html in the same process (render_report). Destroyed before that (an error in
+/// between), it ends the script.
 class BackgroundFigures {
  public:
   BackgroundFigures(const std::filesystem::path& dir, const std::vector<std::string>& formats, std::ostream& log);

@@ -144,8 +144,8 @@ DPI = 150  # of the PNG figures; they are made at it, so that their layout is co
 
 
 def write_png(fig, path):
-    """The PNG savefig would write, in one draw, as RGB (the figure is opaque: the same pixels without
-    the alpha channel)."""
+    """The figure as savefig draws it, in one draw, as an RGB PNG (the figure is opaque: the same
+    pixels without the alpha channel)."""
     fig.canvas.draw()  # as savefig draws it: the figure is made at DPI
     rgb = np.asarray(fig.canvas.buffer_rgba())[:, :, :3]
     with open(path, "wb") as f:
@@ -155,7 +155,7 @@ def write_png(fig, path):
 def png_bytes(rgb, dpi, software):
     """A PNG file of `rgb` (height x width x 3, uint8) at `dpi`, with a Software text. Written here
     rather than by PIL, which tries all five PNG row filters on every row with no way to choose one:
-    no filter and zlib level 3 take 0.45x its CPU for files 10 % larger (docs/performance.md)."""
+    no filter and zlib level 3 take 0.45x its CPU for files 10-15 % larger (docs/performance.md)."""
     height, width, _ = rgb.shape
     rows = np.empty((height, 1 + 3 * width), np.uint8)
     rows[:, 0] = 0  # each row's filter: none

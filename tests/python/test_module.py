@@ -136,7 +136,8 @@ class Compare(unittest.TestCase):
             self.check_fields_against_csv(r, os.path.join(tmp, "c"))
         self.assertEqual(r["gate_failures"], [])
         with open(os.path.join(SRC, "cases", "gate_plate.toml"), "rb") as f:
-            self.assertEqual(r["gated"], len(tomllib.load(f)["compare"]["gate"]))  # every limit was checked
+            c = tomllib.load(f)["compare"]
+        self.assertEqual(r["gated"], len(c["gate"]) + len(c["better_than_zero"]))  # every limit and zero check ran
         m = r["metrics"]
         self.assertLess(m["fem.equilibrium_dev"], 1e-8)
         self.assertLess(m["agent.equilibrium_dev"], 0.02)

@@ -68,7 +68,7 @@ check cells_columns $? "$(head -1 "$work/pass/cells.csv")"
 # The gate can require a field to beat predicting zero: tau_xy cannot (exit 1, named), sigma_y does
 # (the case's own list replaced by these two).
 sed 's/^better_than_zero = .*/better_than_zero = ["body.sigma_y", "far.tau_xy"]/' "$work/tight.toml" |
-  sed 's/^"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = .*/"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = 10/' >"$work/zero.toml"
+  sed 's/^"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = .*/"line_x100y197p5_x100y2p5.sigma_y.rel_l2" = 0.99/' >"$work/zero.toml"
 "$bin" compare "$work/zero.toml" -o "$work/zero" 2>"$work/log"
 rc=$?
 check zero_exit $((rc != 1)) "exit $rc"
@@ -85,6 +85,18 @@ rc=$?
 check zero_bad_exit $((rc != 2)) "exit $rc"
 grep -q 'zero_bad.toml: compare.better_than_zero: "far.tau" is no compared field' "$work/log"
 check zero_bad_message $? "$(cat "$work/log")"
+
+# A relative L2 limit at or above predicting zero's 1 passes a model that predicts nothing: refused
+# unless the field must also beat zero.
+sed -e 's/^better_than_zero = .*/better_than_zero = ["body.sigma_y"]/' -e 's/^"far.sigma_y.rel_l2" = .*/"far.sigma_y.rel_l2" = 1.05/' \
+  "$work/tight.toml" >"$work/lax.toml"
+"$bin" compare "$work/lax.toml" -o "$work/lax" 2>"$work/log"
+rc=$?
+check lax_exit $((rc != 2)) "exit $rc"
+grep -q 'lax.toml: compare.gate.far.sigma_y.rel_l2: a limit of 1.05 passes a model that predicts nothing (predicting zero scores 1): set it below 1, or add "far.sigma_y" to better_than_zero' "$work/log"
+check lax_message $? "$(cat "$work/log")"
+[ ! -e "$work/lax" ]
+check lax_no_output $? "output written"
 
 sed 's/^"fem.equilibrium_dev"/"fem.equilibrium"/' "$work/tight.toml" >"$work/unknown.toml"
 "$bin" compare "$work/unknown.toml" -o "$work/unknown" 2>"$work/log"

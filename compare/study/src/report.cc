@@ -3,6 +3,7 @@
 
 #include <fem_reference/mpi.h>
 #include <workbench/child_process.h>
+#include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/output_file.h>
 #include <workbench/staged_directory.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -42,6 +44,14 @@ std::string xml_escape(const std::string& s) {
 
 }  // namespace
 
+namespace {
+bool is_rel_l2(const std::string& name) {
+  const std::string suffix = ".rel_l2";
+  return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+bool is_rel_l2(const Metric& m) { return is_rel_l2(m.name); }
+}  // namespace
+
 void check_gate_names(const CompareOptions& options, const std::vector<std::string>& names,
                       const workbench::CaseTable& root) {
   for (const auto& [name, limit] : options.gate)
@@ -52,14 +62,19 @@ void check_gate_names(const CompareOptions& options, const std::vector<std::stri
     if (std::find(names.begin(), names.end(), field + ".rel_l2") == names.end())
       root.table("compare").fail("better_than_zero", "\"" + field + "\" is no compared field (a scope and a field, "
                                                      "e.g. \"far.sigma_x\"; docs/compare.md lists them)");
+  // A relative L2 limit at or above the zero model's would pass a model that predicts nothing.
+  for (const auto& [name, limit] : options.gate) {
+    if (limit < kZeroModelRelL2 || !is_rel_l2(name)) continue;
+    const std::string field = name.substr(0, name.size() - std::strlen(".rel_l2"));
+    const auto& required = options.better_than_zero;
+    if (std::find(required.begin(), required.end(), field) == required.end())
+      root.table("compare").fail("gate." + name, "a limit of " + workbench::shortest_decimal(limit) +
+                                                     " passes a model that predicts nothing (predicting zero scores 1): "
+                                                     "set it below 1, or add \"" + field + "\" to better_than_zero");
+  }
 }
 
 namespace {
-
-bool is_rel_l2(const Metric& m) {
-  const std::string suffix = ".rel_l2";
-  return m.name.size() > suffix.size() && m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 /// The reference does not resolve the field in this scope (its own error >= kUnresolvedReferenceError).
 bool unresolved(const Metric& m) {

@@ -8,7 +8,7 @@ include(CMakePackageConfigHelpers)
 set(WORKBENCH_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/workbench)
 
 # The libraries another code embeds, and what they link statically.
-set(workbench_exported agent agent_io pbd pbd_io workbench_common workbench_gmsh)
+set(workbench_exported agent agent_io pbd pbd_io workbench_common workbench_gmsh workbench_tensor)
 if(WORKBENCH_WITH_FEM)
   list(APPEND workbench_exported fem_reference)
 endif()
@@ -16,7 +16,7 @@ install(TARGETS ${workbench_exported} EXPORT workbenchTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(dir agent/include agent/io/include pbd/include pbd/io/include common/include common/gmsh fem_reference/include)
+foreach(dir agent/include agent/io/include pbd/include pbd/io/include common/include common/gmsh common/tensor/include fem_reference/include)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")
 endforeach()

@@ -1,6 +1,7 @@
 #pragma once
 // numpy arrays from the C++ results' vectors, without copies (python/workbench_module.cc,
 // python/compared_fields.cc).
+#include <agent/state.h>
 #include <compare/compare_study.h>
 
 #include <pybind11/numpy.h>
@@ -26,5 +27,12 @@ inline py::ssize_t ssize(std::size_t n) { return static_cast<py::ssize_t>(n); }
 /// {name: {column: array}}}, each column rows x components (1D when one component); empty tables
 /// (a PBD comparison has no cells) left out.
 py::dict compared_fields_dict(compare::ComparedFields&& fields);
+
+/// Every field of agent::kStateFields into `out` by its name, rows (agents or nodes) x components
+/// (1D when one), int32 for an integer field; and "diagnostics" (agent::Diagnostics by name).
+void add_state_fields(py::dict& out, const agent::AgentState& state, int dim);
+
+/// workbench.agent_fields(): agent::kStateFields, one dict per row.
+py::list state_fields_list();
 
 }  // namespace workbench_python

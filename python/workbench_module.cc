@@ -181,23 +181,6 @@ auto staged(const fs::path& output_dir, const workbench::CaseFile& file, Write w
   return result;
 }
 
-py::dict diagnostics_dict(const agent::Diagnostics& d) {
-  py::dict out;
-  out["agents_generated"] = d.agents_generated;
-  out["agent_updates"] = d.agent_updates;
-  out["applied_N"] = d.applied;
-  out["rigid_reaction_N"] = d.rigid_reaction;
-  out["passed_out_N"] = d.passed_out;
-  out["dropped_N"] = d.dropped;
-  out["lost_N"] = d.lost;  // applied = rigid reaction + passed out + dropped + lost
-  out["lateral_reaction_N"] = d.lateral_reaction;
-  out["lateral_passed_out_N"] = d.lateral_passed_out;
-  out["lateral_dropped_N"] = d.lateral_dropped;
-  out["returned_rigid_N"] = d.returned_rigid;  // reading 6: returned into the body, not in the balance
-  out["returned_free_N"] = d.returned_free;
-  return out;
-}
-
 py::dict coefficients_dict(const agent::Coefficients& k) {
   py::dict out;
   for (const auto& [name, value] : agent_study::coefficient_values(k)) out[name.c_str()] = value;
@@ -249,16 +232,8 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   const std::size_t node_ids = out.node_coords.size() / 3;
   r["node_coords"] = take(std::move(out.node_coords), {ssize(node_ids), 3});
   r["node_points"] = take(std::move(out.nodes), {ssize(out.state.displacement.size() / dim), 3});
-  r["face_force"] = take(std::move(out.state.face_forces), {ssize(n), ssize(2 * dim)});
-  r["generation"] = take(std::move(out.state.generation), {ssize(n)});
-  r["stress"] = take(std::move(out.state.stress), {ssize(n), ssize(dim)});
-  r["shear"] = take(std::move(out.state.shear), {ssize(n), ssize(agent::shear_count(out.dim))});  // 2D tau_xy; 3D xy, yz, xz
-  r["von_mises"] = take(std::move(out.state.von_mises), {ssize(n)});
-  r["strain"] = take(std::move(out.state.strain), {ssize(n), 3});
-  const std::size_t nodes = out.state.displacement.size() / dim;
-  r["displacement"] = take(std::move(out.state.displacement), {ssize(nodes), ssize(dim)});
+  workbench_python::add_state_fields(r, out.state, out.dim);  // every field of agent::kStateFields, diagnostics
   r["cell_of_element"] = take(std::move(out.cell_of_element), {ssize(n)});
-  r["diagnostics"] = diagnostics_dict(out.state.diagnostics);
   r["coefficients"] = coefficients_dict(out.coefficients);
   return r;
 }
@@ -572,6 +547,9 @@ PYBIND11_MODULE(workbench, m) {
     return out;
   }, "The table of the agent model's coefficients (agent/coefficients.h): name, unit, meaning, the rule sets "
      "that use it, default, admissible range, whether a calibration fits it and its default bounds.");
+  m.def("agent_fields", &workbench_python::state_fields_list,
+        "The table of the agent model's fields (agent/state.h): name, unit, place, the columns per dimension, the "
+        "VTU layout and the compared fields (compare::kFields) each gives.");
   m.def("run_agent", &run_agent, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("load_factor") = 1.0,
         py::arg("progress") = py::none(),
         "The agent model at `load_factor` times the load: arrays in grid order (cell_of_element[e] is the agent of "

@@ -1,5 +1,6 @@
 // Every stress component of the agents: the shear of the packets and of the row moment balance,
 // the tie scan and the bonded face's layer (agent/stress_components.h).
+#include <agent/state.h>
 #include <agent/stress_components.h>
 #include <agent/slots.h>
 
@@ -11,15 +12,6 @@
 #include <vector>
 
 namespace agent {
-
-double von_mises_2d(double sx, double sy, double txy) {
-  return std::sqrt(std::max(0.0, sx * sx - sx * sy + sy * sy + 3 * txy * txy));
-}
-
-double von_mises_3d(const double* s) {
-  const double dxy = s[0] - s[1], dyz = s[1] - s[2], dzx = s[2] - s[0];
-  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
-}
 
 namespace {
 
@@ -530,13 +522,10 @@ StressComponents agent_stress_components(const Grid& g, const std::vector<double
   }
   out.von_mises.assign(n, 0.0);
   for (std::size_t c = 0; c < n; ++c) {
-    if (dim == 2) {
-      out.von_mises[c] = von_mises_2d(out.sigma[2 * c], out.sigma[2 * c + 1], out.shear[c]);
-    } else {
-      const double s[6] = {out.sigma[3 * c], out.sigma[3 * c + 1], out.sigma[3 * c + 2],
-                           out.shear[3 * c], out.shear[3 * c + 1], out.shear[3 * c + 2]};
-      out.von_mises[c] = von_mises_3d(s);
-    }
+    const workbench::SymmetricTensor s{out.sigma[dim * c], out.sigma[dim * c + 1], dim == 3 ? out.sigma[3 * c + 2] : 0.0,
+                                       out.shear[shears * c], dim == 3 ? out.shear[3 * c + 1] : 0.0,
+                                       dim == 3 ? out.shear[3 * c + 2] : 0.0};
+    out.von_mises[c] = agent_von_mises(s, dim);
   }
   return out;
 }

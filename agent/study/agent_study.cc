@@ -200,116 +200,14 @@ double entering_load(const AgentStudy& study, double factor) {
   return sum;
 }
 
-namespace {
-
-/// The von Mises stress of every agent from its normal stresses and shears.
-void set_von_mises(AgentState& s, int dim) {
-  const int shears = agent::shear_count(dim);
-  for (std::size_t c = 0; c < s.von_mises.size(); ++c) {
-    const double* n = &s.stress[c * std::size_t(dim)];
-    const double* t = &s.shear[c * std::size_t(shears)];  // every rule set's (zero without shear)
-    if (dim == 2) {
-      s.von_mises[c] = agent::von_mises_2d(n[0], n[1], t[0]);
-    } else {
-      const double six[6] = {n[0], n[1], n[2], t[0], t[1], t[2]};
-      s.von_mises[c] = agent::von_mises_3d(six);
-    }
-  }
-}
-
-/// The state of `pushes` (forces >= 0, marching inward) alone: the transfer and every field from
-/// it. `entering` is the whole load's magnitude (the relative threshold's base), `datums` those of
-/// the whole load, so that a pull's state is its push's to the bit.
-AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const std::vector<agent::EntryLoad>& pushes,
-                   double entering, const agent::Datums& datums) {
+AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
   try {
-    model.solve(pushes, entering);
+    return agent::solve_state(model, study.loads, study.readings, factor);
   } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
     throw TransferDidNotEnd(study.case_file.string() + ": agent.gamma: " + e.what() +
-                "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
-                "boundaries_return: docs/agent-model.md)");
+                            "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
+                            "boundaries_return: docs/agent-model.md)");
   }
-  AgentState s;
-  const auto& grid = study.mesh.grid;
-  s.face_forces = model.face_forces();
-  s.generation = model.generation();
-  s.diagnostics = model.diagnostics();
-  if (model.rules() == agent::RuleSet::Columns) {  // the columns give the shear and the displacement themselves
-    s.stress = agent::agent_stresses(grid, s.face_forces);
-    s.shear = model.shear_flux();
-    s.von_mises.assign(grid.count(), 0.0);
-    set_von_mises(s, grid.dim);
-    s.strain = agent::agent_strains(grid, model.material(), s.stress);
-    s.displacement = model.displacement();
-    agent::hold_rigid_faces(grid, s.displacement);
-    return s;
-  }
-  const auto normal = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
-                                           model.coefficients().beta, model.material().poisson);
-  // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
-  auto parts = agent::agent_stress_components(grid, normal, model.shear_flux(), model.balance_force(),
-                                              model.coefficients().directional, model.material().poisson, pushes);
-  s.stress = std::move(parts.sigma);
-  s.shear = std::move(parts.shear);
-  s.von_mises = std::move(parts.von_mises);
-  s.strain = agent::agent_strains(grid, model.material(), s.stress);
-  s.displacement = model.shear_flux().empty()
-                       ? agent::node_displacements(grid, s.strain, datums)
-                       : agent::node_displacements_marched(grid, s.strain, s.shear, model.material(), datums,
-                                                           agent::axis_of(pushes.front().dir));
-  agent::hold_rigid_faces(grid, s.displacement);
-  return s;
-}
-
-/// `a` - `b` in every field (a push state less a pull's; von Mises of the difference); generations the earlier, balances added
-/// (the balance tallies magnitudes: a pull carried to a rigid face is a rigid reaction).
-void subtract(AgentState& a, const AgentState& b, int dim) {
-  for (auto [x, y] : {std::pair{&a.face_forces, &b.face_forces}, std::pair{&a.stress, &b.stress},
-                      std::pair{&a.shear, &b.shear}, std::pair{&a.strain, &b.strain},
-                      std::pair{&a.displacement, &b.displacement}})
-    for (std::size_t i = 0; i < x->size(); ++i) (*x)[i] -= (*y)[i];
-  set_von_mises(a, dim);
-  for (std::size_t i = 0; i < a.generation.size(); ++i)
-    a.generation[i] = std::int32_t(std::min(std::uint32_t(a.generation[i]), std::uint32_t(b.generation[i])));
-  auto& d = a.diagnostics;
-  const auto& e = b.diagnostics;
-  d.agents_generated = std::size_t(std::count_if(a.generation.begin(), a.generation.end(), [](auto g) { return g >= 0; }));
-  d.agent_updates += e.agent_updates, d.packet_moves += e.packet_moves, d.applied += e.applied;
-  d.rigid_reaction += e.rigid_reaction, d.passed_out += e.passed_out, d.dropped += e.dropped, d.lost += e.lost;
-  d.lateral_reaction += e.lateral_reaction, d.lateral_passed_out += e.lateral_passed_out;
-  d.lateral_dropped += e.lateral_dropped, d.returned_rigid += e.returned_rigid, d.returned_free += e.returned_free;
-  d.unfinished += e.unfinished;
-}
-
-}  // namespace
-
-AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
-  // Linear elasticity is odd in the load: the pulls are carried as the same pushes and subtracted
-  // (docs/agent-model.md, "Tension"). Every rule set marches inward either way.
-  std::vector<agent::EntryLoad> pushes, pulls, all;
-  for (auto l : study.loads) {
-    l.force *= factor;
-    (l.force < 0 ? pulls : pushes).push_back(l);
-    if (l.force < 0) pulls.back().force = -l.force;
-    all.push_back(l.force < 0 ? pulls.back() : l);
-  }
-  // The relative threshold is a share of the case's full load, the same at every load step: the
-  // steps then grow the reached region as the seed's do, and the rule type is built once.
-  const double entering = entering_load(study, 1.0);
-  const auto datums = agent::choose_datums(study.mesh.grid, all);
-  AgentState s = carried(study, model, pulls.empty() ? pushes : pulls, entering, datums);
-  if (pushes.empty()) {  // only pulls: the pushed state negated, to the bit (von Mises is even)
-    for (auto* field : {&s.face_forces, &s.stress, &s.shear, &s.strain, &s.displacement})
-      for (double& v : *field) v = -v;
-  } else if (!pulls.empty()) {
-    AgentState pushed = carried(study, model, pushes, entering, datums);
-    subtract(pushed, s, study.mesh.grid.dim);
-    s = std::move(pushed);
-  }
-  // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
-  for (auto* field : {&s.stress, &s.shear, &s.von_mises, &s.strain, &s.displacement})
-    for (double& v : *field) v += 0.0;
-  return s;
 }
 
 workbench::OutputMesh output_mesh(const AgentStudy& study) {
@@ -334,40 +232,40 @@ workbench::OutputMesh output_mesh(const AgentStudy& study) {
 
 namespace {
 
-/// The shears of AgentState::shear, in its order (2D: the first).
-const char* kShearNames[3] = {"tau_xy", "tau_yz", "tau_xz"};
+using agent::FieldPlace;
+using agent::kStateFields;
+using agent::StateField;
+using agent::VtuLayout;
 
-/// Cell fields in mesh element order, named with their units (ParaView shows the names).
-std::vector<workbench::Field> cell_fields(const AgentStudy& study, const AgentState& s) {
-  const auto& grid = study.mesh.grid;
-  const int dim = grid.dim, nd = 2 * dim;
-  const auto& order = study.mesh.cell_of_element;
-  std::vector<workbench::Field> fields;
-  fields.push_back({"generation [-]", 1, {}, {}, {}});
-  fields.push_back(
-      {"face_force [N]", nd, {}, std::vector<std::string>(agent::kDirectionNames, agent::kDirectionNames + nd), {}});
-  for (int a = 0; a < dim; ++a) fields.push_back({std::string("sigma_") + char('x' + a) + " [Pa]", 1, {}, {}, {}});
-  const int shears = agent::shear_count(dim);
-  for (int t = 0; t < shears; ++t) fields.push_back({std::string(kShearNames[t]) + " [Pa]", 1, {}, {}, {}});
-  fields.push_back({"von_mises [Pa]", 1, {}, {}, {}});
-  fields.push_back({"strain [-]", 3, {}, {"x", "y", "z"}, {}});
-  for (std::size_t cell : order) {
-    fields[0].values.push_back(s.generation[cell]);
-    for (int f = 0; f < nd; ++f) fields[1].values.push_back(s.face_forces[cell * nd + f]);
-    for (int a = 0; a < dim; ++a) fields[2 + a].values.push_back(s.stress[cell * dim + a]);
-    for (int t = 0; t < shears; ++t) fields[2 + dim + t].values.push_back(s.shear[cell * shears + t]);
-    fields[2 + dim + shears].values.push_back(s.von_mises[cell]);
-    for (int a = 0; a < 3; ++a) fields[3 + dim + shears].values.push_back(s.strain[cell * 3 + a]);
+/// A field's VTU arrays, empty: one per component (Scalars) or one of named components.
+void add_vtu_arrays(const StateField& f, int dim, std::vector<workbench::Field>& out) {
+  const std::string unit = std::string(" [") + f.unit + "]";
+  if (f.vtu == VtuLayout::Scalars) {
+    for (int k = 0; k < f.components(dim); ++k) out.push_back({f.columns[k] + unit, 1, {}, {}, {}});
+    return;
   }
-  return fields;
+  const int n = f.vtu == VtuLayout::Vector3 ? 3 : f.components(dim);
+  std::vector<std::string> labels;
+  for (int k = 0; k < n; ++k) labels.emplace_back(agent::vtu_label(f.columns[k]));
+  out.push_back({f.name + unit, n, {}, labels, {}});
 }
 
-std::vector<workbench::Field> point_fields(const AgentStudy& study, const AgentState& s) {
-  const int dim = study.mesh.grid.dim;
-  workbench::Field u{"displacement [m]", 3, {}, {"x", "y", "z"}, {}};
-  for (std::size_t node = 0; node < study.mesh.grid.node_count(); ++node)
-    for (int a = 0; a < 3; ++a) u.values.push_back(a < dim ? s.displacement[node * dim + a] : 0.0);
-  return {u};
+/// The VTU arrays of every field at `place`, in table order; `ids`: the agents (mesh element
+/// order) or nodes to write.
+std::vector<workbench::Field> vtu_fields(const AgentState& s, int dim, FieldPlace place, const std::vector<std::size_t>& ids) {
+  std::vector<workbench::Field> fields;
+  for (const auto& f : kStateFields) {
+    if (f.place != place) continue;
+    const std::size_t first = fields.size();
+    add_vtu_arrays(f, dim, fields);
+    const int n = f.components(dim);
+    for (std::size_t at : ids)
+      for (int k = 0; k < (f.vtu == VtuLayout::Vector3 ? 3 : n); ++k) {
+        const double v = k < n ? f.read(s, at, k, dim) : 0.0;
+        fields[f.vtu == VtuLayout::Scalars ? first + std::size_t(k) : first].values.push_back(v);
+      }
+  }
+  return fields;
 }
 
 void check_finite(const std::vector<double>& v, const std::string& what) {
@@ -375,29 +273,49 @@ void check_finite(const std::vector<double>& v, const std::string& what) {
     if (!std::isfinite(x)) throw Error("agent model produced a non-finite " + what);
 }
 
+/// Components [from, to) of every stress record finite.
+void check_finite(const std::vector<workbench::SymmetricTensor>& v, int from, int to, const std::string& what) {
+  for (const auto& r : v)
+    for (int k = from; k < to; ++k)
+      if (!std::isfinite(r[k])) throw Error("agent model produced a non-finite " + what);
+}
+
 using workbench::open_csv;
+
+/// The CSV header's columns of every field at `place`, in table order.
+void write_csv_header(workbench::CsvFile& out, int dim, FieldPlace place) {
+  for (const auto& f : kStateFields)
+    if (f.place == place)
+      for (int k = 0; k < f.components(dim); ++k)
+        out << ',' << f.columns[k] << (f.integer ? std::string() : std::string(" [") + f.unit + "]");
+}
+
+/// The CSV values of every field at `place` for agent or node `at`.
+void write_csv_values(workbench::CsvFile& out, const AgentState& s, int dim, FieldPlace place, std::size_t at) {
+  for (const auto& f : kStateFields)
+    if (f.place == place)
+      for (int k = 0; k < f.components(dim); ++k) {
+        const double v = f.read(s, at, k, dim);
+        if (f.integer)
+          out << ',' << std::int64_t(v);
+        else
+          out << ',' << v;
+      }
+}
 
 void write_cells_csv(const fs::path& file, const AgentStudy& study, const AgentState& s) {
   const auto& grid = study.mesh.grid;
-  const int dim = grid.dim, nd = 2 * dim;
+  const int dim = grid.dim;
   auto out = open_csv(file);
-  out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",generation";
-  for (int f = 0; f < nd; ++f) out << ",f_" << agent::kDirectionNames[f] << " [N]";
-  for (int a = 0; a < dim; ++a) out << ",sigma_" << char('x' + a) << " [Pa]";
-  const int shears = agent::shear_count(dim);
-  for (int t = 0; t < shears; ++t) out << ',' << kShearNames[t] << " [Pa]";
-  out << ",von_mises [Pa],eps_x [-],eps_y [-],eps_z [-]\n";
+  out << "cell,x [m],y [m]" << (dim == 3 ? ",z [m]" : "");
+  write_csv_header(out, dim, FieldPlace::Agent);
+  out << '\n';
   for (std::size_t e = 0; e < study.mesh.cell_of_element.size(); ++e) {
     const std::size_t cell = study.mesh.cell_of_element[e];
     const Eigen::Vector3d x = grid.centre(cell);
     out << e;
     for (int a = 0; a < dim; ++a) out << ',' << x[a];
-    out << ',' << s.generation[cell];
-    for (int f = 0; f < nd; ++f) out << ',' << s.face_forces[cell * nd + f];
-    for (int a = 0; a < dim; ++a) out << ',' << s.stress[cell * dim + a];
-    for (int t = 0; t < shears; ++t) out << ',' << s.shear[cell * shears + t];
-    out << ',' << s.von_mises[cell];
-    for (int a = 0; a < 3; ++a) out << ',' << s.strain[cell * 3 + a];
+    write_csv_values(out, s, dim, FieldPlace::Agent, cell);
     out << '\n';
   }
   out.close();
@@ -410,12 +328,14 @@ void write_nodes_csv(const fs::path& file, const AgentStudy& study, const AgentS
   std::vector<char> of_agent(mesh.point_count(), 0);
   for (long long p : mesh.connectivity) of_agent[std::size_t(p)] = 1;
   auto out = open_csv(file);
-  out << "node,x [m],y [m]" << (dim == 3 ? ",z [m]" : "") << ",u_x [m],u_y [m]" << (dim == 3 ? ",u_z [m]" : "") << "\n";
+  out << "node,x [m],y [m]" << (dim == 3 ? ",z [m]" : "");
+  write_csv_header(out, dim, FieldPlace::Node);
+  out << "\n";
   for (std::size_t node = 0; node < mesh.point_count(); ++node) {
     if (!of_agent[node]) continue;
     out << node;
     for (int a = 0; a < dim; ++a) out << ',' << mesh.points[3 * node + a];
-    for (int a = 0; a < dim; ++a) out << ',' << s.displacement[node * dim + a];
+    write_csv_values(out, s, dim, FieldPlace::Node, node);
     out << '\n';
   }
   out.close();
@@ -481,18 +401,21 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
   auto diagnostics = open_csv(dir / "agent_diagnostics.csv");
   diagnostics << "step,load_factor [-],agents_generated,agent_updates,applied [N],rigid_reaction [N],passed_out [N],"
                  "dropped [N],lost [N],lateral_reaction [N],lateral_passed_out [N],lateral_dropped [N]\n";
+  std::vector<std::size_t> node_ids(study.mesh.grid.node_count());  // every point of the output mesh
+  for (std::size_t n = 0; n < node_ids.size(); ++n) node_ids[n] = n;
   std::vector<AgentState> states;
   for (int k = 1; k <= steps; ++k) {
     const double factor = double(k) / steps;
     states.push_back(evaluate(study, model, factor));
     const auto& state = states.back();
     check_finite(state.face_forces, "face force");
-    check_finite(state.stress, "stress");
-    check_finite(state.shear, "shear stress");
+    check_finite(state.stress, workbench::kXX, workbench::kXY, "stress");
+    check_finite(state.stress, workbench::kXY, workbench::kVoigtCount, "shear stress");
     check_finite(state.displacement, "displacement");
     char name[64];
     std::snprintf(name, sizeof name, "agent_step_%03d.vtu", k);
-    workbench::write_vtu(dir / name, mesh, point_fields(study, state), cell_fields(study, state),
+    workbench::write_vtu(dir / name, mesh, vtu_fields(state, study.mesh.grid.dim, FieldPlace::Node, node_ids),
+                         vtu_fields(state, study.mesh.grid.dim, FieldPlace::Agent, study.mesh.cell_of_element),
                          k == 1 ? std::size_t(steps) : 1);  // the first step: the whole series must fit
     series.emplace_back(factor, name);
     const auto& d = state.diagnostics;

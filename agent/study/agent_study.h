@@ -3,6 +3,7 @@
 #include <agent/fields.h>
 #include <agent/load_transfer.h>
 #include <agent/mesh_import.h>
+#include <agent/state.h>
 #include <agent/stress_components.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
@@ -55,17 +56,8 @@ void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTabl
 /// unknown keys: the caller does, once every module has read its sections.
 AgentStudy load_agent_study(const workbench::CaseFile& file);
 
-/// Everything the agent model gives for one load state.
-struct AgentState {
-  std::vector<double> face_forces;   ///< 2*dim per agent, grid order [N]
-  std::vector<std::int32_t> generation;
-  std::vector<double> stress;        ///< dim normal stresses per agent [Pa]
-  std::vector<double> shear;         ///< per agent: 2D tau_xy, 3D tau_xy, tau_yz, tau_xz [Pa]
-  std::vector<double> von_mises;     ///< per agent [Pa]
-  std::vector<double> strain;        ///< 3 per agent
-  std::vector<double> displacement;  ///< dim per node [m]
-  agent::Diagnostics diagnostics;
-};
+/// Everything the agent model gives for one load state (agent/state.h).
+using AgentState = agent::AgentState;
 
 /// The cyclic transfer (readings 2 and 6) stopped at its cap: the case's coefficients keep too
 /// much load in transit. Bad input (a workbench::Error naming the case file and agent.gamma); a
@@ -87,10 +79,8 @@ inline agent::LoadTransfer transfer_model(const AgentStudy& study) {
 /// (Coefficients::gamma_for) at every load step.
 double entering_load(const AgentStudy& study, double factor);
 
-/// Solves with the loads scaled by `factor` (a load step); throws TransferDidNotEnd at the cyclic
-/// transfer's cap. Pulls (negative entry forces) are carried as the same pushes and the state
-/// negated: with pushes and pulls mixed, the pushes' state less the pulls' (docs/agent-model.md,
-/// "Tension").
+/// agent::solve_state of the study's loads scaled by `factor` (a load step) under its stress
+/// readings; throws TransferDidNotEnd at the cyclic transfer's cap.
 AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
 
 /// A run whose rigid faces return less than this share of the applied load warns (on the log and

@@ -1,5 +1,7 @@
 // Stress, strain and displacement from face forces, against closed forms.
 #include <agent/fields.h>
+#include <agent/load_transfer.h>
+#include <agent/state.h>
 #include <agent/transfer.h>
 
 #include <gtest/gtest.h>
@@ -131,5 +133,86 @@ TEST(AgentFields, TheMarchGivesABendingFieldItsClosedFormOnTheSidesToo) {
         [&](const Eigen::Vector3d& p) {
           return Eigen::Vector3d(-c * p.y() * p.y() / 2, (c * p.x() + d * p.z()) * p.y(), -d * p.y() * p.y() / 2);
         });
+  }
+}
+
+TEST(VonMises, ClosedFormsInBothOrders) {
+  using workbench::von_mises;
+  using workbench::VonMisesForm;
+  const workbench::SymmetricTensor uniaxial{-100, 0, 0, 0, 0, 0}, shear{0, 0, 0, 2, 0, 0}, equal{5, 5, 0, 0, 0, 0};
+  for (auto form : {VonMisesForm::General, VonMisesForm::PlaneStress}) {
+    EXPECT_DOUBLE_EQ(von_mises(uniaxial, form), 100);
+    EXPECT_DOUBLE_EQ(von_mises(shear, form), 2 * std::sqrt(3.0));
+    EXPECT_DOUBLE_EQ(von_mises(equal, form), 5);  // equal biaxial: the uniaxial value
+  }
+  // 3D: hydrostatic pressure has none; each shear counts sqrt(3).
+  EXPECT_EQ(von_mises(workbench::SymmetricTensor{-7, -7, -7, 0, 0, 0}), 0.0);
+  EXPECT_DOUBLE_EQ(von_mises(workbench::SymmetricTensor{0, 0, 0, 1, 1, 1}), 3.0);
+  // The agents: plane stress in 2D, the general form in 3D.
+  const workbench::SymmetricTensor s{3, -1, 0, 2, 0, 0};
+  EXPECT_EQ(agent_von_mises(s, 2), von_mises(s, VonMisesForm::PlaneStress));
+  EXPECT_EQ(agent_von_mises(s, 3), von_mises(s));
+  EXPECT_NEAR(agent_von_mises(s, 2), std::sqrt(9.0 + 3 + 1 + 12), 1e-14);
+}
+
+TEST(Diagnostics, PlusEqualsAddsEveryTally) {
+  Diagnostics a, b;
+  a.agents_generated = 1, a.agent_updates = 2, a.packet_moves = 3, a.applied = 4, a.rigid_reaction = 5;
+  a.passed_out = 6, a.dropped = 7, a.lost = 8, a.lateral_reaction = 9, a.lateral_passed_out = 10;
+  a.lateral_dropped = 11, a.returned_rigid = 12, a.returned_free = 13, a.unfinished = 14;
+  b = a;
+  b += a;
+  EXPECT_EQ(b.agents_generated, 2u);
+  EXPECT_EQ(b.agent_updates, 4u);
+  EXPECT_EQ(b.packet_moves, 6u);
+  const double Diagnostics::*tallies[] = {&Diagnostics::applied, &Diagnostics::rigid_reaction, &Diagnostics::passed_out,
+                                          &Diagnostics::dropped, &Diagnostics::lost, &Diagnostics::lateral_reaction,
+                                          &Diagnostics::lateral_passed_out, &Diagnostics::lateral_dropped,
+                                          &Diagnostics::returned_rigid, &Diagnostics::returned_free,
+                                          &Diagnostics::unfinished};
+  for (auto t : tallies) EXPECT_EQ(b.*t, 2 * (a.*t));
+}
+
+// The one call: the record holds agent_stresses' normal stresses and agent_strains' strains; a
+// pull is the push negated (every field, to the bit); the field table reads the record.
+TEST(AgentState, SolveStateHoldsTheFieldsOfTheFaceForces) {
+  Grid g = Grid::box(2, {4, 5, 1}, Eigen::Vector3d(0.01, 0.01, 1), 0.002);
+  g.set_boundary(g.box_side(direction(1, false)), Boundary::Rigid);
+  const Material steel{206e9, 0.3};
+  Coefficients k;
+  LoadTransfer model(g, steel, k, RuleSet::Conserving);
+  const std::size_t entry = g.index(1, 4, 0);
+  const auto push = solve_state(model, {{entry, direction(1, false), 2.0}}, {}, 0.5);
+  const auto normal = agent_stresses(g, model.face_forces());
+  const auto strain = agent_strains(g, steel, normal);
+  ASSERT_EQ(push.stress.size(), g.count());
+  EXPECT_NEAR(push.diagnostics.applied, 1.0, 1e-15);  // the factor scales the load
+  for (std::size_t c = 0; c < g.count(); ++c) {
+    EXPECT_EQ(push.stress[c][workbench::kXX], normal[2 * c] + 0.0);
+    EXPECT_EQ(push.stress[c][workbench::kYY], normal[2 * c + 1] + 0.0);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(push.strain[c][a], strain[3 * c + a] + 0.0);
+    const auto& vm = state_field("von_mises");
+    EXPECT_EQ(vm.read(push, c, 0, 2), agent_von_mises(push.stress[c], 2));
+  }
+  EXPECT_LT(push.stress[entry][workbench::kYY], 0);  // compression under the push
+  const auto pull = solve_state(model, {{entry, direction(1, false), -2.0}}, {}, 0.5);
+  for (std::size_t c = 0; c < g.count(); ++c)
+    for (int v = 0; v < workbench::kVoigtCount; ++v) ASSERT_EQ(pull.stress[c][v], -push.stress[c][v] + 0.0);
+  for (std::size_t n = 0; n < push.displacement.size(); ++n) ASSERT_EQ(pull.displacement[n], -push.displacement[n] + 0.0);
+}
+
+TEST(FieldTable, RowsAreConsistent) {
+  for (const auto& f : kStateFields) {
+    SCOPED_TRACE(f.name);
+    EXPECT_LE(f.components(2), f.components(3));
+    EXPECT_GT(f.components(2), 0);
+    if (f.slot >= 0) {
+      EXPECT_LE(f.slot + f.components(3), workbench::kVoigtCount + 1);  // compare::kStressSlots
+    }
+    for (int k = 0; k < f.components(3); ++k) {
+      if (f.vtu != VtuLayout::Scalars) {
+        EXPECT_FALSE(vtu_label(f.columns[k]).empty()) << f.columns[k];
+      }
+    }
   }
 }

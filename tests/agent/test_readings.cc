@@ -156,7 +156,7 @@ TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
     const auto& g = study.mesh.grid;
     ASSERT_EQ(study.loads.size(), 2u);
     const double p0_over_a = 2.0 / (2 * g.face_area(1));  // 2 N over the two-agent patch
-    for (const auto& l : study.loads) EXPECT_NEAR(-s.stress[l.cell * 2 + 1] / p0_over_a, expected, 1e-12) << readings;
+    for (const auto& l : study.loads) EXPECT_NEAR(-s.stress[l.cell][workbench::kYY] / p0_over_a, expected, 1e-12) << readings;
     expect_load_balance(s.diagnostics);
   }
 }

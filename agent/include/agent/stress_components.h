@@ -20,11 +20,6 @@ struct StressComponents {
 /// The shears in a slot of StressComponents::shear: 1 in 2D, 3 in 3D.
 constexpr int shear_count(int dim) { return dim == 3 ? 3 : 1; }
 
-/// The von Mises stress of a plane-stress state (2D) or of the six components (3D: xx, yy, zz,
-/// xy, yz, xz).
-double von_mises_2d(double sx, double sy, double txy);
-double von_mises_3d(const double* s);
-
 /// The stress components of one solve. `normal` is agent_stresses' (dim per slot). `shear_flux`
 /// and `balance` are the transfer's (TransferResults::shear, ::balance; empty: no shear, as every
 /// rule set but the directional one in 2D). Per march axis a of the 2D directional rule set:

@@ -94,6 +94,17 @@ struct Diagnostics {
   double unfinished = 0;
 };
 
+/// Adds every tally of `o` to `d`: the one sum of two balances (a push's and a pull's state, a
+/// layer's into its sweep's). agents_generated adds too: a caller that knows the union sets it.
+inline Diagnostics& operator+=(Diagnostics& d, const Diagnostics& o) {
+  d.agents_generated += o.agents_generated, d.agent_updates += o.agent_updates, d.packet_moves += o.packet_moves;
+  d.applied += o.applied, d.rigid_reaction += o.rigid_reaction, d.passed_out += o.passed_out, d.dropped += o.dropped;
+  d.lost += o.lost, d.lateral_reaction += o.lateral_reaction, d.lateral_passed_out += o.lateral_passed_out;
+  d.lateral_dropped += o.lateral_dropped, d.returned_rigid += o.returned_rigid, d.returned_free += o.returned_free;
+  d.unfinished += o.unfinished;
+  return d;
+}
+
 /// The place of the shear between axes a != b in a 3D triple (xy, yz, xz); tau_xy is the 2D one.
 constexpr int shear_pair(int a, int b) { return a + b == 1 ? 0 : a + b == 3 ? 1 : 2; }
 /// Where the layers across axis a start in TransferResults::balance (2 values per layer).

@@ -39,11 +39,6 @@ bool locate_node(const agent::Grid& g, const double* p, int idx[3]) {
 
 }  // namespace
 
-double von_mises(const double* s) {
-  const double dxy = s[0] - s[1], dyz = s[1] - s[2], dzx = s[2] - s[0];
-  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
-}
-
 GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::FemResult& fem,
                        const std::string& case_name) {
   const auto& grid = mesh.grid;

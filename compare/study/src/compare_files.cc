@@ -227,7 +227,7 @@ void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
       const Eigen::Vector3d c = grid.centre(cell);
       csv << k + 1 << ',' << s.diagnostics.applied << ',' << e;
       for (int a = 0; a < dim; ++a) csv << ',' << c[a];
-      csv << ',' << s.generation[cell] << ',' << s.stress[cell * dim] << ',' << s.stress[cell * dim + 1] << '\n';
+      csv << ',' << s.generation[cell] << ',' << s.stress[cell][workbench::kXX] << ',' << s.stress[cell][workbench::kYY] << '\n';
     }
   }
   csv.close();

@@ -7,6 +7,7 @@
 #include <compare/metrics.h>
 #include <workbench/error.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ostream>
@@ -15,18 +16,13 @@ namespace compare {
 
 using workbench::Error;
 
-GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state) {
+GridFields agent_on_grid(const agent::Grid& grid, const agent::AgentState& state) {
   GridFields out;
   out.stress.assign(grid.count() * kStressSlots, 0.0);
   for (std::size_t cell = 0; cell < grid.count(); ++cell) {
     double* s = &out.stress[kStressSlots * cell];
-    for (int a = 0; a < grid.dim; ++a) s[a] = state.stress[cell * grid.dim + a];
-    if (grid.dim == 2) {
-      s[kTauXY] = state.shear[cell];
-    } else {
-      for (int t = 0; t < 3; ++t) s[kTauXY + t] = state.shear[cell * 3 + t];  // xy, yz, xz: the slots' order
-    }
-    s[kVonMises] = von_mises(s);
+    std::copy(state.stress[cell].begin(), state.stress[cell].end(), s);  // the slots' order
+    s[kVonMises] = von_mises(s);  // the general form (the agents' own 2D outputs: plane stress's)
   }
   out.u = state.displacement;
   return out;

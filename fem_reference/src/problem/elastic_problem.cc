@@ -6,6 +6,7 @@
 #include "mpi/runtime.h"
 
 #include <workbench/error.h>
+#include <workbench/symmetric_tensor.h>
 #include <workbench/vtk_output.h>
 
 #include <deal.II/base/exceptions.h>
@@ -203,10 +204,7 @@ void ElasticProblem<dim>::postprocess() {
   const FEValuesExtractors::Vector displacement(0);
   std::vector<Tensor<2, dim>> grads(quadrature_->size());
   cell_fields_.assign(7, Vector<float>(tria_->n_active_cells()));
-  auto von_mises = [](const double* s) {
-    const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
-    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
-  };
+  using workbench::von_mises;
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     fe_values.reinit(cell);

@@ -1,10 +1,13 @@
 #pragma once
 // Fields of both models on the agent grid, in the same layout, so that any two can be compared:
 // every stress component and von Mises per agent (grid order) and the displacement per grid node;
-// and the one table of the fields a comparison compares (kFields). FEM results are sampled onto
-// the agents by point location (no case files, no I/O).
+// and the list of the fields a comparison compares (kFields), rows of the agents' field table
+// (agent::kStateFields). FEM results are sampled onto the agents by point location (no case
+// files, no I/O).
 #include <agent/mesh_import.h>
+#include <agent/state.h>
 #include <fem_reference/fem.h>
+#include <workbench/symmetric_tensor.h>
 
 #include <array>
 #include <iterator>
@@ -14,16 +17,22 @@
 
 namespace compare {
 
-/// The stress slots of an agent in GridFields::stress: the six components and von Mises.
-enum StressSlot : int { kSigmaX, kSigmaY, kSigmaZ, kTauXY, kTauYZ, kTauXZ, kVonMises, kStressSlots };
+/// The stress slots of an agent in GridFields::stress: the six components (a
+/// workbench::SymmetricTensor's, agent::StateField::slot's) and von Mises.
+enum StressSlot : int {
+  kSigmaX = workbench::kXX, kSigmaY = workbench::kYY, kSigmaZ = workbench::kZZ,
+  kTauXY = workbench::kXY, kTauYZ = workbench::kYZ, kTauXZ = workbench::kXZ,
+  kVonMises = workbench::kVoigtCount, kStressSlots
+};
 
 struct GridFields {
   std::vector<double> stress;  ///< kStressSlots per agent [Pa], grid order (2D: zz, yz, xz as the model gives them)
   std::vector<double> u;       ///< dim per grid node [m], Grid::node_index order
 };
 
-/// The von Mises stress of the six components xx, yy, zz, xy, yz, xz.
-double von_mises(const double* s);
+/// The von Mises stress of the six components xx, yy, zz, xy, yz, xz (the general form, for both
+/// models' fields on the grid: workbench/symmetric_tensor.h).
+using workbench::von_mises;
 
 /// A field a comparison compares: a stress slot per agent, or one displacement component per node
 /// (`component` -1: every component, the displacement as a vector).
@@ -37,16 +46,27 @@ struct FieldSpec {
   bool in(int dim) const { return dims & (1 << dim); }
 };
 
+/// Component `component` of the agents' field `name` (agent::kStateFields) as a compared field:
+/// its column's name and unit, compared in the dimensions that have it; a stress's slot, a node
+/// field's component. `component` -1: a node field whole, by the field's name (the displacement
+/// as a vector).
+constexpr FieldSpec compared(std::string_view name, int component, bool ratios = false) {
+  const agent::StateField& f = agent::state_field(name);
+  const bool per_node = f.place == agent::FieldPlace::Node;
+  const int whole = component < 0 ? 0 : component;
+  const int dims = (f.components(2) > whole ? 0b100 : 0) | (f.components(3) > whole ? 0b1000 : 0);
+  return {component < 0 ? f.name : f.columns[component], per_node, per_node ? component : f.slot + component,
+          dims, ratios, f.unit};
+}
+
 /// Every field compared, in the order of the summary: the seed's Figures 8-11 fields first
 /// (sigma_x, sigma_y, displacement), then the others. The names, per scope, are the metric names'
 /// middle part ("far.tau_xy.rel_l2").
 inline constexpr FieldSpec kFields[] = {
-    {"sigma_x", false, kSigmaX, 0b1100, true, "Pa"},     {"sigma_y", false, kSigmaY, 0b1100, true, "Pa"},
-    {"displacement", true, -1, 0b1100, false, "m"},     {"sigma_z", false, kSigmaZ, 0b1000, false, "Pa"},
-    {"tau_xy", false, kTauXY, 0b1100, false, "Pa"},      {"tau_yz", false, kTauYZ, 0b1000, false, "Pa"},
-    {"tau_xz", false, kTauXZ, 0b1000, false, "Pa"},      {"von_mises", false, kVonMises, 0b1100, false, "Pa"},
-    {"u_x", true, 0, 0b1100, false, "m"},                {"u_y", true, 1, 0b1100, false, "m"},
-    {"u_z", true, 2, 0b1000, false, "m"},
+    compared("stress", 0, true), compared("stress", 1, true), compared("displacement", -1),
+    compared("stress", 2),       compared("shear", 0),        compared("shear", 1),
+    compared("shear", 2),        compared("von_mises", 0),    compared("displacement", 0),
+    compared("displacement", 1), compared("displacement", 2),
 };
 
 /// The place of the field `name` in kFields (a compile-time lookup: an unknown name does not compile

@@ -12,16 +12,12 @@
 #include <string>
 #include <vector>
 
-namespace agent_study {
-struct AgentState;  // agent_study.h; the reference itself needs no study glue
-}
-
 namespace compare {
 
-/// An agent state in the same layout: its normal stresses (in 2D sigma_z = 0, plane stress, as the
-/// agents' strains), its shears (the directional rule set's; the others carry none: tau 0, the zero
-/// model's), and the von Mises stress of those.
-GridFields agent_on_grid(const agent::Grid& grid, const agent_study::AgentState& state);
+/// An agent state in the same layout: its stress record (in 2D sigma_z = 0, plane stress, as the
+/// agents' strains; the shears the directional and column rule sets' only, the others' 0, the zero
+/// model's), and the von Mises stress of those (the general form).
+GridFields agent_on_grid(const agent::Grid& grid, const agent::AgentState& state);
 
 /// `problem` set to the level `options`: its degree and refinement, and with options.mesh (the true
 /// geometry) that mesh instead of the agents' and the agent_probe_points as probes.

@@ -83,7 +83,11 @@ py::list state_fields_list() {
     d["place"] = f.place == agent::FieldPlace::Agent ? "agent" : "node";
     d["vtu"] = f.vtu == agent::VtuLayout::Scalars ? "scalars" : f.vtu == agent::VtuLayout::Vector ? "vector" : "vector3";
     d["integer"] = f.integer;
-    for (int dim : {2, 3}) columns[py::int_(dim)] = std::vector<std::string>(f.columns, f.columns + f.components(dim));
+    for (int dim : {2, 3}) {
+      py::list names;
+      for (int k = 0; k < f.components(dim); ++k) names.append(f.columns[k]);
+      columns[py::int_(dim)] = names;
+    }
     d["columns"] = columns;
     py::list compared;  // the rows of compare::kFields this field gives: the whole field, or a column
     for (const auto& c : compare::kFields)

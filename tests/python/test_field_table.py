@@ -36,7 +36,8 @@ def case(dim):
 
 def vtu_arrays(path):
     """{(place, name): (components, [labels])} from the VTU's XML header."""
-    text = open(path, "rb").read().decode("latin-1")
+    with open(path, "rb") as f:
+        text = f.read().decode("latin-1")
     text = text[:text.find("<AppendedData")] if "<AppendedData" in text else text
     out = {}
     for place, block in re.findall(r"<(PointData|CellData)[^>]*>(.*?)</\1>", text, re.S):
@@ -57,8 +58,12 @@ class FieldTable(unittest.TestCase):
     def test_the_table_is_not_empty_and_names_are_unique(self):
         fields = workbench.agent_fields()
         self.assertGreater(len(fields), 0)
-        names = [f["name"] for f in fields] + [c for f in fields for c in f["columns"][3]]
+        names = [f["name"] for f in fields]
+        columns = [c for f in fields for c in f["columns"][3]]
         self.assertEqual(len(names), len(set(names)))
+        self.assertEqual(len(columns), len(set(columns)))
+        for f in fields:  # a column is the 2D one's too, in the same place
+            self.assertEqual(f["columns"][3][:len(f["columns"][2])], f["columns"][2])
 
     def test_every_field_reaches_every_output(self):
         for dim in (2, 3):
@@ -74,7 +79,8 @@ class FieldTable(unittest.TestCase):
                    "node": csv_header(os.path.join(tmp, "agent", "agent_nodes.csv"))}
         rows = {"agent": len(r["cell_centres"]), "node": len(r["node_points"])}
         compare = workbench.compare(c, os.path.join(tmp, "compare"))
-        metrics = json.load(open(os.path.join(tmp, "compare", "summary.json")))["metrics"]
+        with open(os.path.join(tmp, "compare", "summary.json")) as f:
+            metrics = json.load(f)["metrics"]
         self.assertIsInstance(compare, dict)
         self.assertTrue(any(f["compared"] for f in workbench.agent_fields()))
         for f in workbench.agent_fields():

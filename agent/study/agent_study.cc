@@ -65,10 +65,8 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   refuse_renamed_keys(t);
   try {
     agent::check_coefficients(k, rules);  // what a rule set needs beyond the ranges
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what(), directions = "directions ";
-    if (what.rfind(directions, 0) == 0) t.fail("directions", what.substr(directions.size()));
-    t.fail("alpha2", what);
+  } catch (const agent::CoefficientError& e) {
+    t.fail(e.key, e.problem);
   }
 }
 
@@ -236,7 +234,7 @@ AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const st
   s.diagnostics = model.diagnostics();
   if (model.rules() == agent::RuleSet::Columns) {  // the columns give the shear and the displacement themselves
     s.stress = agent::agent_stresses(grid, s.face_forces);
-    s.shear = model.shear_flux();
+    s.shear = model.shear_stress();
     s.von_mises.assign(grid.count(), 0.0);
     set_von_mises(s, grid.dim);
     s.strain = agent::agent_strains(grid, model.material(), s.stress);
@@ -247,13 +245,12 @@ AgentState carried(const AgentStudy& study, agent::LoadTransfer& model, const st
   const auto normal = agent::agent_stresses(grid, s.face_forces, study.readings, study.loads.front().dir,
                                            model.coefficients().beta, model.material().poisson);
   // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
-  auto parts = agent::agent_stress_components(grid, normal, model.shear_flux(), model.balance_force(),
-                                              model.coefficients().directional, model.material().poisson, pushes);
+  auto parts = model.stress_components(normal, pushes);
   s.stress = std::move(parts.sigma);
   s.shear = std::move(parts.shear);
   s.von_mises = std::move(parts.von_mises);
   s.strain = agent::agent_strains(grid, model.material(), s.stress);
-  s.displacement = model.shear_flux().empty()
+  s.displacement = model.shear_stress().empty()
                        ? agent::node_displacements(grid, s.strain, datums)
                        : agent::node_displacements_marched(grid, s.strain, s.shear, model.material(), datums,
                                                            agent::axis_of(pushes.front().dir));

@@ -429,10 +429,11 @@ class Objective {
   }
 
  private:
-  /// The seed's rule sets' coefficients (alpha1..gamma: the first five rows of agent::kCoefficients).
+  /// The seed's rule sets' coefficients (alpha1, alpha2, alpha3, beta, gamma: the order of the call's values).
   static agent::Coefficients seed_coefficients(const std::array<double, 5>& values) {
     agent::Coefficients k;
-    for (std::size_t i = 0; i < values.size(); ++i) agent::kCoefficients[i].set(k, values[i]);
+    static constexpr const char* kSeedNames[] = {"alpha1", "alpha2", "alpha3", "beta", "gamma"};
+    for (std::size_t i = 0; i < values.size(); ++i) agent::find_coefficient(kSeedNames[i])->set(k, values[i]);
     return k;
   }
   /// Named coefficients (any row of agent::kCoefficients), the rest at the library's defaults.

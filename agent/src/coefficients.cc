@@ -33,7 +33,7 @@ std::string CoefficientSpec::problem(double v) const {
     return "must be one of " + names + " (got index " + shortest(v) + ")";
   }
   std::string range;
-  if (max >= 1e100)
+  if (max >= kNoMax)
     range = min_open ? "> " + shortest(min) : ">= " + shortest(min);
   else
     range = "in " + std::string(min_open ? "(" : "[") + shortest(min) + ", " + shortest(max) + (max_open ? ")" : "]");
@@ -50,11 +50,9 @@ const CoefficientSpec* find_coefficient(const std::string& name) {
 void check_coefficients(const Coefficients& k, RuleSet rules) {
   for (const auto& c : kCoefficients)
     if (c.used_by(rules))
-      if (const auto why = c.problem(c.get(k)); !why.empty()) throw std::invalid_argument(std::string(c.name) + " " + why);
-  if (rules == RuleSet::Directional && k.directional.directions % 2)
-    throw std::invalid_argument("directions must be even (an odd fan has a straight-down packet: a spike under the load)");
-  if (rules == RuleSet::Conserving && !(k.alpha2 + k.alpha3 > 0))
-    throw std::invalid_argument("the conserving rule set needs alpha2 + alpha3 > 0");
+      if (const auto why = c.problem(c.get(k)); !why.empty()) throw CoefficientError(c.name, why);
+  for (const auto& constraint : kCoefficientConstraints)
+    if ((constraint.rules & rule_bit(rules)) && !constraint.holds(k)) throw CoefficientError(constraint.key, constraint.need);
 }
 
 }  // namespace agent

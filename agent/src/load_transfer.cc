@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace agent {
 
@@ -16,7 +17,6 @@ void check(bool ok, const std::string& what) {
 Coefficients with_gamma(Coefficients k, double gamma);
 
 // The rule type of (rule set, readings) at the absolute threshold `gamma`, each checking its own coefficients.
-using RuleType = std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer>;
 RuleType make_transfer(const Grid& grid, const Material& material, const Coefficients& case_k, double gamma,
                        RuleSet rules, const TransferReadings& readings) {
   check_coefficients(case_k, rules);  // as the case gave them: a bad gamma_relative is named as such
@@ -31,10 +31,13 @@ RuleType make_transfer(const Grid& grid, const Material& material, const Coeffic
                               "patent rule set");
     check(false, "reading non_compounding_entry is a reading of the patent rule set");
   }
-  if (rules == RuleSet::Directional) return DirectionalTransfer(k);
-  if (rules == RuleSet::Columns) return ColumnTransfer(grid, material);
-  if (readings.cyclic()) return CyclicTransfer(grid, material, k, readings);
-  return LayerSweep(grid, material, k, rules, readings);
+  return with_rule_type(rules, readings, [&](auto type) -> RuleType {
+    using T = typename decltype(type)::type;
+    if constexpr (std::is_same_v<T, DirectionalTransfer>) return T(k);
+    else if constexpr (std::is_same_v<T, ColumnTransfer>) return T(grid, material);
+    else if constexpr (std::is_same_v<T, CyclicTransfer>) return T(grid, material, k, readings);
+    else return T(grid, material, k, rules, readings);
+  });
 }
 // The rule types read the absolute threshold: `k` with gamma set to the one in effect.
 Coefficients with_gamma(Coefficients k, double gamma) {
@@ -52,16 +55,26 @@ void TransferResults::clear_all() {
   diagnostics = Diagnostics{};
 }
 
+void TransferResults::size_forces(const Grid& grid) {
+  faces.assign(grid.count() * 2 * grid.dim, 0.0);
+  generation.assign(grid.count(), -1);
+}
+
+int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings) {
+  return with_rule_type(rules, readings, [&](auto type) { return decltype(type)::type::lateral_reach(grid, k); });
+}
+
 LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules,
                            TransferReadings readings)
     : grid_(grid), material_(material), k_(k), rules_(rules), readings_(readings), gamma_(k.gamma_for(1.0)),
       transfer_(make_transfer(grid, material, k, gamma_, rules, readings)) {
-  out_.faces.assign(grid.count() * 2 * grid.dim, 0.0);
-  out_.generation.assign(grid.count(), -1);
-  if (rules == RuleSet::Directional || rules == RuleSet::Columns)  // the rule types that write a shear
-    out_.shear.assign(grid.count() * (grid.dim == 3 ? 3 : 1), 0.0);
-  if (rules == RuleSet::Directional) out_.balance.assign(2 * balance_offset(grid, 3), 0.0);
-  if (rules == RuleSet::Columns) out_.displacement.assign(grid.node_count() * std::size_t(grid.dim), 0.0);
+  std::visit([&](const auto& t) { t.size_results(grid, out_); }, transfer_);
+}
+
+StressComponents LoadTransfer::stress_components(const std::vector<double>& normal,
+                                                 const std::vector<EntryLoad>& loads) const {
+  return std::visit([&](const auto& t) { return t.stress_components(grid_, out_, normal, material_.poisson, loads); },
+                    transfer_);
 }
 
 std::size_t LoadTransfer::memory_bytes() const {

@@ -55,7 +55,7 @@ AgentState carried(LoadTransfer& model, const std::vector<EntryLoad>& pushes, co
   if (model.rules() == RuleSet::Columns) {  // the columns give the shear and the displacement themselves
     const auto normal = agent_stresses(grid, s.face_forces);
     const auto strain = agent_strains(grid, model.material(), normal);
-    s.stress = records(normal, model.shear_flux(), grid.count(), grid.dim);
+    s.stress = records(normal, model.shear_stress(), grid.count(), grid.dim);
     s.strain = strain_records(strain);
     s.displacement = model.displacement();
     hold_rigid_faces(grid, s.displacement);
@@ -64,10 +64,9 @@ AgentState carried(LoadTransfer& model, const std::vector<EntryLoad>& pushes, co
   const auto normal =
       agent_stresses(grid, s.face_forces, readings, load_dir, model.coefficients().beta, model.material().poisson);
   // Every component (agent/stress_components.h): the shear and, with turning paths, the tie.
-  const auto parts = agent_stress_components(grid, normal, model.shear_flux(), model.balance_force(),
-                                             model.coefficients().directional, model.material().poisson, pushes);
+  const auto parts = model.stress_components(normal, pushes);
   const auto strain = agent_strains(grid, model.material(), parts.sigma);
-  s.displacement = model.shear_flux().empty()
+  s.displacement = model.shear_stress().empty()
                        ? node_displacements(grid, strain, datums)
                        : node_displacements_marched(grid, strain, parts.shear, model.material(), datums,
                                                     axis_of(pushes.front().dir));

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace agent {
@@ -16,6 +17,9 @@ namespace agent {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// fitted_slope reads the entries within this many windows of each: a Gaussian weight there is
+/// exp(-8), 3e-4 of the entry's own.
+constexpr double kFitReach = 4;
 
 /// fitted_slope's weights for one window. The slope is linear in the values: per entry, weights
 /// c_i = e1' M^-1 w_i p_i of its neighbours. They depend only on the entry's offsets to its
@@ -23,7 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// each end entry those of its distance to the end: computed once, kept for every such line.
 class SlopeFit {
  public:
-  explicit SlopeFit(double window) : window_(window), reach_(std::max(1, int(std::ceil(4 * window)))) {
+  explicit SlopeFit(double window) : window_(window), reach_(std::max(1, int(std::ceil(kFitReach * window)))) {
     const int count = 2 * reach_ + 1;  // the shortest line with an interior entry
     int first = 0;
     weights(reach_, count, inner_, first);
@@ -137,7 +141,7 @@ double position(const Grid& g, std::size_t cell, int a) {
   return std::round((g.centre(cell)[a] - g.origin[a]) / g.size[a] - 0.5);
 }
 
-/// Per-agent scratch fields of one agent_stress_components call, reused by every step (a step's
+/// Per-agent scratch fields of one directional_stress_components call, reused by every step (a step's
 /// are dead when the next starts): at a million agents fresh pages cost about as much as the
 /// arithmetic (docs/performance.md, "Every core").
 struct Scratch {
@@ -336,197 +340,153 @@ void add_layer(const Grid& g, int a, int l, int exit_side, const std::vector<dou
 }  // namespace
 
 namespace {
-constexpr double kHoleReach = 10;  // radii about a hole that its shear reaches (hole_shear)
-}  // namespace
 
-std::vector<Hole> enclosed_holes(const Grid& g) {
-  std::vector<Hole> holes;
-  if (g.dim != 2) return holes;
-  const int nx = g.cells[0], ny = g.cells[1];
-  auto air = [&](int i, int j) {
-    const std::size_t c = g.index(i, j, 0);
-    return c == Grid::npos || g.is_air(c);
-  };
-  std::vector<char> seen(std::size_t(nx) * ny, 0);
-  std::vector<std::array<int, 2>> stack;
-  for (int j0 = 0; j0 < ny; ++j0)
-    for (int i0 = 0; i0 < nx; ++i0) {
-      if (seen[i0 + std::size_t(nx) * j0] || !air(i0, j0)) continue;
-      Hole h;
-      bool enclosed = true;  // air that reaches the box's side is outside the body, not a hole
-      double cx = 0, cy = 0;
-      stack.assign(1, {i0, j0});
-      seen[i0 + std::size_t(nx) * j0] = 1;
-      while (!stack.empty()) {
-        const auto [i, j] = stack.back();
-        stack.pop_back();
-        enclosed = enclosed && i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
-        const double wx = g.plane(0, i + 1) - g.plane(0, i), wy = g.plane(1, j + 1) - g.plane(1, j);
-        h.area += wx * wy;
-        cx += wx * wy * 0.5 * (g.plane(0, i) + g.plane(0, i + 1));
-        cy += wx * wy * 0.5 * (g.plane(1, j) + g.plane(1, j + 1));
-        for (const auto& step : {std::array<int, 2>{1, 0}, std::array<int, 2>{-1, 0}, std::array<int, 2>{0, 1},
-                                 std::array<int, 2>{0, -1}}) {
-          const int p = i + step[0], q = j + step[1];
-          if (p < 0 || q < 0 || p >= nx || q >= ny || seen[p + std::size_t(nx) * q] || !air(p, q)) continue;
-          seen[p + std::size_t(nx) * q] = 1;
-          stack.push_back({p, q});
-        }
-      }
-      if (!enclosed) continue;
-      h.centre[0] = cx / h.area;
-      h.centre[1] = cy / h.area;
-      holes.push_back(h);
-    }
-  return holes;
-}
-
-double kirsch_shear(double along, double across, double radius, double remote) {
-  const double distance = std::hypot(along, across), r = std::max(distance, radius);
-  if (!(distance > 0)) return 0.0;  // the centre: no direction (and inside the hole)
-  const double c = along / distance, s = across / distance;
-  const double q2 = radius * radius / (r * r), q4 = q2 * q2;
-  const double c2 = c * c - s * s, s2 = 2 * s * c;  // cos 2 theta, sin 2 theta
-  // Kirsch's polar components, rotated into the (along, across) frame.
-  const double srr = 0.5 * remote * (1 - q2) + 0.5 * remote * (1 - 4 * q2 + 3 * q4) * c2;
-  const double stt = 0.5 * remote * (1 + q2) - 0.5 * remote * (1 + 3 * q4) * c2;
-  const double srt = -0.5 * remote * (1 + 2 * q2 - 3 * q4) * s2;
-  return (srr - stt) * s * c + srt * c2;
-}
-
-std::vector<double> hole_shear(const Grid& g, int a, const std::vector<double>& normal) {
-  std::vector<double> tau(g.count(), 0.0);
-  if (g.dim != 2) return tau;
-  const int l = 1 - a;
-  for (const Hole& h : enclosed_holes(g)) {
-    // The remote stress: the force through the row at the hole's centre over the row's extent
-    // (the gross section: a row through a hole carries the load of the whole width).
-    int row = 0;
-    while (row + 1 < g.cells[a] && g.plane(a, row + 1) <= h.centre[a]) ++row;
-    double force = 0, lo = 1e300, hi = -1e300, below = 0, above = 0;  // the body's width on each side
-    for (int i = 0; i < g.cells[l]; ++i) {
-      const std::size_t c = a == 0 ? g.index(row, i, 0) : g.index(i, row, 0);
-      if (c == Grid::npos || g.is_air(c)) continue;
-      const double width = g.plane(l, i + 1) - g.plane(l, i);
-      force += normal[c * 2 + a] * width;
-      lo = std::min(lo, g.plane(l, i));
-      hi = std::max(hi, g.plane(l, i + 1));
-      (g.plane(l, i) < h.centre[l] ? below : above) += width;
-    }
-    const double remote = force / (hi - lo), radius = std::sqrt(h.area / kPi);
-    // Kirsch's plate is infinite: a hole beside which the body is narrower than its radius (a
-    // ring's inside, a slot) is not one; its walls carry the load as beams.
-    if (!(hi > lo) || force == 0 || below < radius || above < radius) continue;
-    // The hole's disturbance of the uniform field falls off as (radius / r)^2: beyond kHoleReach
-    // radii it is a percent of the remote stress, and leaving it out keeps a hole's cost to the
-    // agents about it (a plate of many holes stays linear in its agents).
-    int from[2], to[2];
-    for (int d = 0; d < 2; ++d) {
-      from[d] = 0;
-      while (from[d] + 1 < g.cells[d] && g.plane(d, from[d] + 1) <= h.centre[d] - kHoleReach * radius) ++from[d];
-      to[d] = from[d];
-      while (to[d] + 1 < g.cells[d] && g.plane(d, to[d] + 1) < h.centre[d] + kHoleReach * radius) ++to[d];
-    }
-    for (int j = from[1]; j <= to[1]; ++j)
-      for (int i = from[0]; i <= to[0]; ++i) {
-        const std::size_t c = g.index(i, j, 0);
-        if (c == Grid::npos || g.is_air(c)) continue;
-        const Eigen::Vector3d x = g.centre(c);
-        tau[c] += kirsch_shear(x[a] - h.centre[a], x[l] - h.centre[l], radius, remote);
-      }
-  }
-  return tau;
-}
-
-StressComponents agent_stress_components(const Grid& g, const std::vector<double>& normal,
-                                         const std::vector<double>& shear_flux, const std::vector<double>& balance,
-                                         const DirectionalCoefficients& k, double poisson,
-                                         const std::vector<EntryLoad>& loads) {
-  const int dim = g.dim, shears = shear_count(dim);
+/// Per agent the von Mises stress of sigma and shear (plane stress in 2D).
+void fill_von_mises(const Grid& g, StressComponents& out) {
   const std::size_t n = g.count();
-  StressComponents out;
-  out.sigma = normal;
-  out.shear.assign(n * shears, 0.0);
-  if (!shear_flux.empty()) {
-    std::copy(shear_flux.begin(), shear_flux.end(), out.shear.begin());  // the packets'
-    // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
-    const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
-    Scratch scratch;
-    std::vector<double>& field = scratch.first;
-    std::vector<double>& derivative = scratch.second;
-    std::vector<double> sum_layer, count_layer, across;
-    for (int a = 0; a < dim; ++a) {
-      const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
-      if (load == loads.end()) continue;  // no load marches along a: nothing written for it
-      const LateralAxes lat = lateral_axes(a);
-      const double area = g.face_area(a), window = k.window_length / g.size[a];
-      const double* slopes = balance.data() + 2 * balance_offset(g, a);
-      for (int which = 0; which < dim - 1; ++which) {
-        const int l = which == 0 ? lat.l0 : lat.l1, component = dim == 3 ? shear_pair(a, l) : 0;
-        const double h_l = g.size[l];
-        // The balance's shear: tau = -d Q / d(along a), Q its sigma_a integrated along l; its force
-        // at an agent is slope x (position - the layer's mean position), in agents (as the transfer).
-        sum_layer.assign(std::size_t(g.cells[a]), 0.0);
-        count_layer.assign(std::size_t(g.cells[a]), 0.0);
-        for (std::size_t c = 0; c < n; ++c)
-          if (!g.is_air(c)) {
-            const int j = g.coords(c)[a];
-            sum_layer[j] += position(g, c, l);
-            count_layer[j] += 1;
-          }
-        field.assign(n, 0.0);
-        runs_along(g, l, [&](const std::vector<std::size_t>& run) {
-          const int j = g.coords(run.front())[a];
-          const double slope = slopes[2 * j + which];
-          if (slope == 0) return;
-          double q = 0;
-          for (std::size_t c : run) {
-            const double s = -slope * (position(g, c, l) - sum_layer[j] / count_layer[j]) / area * h_l;
-            field[c] = q + 0.5 * s;
-            q += s;
-          }
-        });
-        derivative_along(g, a, field, 1, 0, window, derivative);  // the balance's shear
-        for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + component] -= derivative[c];
-        if (k.paths != Paths::Turning) continue;
-        if (dim == 2) {  // a hole's corners: the shear of the load going round it, before the tie reads it
-          const std::vector<double> holes = hole_shear(g, a, normal);
-          for (std::size_t c = 0; c < n; ++c) out.shear[c] += holes[c];
-        }
-        // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
-        // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
-        derivative_along(g, a, out.shear, shears, component, window, derivative);
-        if (dim == 3) {  // and -d tau_lo / d(along o), o the other lateral axis (the packets' tau_xz)
-          const int o = l == lat.l0 ? lat.l1 : lat.l0;
-          derivative_along(g, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
-          for (std::size_t c = 0; c < n; ++c) derivative[c] += across[c];
-        }
-        const std::vector<double>& dtau = derivative;
-        std::vector<double> faces;
-        runs_along(g, l, [&](const std::vector<std::size_t>& run) {
-          const std::size_t count = run.size();
-          faces.assign(count + 1, 0.0);
-          for (std::size_t i = 0; i < count; ++i) faces[i + 1] = faces[i] - h_l * dtau[run[i]];
-          const double rest = faces[count];  // the round-off of an unbalanced row: taken out linearly
-          for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
-          for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
-        });
-        if (dim == 2) {
-          half_plane_layer(g, a, l, load->dir, normal, nu_layer, scratch.second, scratch.first);
-        } else {
-          local_layer(g, a, l, load->dir, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
-        }
-        add_layer(g, a, l, load->dir, scratch.second, scratch.third, out.sigma, out.shear, shears, component);
-      }
-    }
-  }
   out.von_mises.assign(n, 0.0);
   for (std::size_t c = 0; c < n; ++c) {
+    const int dim = g.dim, shears = shear_count(dim);
     const workbench::SymmetricTensor s{out.sigma[dim * c], out.sigma[dim * c + 1], dim == 3 ? out.sigma[3 * c + 2] : 0.0,
                                        out.shear[shears * c], dim == 3 ? out.shear[3 * c + 1] : 0.0,
                                        dim == 3 ? out.shear[3 * c + 2] : 0.0};
     out.von_mises[c] = agent_von_mises(s, dim);
   }
+}
+
+/// What one step of directional_stress_components reads: the march axis a and a lateral axis l
+/// (which: 0 for l0, 1 for l1), the shear component of (a, l), and the loads' exit side.
+struct AxisPair {
+  int a, l, which, component, exit_side;
+};
+
+/// The balance's shear along (a, l), subtracted from out.shear: tau = -d Q / d(along a), Q its
+/// sigma_a integrated along l; its force at an agent is slope x (position - the layer's mean
+/// position), in agents (as the transfer). Leaves the derivative in scratch.second.
+void add_balance_shear(const Grid& g, const AxisPair& p, const double* slopes, double window, StressComponents& out,
+                       Scratch& scratch) {
+  const std::size_t n = g.count();
+  const int shears = shear_count(g.dim), a = p.a, l = p.l;
+  const double area = g.face_area(a), h_l = g.size[l];
+  std::vector<double>& field = scratch.first;
+  std::vector<double>& derivative = scratch.second;
+  std::vector<double> sum_layer(std::size_t(g.cells[a]), 0.0), count_layer(std::size_t(g.cells[a]), 0.0);
+  for (std::size_t c = 0; c < n; ++c)
+    if (!g.is_air(c)) {
+      const int j = g.coords(c)[a];
+      sum_layer[j] += position(g, c, l);
+      count_layer[j] += 1;
+    }
+  field.assign(n, 0.0);
+  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+    const int j = g.coords(run.front())[a];
+    const double slope = slopes[2 * j + p.which];
+    if (slope == 0) return;
+    double q = 0;
+    for (std::size_t c : run) {
+      const double s = -slope * (position(g, c, l) - sum_layer[j] / count_layer[j]) / area * h_l;
+      field[c] = q + 0.5 * s;
+      q += s;
+    }
+  });
+  derivative_along(g, a, field, 1, 0, window, derivative);  // the balance's shear
+  for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + p.component] -= derivative[c];
+}
+
+/// The turning paths' components along (a, l) after the balance's shear (stress_components.h):
+/// in 2D each hole's shear, then the tie (horizontal equilibrium scanned along each run of l) and
+/// the bonded rigid face's layer.
+void add_tie_and_layer(const Grid& g, const AxisPair& p, const std::vector<double>& normal,
+                       const DirectionalCoefficients& k, double nu_layer, StressComponents& out, Scratch& scratch) {
+  const std::size_t n = g.count();
+  const int dim = g.dim, shears = shear_count(dim), a = p.a, l = p.l;
+  const LateralAxes lat = lateral_axes(a);
+  const double h_l = g.size[l];
+  std::vector<double>& derivative = scratch.second;
+  if (dim == 2) {  // a hole's corners: the shear of the load going round it, before the tie reads it
+    const std::vector<double> holes = hole_shear(g, a, normal);
+    for (std::size_t c = 0; c < n; ++c) out.shear[c] += holes[c];
+  }
+  // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
+  // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
+  derivative_along(g, a, out.shear, shears, p.component, k.window_length / g.size[a], derivative);
+  if (dim == 3) {  // and -d tau_lo / d(along o), o the other lateral axis (the packets' tau_xz)
+    const int o = l == lat.l0 ? lat.l1 : lat.l0;
+    std::vector<double> across;
+    derivative_along(g, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
+    for (std::size_t c = 0; c < n; ++c) derivative[c] += across[c];
+  }
+  const std::vector<double>& dtau = derivative;
+  std::vector<double> faces;
+  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+    const std::size_t count = run.size();
+    faces.assign(count + 1, 0.0);
+    for (std::size_t i = 0; i < count; ++i) faces[i + 1] = faces[i] - h_l * dtau[run[i]];
+    const double rest = faces[count];  // the round-off of an unbalanced row: taken out linearly
+    for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
+    for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
+  });
+  if (dim == 2) {
+    half_plane_layer(g, a, l, p.exit_side, normal, nu_layer, scratch.second, scratch.first);
+  } else {
+    local_layer(g, a, l, p.exit_side, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
+  }
+  add_layer(g, a, l, p.exit_side, scratch.second, scratch.third, out.sigma, out.shear, shears, p.component);
+}
+
+/// What a path type adds along (a, l) after the balance's shear, per Paths value (kPathNames'
+/// order): the turning paths the tie and the layer; the mirror paths nothing.
+using PathStresses = void (*)(const Grid&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
+                              double, StressComponents&, Scratch&);
+void mirror_path_stresses(const Grid&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
+                          double, StressComponents&, Scratch&) {}
+constexpr PathStresses kPathStresses[] = {add_tie_and_layer, mirror_path_stresses};
+static_assert(std::size(kPathStresses) == std::size(kPathNames), "a stress step per path type");
+
+}  // namespace
+
+StressComponents normal_stress_components(const Grid& g, const std::vector<double>& normal) {
+  StressComponents out;
+  out.sigma = normal;
+  out.shear.assign(g.count() * shear_count(g.dim), 0.0);
+  fill_von_mises(g, out);
+  return out;
+}
+
+StressComponents stress_components_with_shear(const Grid& g, const std::vector<double>& normal,
+                                              const std::vector<double>& shear) {
+  StressComponents out;
+  out.sigma = normal;
+  out.shear = shear;
+  fill_von_mises(g, out);
+  return out;
+}
+
+StressComponents directional_stress_components(const Grid& g, const std::vector<double>& normal,
+                                               const std::vector<double>& shear, const std::vector<double>& balance,
+                                               const DirectionalCoefficients& k, double poisson,
+                                               const std::vector<EntryLoad>& loads) {
+  const int dim = g.dim;
+  StressComponents out;
+  out.sigma = normal;
+  out.shear = shear;  // the packets'
+  // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
+  const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
+  const PathStresses path_stresses = kPathStresses[int(k.paths)];
+  Scratch scratch;
+  for (int a = 0; a < dim; ++a) {
+    const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
+    if (load == loads.end()) continue;  // no load marches along a: nothing written for it
+    const LateralAxes lat = lateral_axes(a);
+    const double* slopes = balance.data() + 2 * balance_offset(g, a);
+    for (int which = 0; which < dim - 1; ++which) {
+      const int l = which == 0 ? lat.l0 : lat.l1;
+      const AxisPair pair{a, l, which, dim == 3 ? shear_pair(a, l) : 0, load->dir};
+      add_balance_shear(g, pair, slopes, k.window_length / g.size[a], out, scratch);
+      path_stresses(g, pair, normal, k, nu_layer, out, scratch);
+    }
+  }
+  fill_von_mises(g, out);
   return out;
 }
 

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 namespace agent {
 
@@ -149,145 +150,141 @@ void LayerSweep::run(const Grid& grid, const Slots& slots, const EntryLoad& load
   }
 }
 
-template <int Dim, class Slots, class Rule>
-void LayerSweep::layers(const Grid& g, const Slots& layout, const EntryLoad& load, TransferResults& results) {
-  // The dimension is a template parameter so that face offsets are compile-time constants.
-  const Slots slots = layout;  // a local: its strides and flags stay in registers
-  constexpr int nd = 2 * Dim;
-  const int a = axis_of(load.dir);
-  const bool forward = is_positive(load.dir);
-  const int step = forward ? 1 : -1;
-  const int l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;  // l1 has one cell in 2D
-  const int n0 = g.cells[l0], n1 = g.cells[l1];
-  const auto entry = g.coords(load.cell);
-  const int eu = entry[l0], ev = entry[l1];
-  const int enter_face = direction(a, !forward), exit_face = direction(a, forward);
-  constexpr bool three_d = Dim == 3;
-  constexpr int lateral_dirs = three_d ? 4 : 2;
-  const double alpha3 = k_.alpha3, gamma = k_.gamma;
-  const Factors factors = Rule::factors(k_, lateral_dirs);
-  const double emit = factors.emit, carry = factors.carry;
-  const double decay = k_.decay();
-  // Locals, not members, in the hot loops: the compiler cannot keep members in registers
-  // across the stores into the face array.
-  Diagnostics d;
-  double* const faces = results.faces.data();
-  std::int32_t* const generation = results.generation.data();
-  // Ids of a layer's rows, and the steps across faces along each axis (agent/slots.h).
-  const auto lane_a = slots.lane(a), lane0 = slots.lane(l0), lane1 = slots.lane(l1);
-  auto air_at = [&slots](std::size_t cell) { return slots.air(cell); };
-  auto rigid = [&slots](std::size_t cell, int side) { return slots.rigid(cell, side); };
-  double* const fresh_buf = fresh_.data();
-  // Each agent's entering force takes the place of its fresh input once that is consumed.
-  double* const top_buf = fresh_buf;
-  double* const line = line_.data();
-  Diagnostics& total = results.diagnostics;
+namespace {
 
-  total.applied += load.force;
-  if (!(load.force > gamma)) {
-    total.dropped += load.force;
-    return;
-  }
+// One load's sweep: the constants every scan of a layer reads, and the scans. A local of
+// LayerSweep::layers whose scans are each called once and inlined, so that its members stay in
+// registers (the compiler cannot keep a class's members there across the stores into the face
+// array). Rows run along l0 (lateral_axes); in 3D the lines along l1 are scanned a layer plane at
+// a time in row order, one chain per line in `line` (memory read row after row).
+template <int Dim, class Slots, class Rule>
+struct LoadSweep {
+  using Box = LayerSweep::Box;
+  static constexpr int nd = 2 * Dim;
+  static constexpr bool three_d = Dim == 3;
+  static constexpr int lateral_dirs = three_d ? 4 : 2;
+
+  LoadSweep(const Grid& grid, const Slots& layout, const Coefficients& k, const EntryLoad& load, Diagnostics& diagnostics,
+            TransferResults& results, double* fresh_scratch, double* line_scratch)
+      : g(grid), slots(layout), a(axis_of(load.dir)), forward(is_positive(load.dir)), step(forward ? 1 : -1),
+        l0(lateral_axes(a).l0), l1(lateral_axes(a).l1), n0(grid.cells[l0]), n1(grid.cells[l1]),
+        entry(grid.coords(load.cell)), eu(entry[l0]), ev(entry[l1]), enter_face(direction(a, !forward)),
+        exit_face(direction(a, forward)), alpha3(k.alpha3), gamma(k.gamma), factors(Rule::factors(k, lateral_dirs)),
+        emit(factors.emit), carry(factors.carry), decay(k.decay()), d(diagnostics), faces(results.faces.data()),
+        generation(results.generation.data()), lane_a(layout.lane(a)), lane0(layout.lane(l0)), lane1(layout.lane(l1)),
+        fresh_buf(fresh_scratch), top_buf(fresh_scratch), line(line_scratch) {}
+
+  const Grid& g;
+  const Slots& slots;
+  const int a;
+  const bool forward;
+  const int step, l0, l1, n0, n1;  // l1 has one cell in 2D
+  const std::array<int, 3> entry;
+  const int eu, ev, enter_face, exit_face;
+  const double alpha3, gamma;
+  const Factors factors;
+  const double emit, carry, decay;
+  Diagnostics& d;
+  double* const faces;
+  std::int32_t* const generation;
+  // Ids of a layer's rows, and the steps across faces along each axis (agent/slots.h).
+  const decltype(std::declval<const Slots&>().lane(0)) lane_a, lane0, lane1;
+  double* const fresh_buf;
+  // Each agent's entering force takes the place of its fresh input once that is consumed.
+  double* const top_buf;
+  double* const line;
+
+  bool air_at(std::size_t cell) const { return slots.air(cell); }
+  bool rigid(std::size_t cell, int side) const { return slots.rigid(cell, side); }
+
   // Generation: the number of agent-to-agent steps from the entry agent (the wavefront in which
   // the sweep reaches it). -1 (unreached) is the largest value as unsigned, so min() keeps the
   // smallest over superposed entries and the comparison counts newly reached agents.
-  auto reach = [&](std::size_t cell, int gen) {
+  void reach(std::size_t cell, int gen) {
     const auto current = std::uint32_t(generation[cell]);
     d.agents_generated += current == UINT32_MAX;
     generation[cell] = std::int32_t(std::min(current, std::uint32_t(gen)));
-  };
+  }
 
-  // The entry load acts like a load from above (it is sent to the sides with `emit`), except that
-  // in the patent rule set it enters with alpha1 (Rule::take).
-  const std::size_t entry_buf = eu + std::size_t(n0) * ev;
-  down_[entry_buf] = load.force;
-  Box box{eu, eu, ev, ev};
-  int layer = entry[a];
-  for (int depth = 0;; layer += step, ++depth) {
-    if (!pending_.empty()) clear_pending(slots, nd, layer, results);  // the previous solve's loads in this layer
-    const auto here = slots.layer(a, layer);
-    const bool last_layer = forward ? layer == g.cells[a] - 1 : layer == 0;
-    double* const down_buf = down_.data();
-    double* const next_down_buf = next_down_.data();
-    Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
-    Box ext = box;  // grows with friction chains and Poisson pushes
+  // Friction chains run until gamma or a boundary face. friction_pass() settles a chain's load
+  // `out` leaving position w (of cell `cell`) toward sgn: dropped, or returned or passed out at a
+  // boundary face (then 0), or passed on (then `out`).
+  template <class Lane>
+  double friction_pass(const Lane& lane, int sgn, int w, int end, std::size_t cell, double out, int& reach_end) {
+    if (!(out > gamma)) {
+      d.dropped += out;
+      return 0.0;
+    }
+    if (w + sgn == end || air_at(lane.next(cell, sgn))) {  // a boundary face
+      if (rigid(cell, direction(lane.axis, sgn > 0))) d.rigid_reaction += out;
+      else d.passed_out += out;
+      return 0.0;
+    }
+    reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
+    return out;
+  }
 
-    // Friction chains run until gamma or a boundary face. friction_pass() settles a chain's load
-    // `out` leaving position w (of cell `cell`) toward sgn: dropped, or returned or passed out at a
-    // boundary face (then 0), or passed on (then `out`).
-    auto friction_pass = [&](const auto& lane, int sgn, int w, int end, std::size_t cell, double out, int& reach_end) {
-      if (!(out > gamma)) {
-        d.dropped += out;
-        return 0.0;
+  // Friction along l0, row by row: the two ways of a row run in lockstep (independent chains, so
+  // their latencies overlap; each adds to `fresh` once, and 0 + x + y == 0 + y + x).
+  template <class Layer>
+  void friction_along_rows(const Layer& here, const Box& box, const double* down_buf, Box& ext) {
+    for (int v = box.v_lo; v <= box.v_hi; ++v) {
+      const std::size_t row_buf = std::size_t(n0) * v;
+      const auto cell_at = here.row(v);
+      double up = 0, dn = 0;
+      for (int i = 0; i <= box.u_hi - box.u_lo; ++i) {
+        const int wu = box.u_lo + i, wd = box.u_hi - i;
+        fresh_buf[row_buf + wu] += up;
+        fresh_buf[row_buf + wd] += dn;
+        const double out_up = carry * up + emit * down_buf[row_buf + wu];
+        const double out_dn = carry * dn + emit * down_buf[row_buf + wd];
+        up = out_up == 0 ? 0.0 : friction_pass(lane0, 1, wu, n0, cell_at(wu), out_up, ext.u_hi);
+        dn = out_dn == 0 ? 0.0 : friction_pass(lane0, -1, wd, -1, cell_at(wd), out_dn, ext.u_lo);
       }
-      if (w + sgn == end || air_at(lane.next(cell, sgn))) {  // a boundary face
-        if (rigid(cell, direction(lane.axis, sgn > 0))) d.rigid_reaction += out;
-        else d.passed_out += out;
-        return 0.0;
+      // Past the box, each chain runs on until gamma or a boundary face.
+      for (int w = box.u_hi + 1; up != 0 && w != n0; ++w) {
+        fresh_buf[row_buf + w] += up;
+        up = friction_pass(lane0, 1, w, n0, cell_at(w), carry * up, ext.u_hi);
       }
-      reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
-      return out;
-    };
-    if (alpha3 > 0) {
-      // Along l0, row by row: the two ways of a row run in lockstep (independent chains, so their
-      // latencies overlap; each adds to `fresh` once, and 0 + x + y == 0 + y + x).
-      for (int v = box.v_lo; v <= box.v_hi; ++v) {
-        const std::size_t row_buf = std::size_t(n0) * v;
-        const auto cell_at = here.row(v);
-        double up = 0, dn = 0;
-        for (int i = 0; i <= box.u_hi - box.u_lo; ++i) {
-          const int wu = box.u_lo + i, wd = box.u_hi - i;
-          fresh_buf[row_buf + wu] += up;
-          fresh_buf[row_buf + wd] += dn;
-          const double out_up = carry * up + emit * down_buf[row_buf + wu];
-          const double out_dn = carry * dn + emit * down_buf[row_buf + wd];
-          up = out_up == 0 ? 0.0 : friction_pass(lane0, 1, wu, n0, cell_at(wu), out_up, ext.u_hi);
-          dn = out_dn == 0 ? 0.0 : friction_pass(lane0, -1, wd, -1, cell_at(wd), out_dn, ext.u_lo);
-        }
-        // Past the box, each chain runs on until gamma or a boundary face.
-        for (int w = box.u_hi + 1; up != 0 && w != n0; ++w) {
-          fresh_buf[row_buf + w] += up;
-          up = friction_pass(lane0, 1, w, n0, cell_at(w), carry * up, ext.u_hi);
-        }
-        for (int w = box.u_lo - 1; dn != 0 && w != -1; --w) {
-          fresh_buf[row_buf + w] += dn;
-          dn = friction_pass(lane0, -1, w, -1, cell_at(w), carry * dn, ext.u_lo);
-        }
-      }
-      // Along l1 (3D), a whole layer plane at once in row order, one chain per column in
-      // `line`: memory is read row after row, not one column at a time across the plane.
-      if constexpr (three_d) {
-        auto columns = [&](auto way) {
-          constexpr bool up = decltype(way)::value;
-          constexpr int sgn = up ? 1 : -1;
-          const int end = up ? n1 : -1;
-          int& reach_end = up ? ext.v_hi : ext.v_lo;
-          std::fill(line + box.u_lo, line + box.u_hi + 1, 0.0);
-          bool running = true;
-          for (int v = up ? box.v_lo : box.v_hi; running && v != end; v += sgn) {
-            const bool in_box = up ? v <= box.v_hi : v >= box.v_lo;
-            const std::size_t row_buf = std::size_t(n0) * v;
-            const auto row = here.row(v);
-            running = in_box;
-            for (int u = box.u_lo; u <= box.u_hi; ++u) {
-              double carried = line[u];
-              if (!in_box && carried == 0) continue;
-              const std::size_t b = row_buf + u;
-              fresh_buf[b] += carried;
-              const double out = in_box ? carry * carried + emit * down_buf[b] : carry * carried;
-              carried = out == 0 ? 0.0 : friction_pass(lane1, sgn, v, end, row(u), out, reach_end);
-              line[u] = carried;
-              running |= carried != 0;
-            }
-          }
-        };
-        columns(std::true_type{});
-        columns(std::false_type{});
+      for (int w = box.u_lo - 1; dn != 0 && w != -1; --w) {
+        fresh_buf[row_buf + w] += dn;
+        dn = friction_pass(lane0, -1, w, -1, cell_at(w), carry * dn, ext.u_lo);
       }
     }
+  }
 
-    // Each loaded agent: its entering force, and what it passes on in the load direction.
-    const double entry_load = depth == 0 ? load.force : 0.0;
+  // Friction along l1 (3D) one way (`up`: toward +l1), one chain per line along l1 in `line`.
+  template <bool up, class Layer>
+  void friction_along_lines(const Layer& here, const Box& box, const double* down_buf, Box& ext) {
+    constexpr int sgn = up ? 1 : -1;
+    const int end = up ? n1 : -1;
+    int& reach_end = up ? ext.v_hi : ext.v_lo;
+    std::fill(line + box.u_lo, line + box.u_hi + 1, 0.0);
+    bool running = true;
+    for (int v = up ? box.v_lo : box.v_hi; running && v != end; v += sgn) {
+      const bool in_box = up ? v <= box.v_hi : v >= box.v_lo;
+      const std::size_t row_buf = std::size_t(n0) * v;
+      const auto row = here.row(v);
+      running = in_box;
+      for (int u = box.u_lo; u <= box.u_hi; ++u) {
+        double carried = line[u];
+        if (!in_box && carried == 0) continue;
+        const std::size_t b = row_buf + u;
+        fresh_buf[b] += carried;
+        const double out = in_box ? carry * carried + emit * down_buf[b] : carry * carried;
+        carried = out == 0 ? 0.0 : friction_pass(lane1, sgn, v, end, row(u), out, reach_end);
+        line[u] = carried;
+        running |= carried != 0;
+      }
+    }
+  }
+
+  // Each loaded agent of the layer (within `ext`): its entering force, and what it passes on in
+  // the load direction (into `next_down_buf`, widening `next`).
+  template <class Layer>
+  void take_loads(const Layer& here, int depth, bool last_layer, bool entry_layer, double entry_load, const Box& ext,
+                  double* down_buf, double* next_down_buf, Box& next) {
+    const std::size_t entry_buf = eu + std::size_t(n0) * ev;
     for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
       const auto row = here.row(v);
       for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
@@ -300,7 +297,7 @@ void LayerSweep::layers(const Grid& g, const Slots& layout, const EntryLoad& loa
         reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
         double* f = faces + cell * nd;
         double top, down_t;
-        Rule::take(factors, from_above, from_side, b == entry_buf && depth == 0, entry_load, top, down_t);
+        Rule::take(factors, from_above, from_side, b == entry_buf && entry_layer, entry_load, top, down_t);
         f[enter_face] += top;
         top_buf[b] = top;
         // Tallied here, where it happens: what the agent received less what it passes on, down
@@ -323,113 +320,162 @@ void LayerSweep::layers(const Grid& g, const Slots& layout, const EntryLoad& loa
         }
       }
     }
+  }
 
+  // push_pass() settles a push `t` leaving position w (of cell `cell`) toward sgn: dropped, or
+  // returned by a rigid face / let out by a free one (then 0), or passed on (then t), loading the
+  // agent's face and the neighbour's facing face. `deferred`, when given, takes those two loads
+  // for later instead (see push_along_rows).
+  template <class Lane>
+  double push_pass(const Lane& lane, int sgn, int w, int end, std::size_t cell, double t, int& reach_end,
+                   double* deferred) {
+    if (!(t > gamma)) {
+      d.lateral_dropped += t;
+      return 0.0;
+    }
+    const int face_out = direction(lane.axis, sgn > 0);
+    double* f = faces + cell * nd;
+    const std::size_t across = w + sgn == end ? Grid::npos : lane.next(cell, sgn);
+    if (w + sgn == end || air_at(across)) {  // a rigid face pushes back, a free one lets the push out
+      if (rigid(cell, face_out)) {
+        f[face_out] += t;
+        d.lateral_reaction += t;
+      } else {
+        d.lateral_passed_out += t;
+      }
+      return 0.0;
+    }
+    if (deferred) {
+      *deferred = t;
+    } else {
+      f[face_out] += t;
+      faces[across * nd + opposite(face_out)] += t;
+    }
+    reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
+    return t;
+  }
+
+  // Pushes along l0, row by row, the two ways in lockstep. A face between two agents is loaded by
+  // both ways; the way down's loads wait in `line` until the way up has loaded every face of the
+  // row, so that each face adds its loads in the same order as one way after the other.
+  template <class Layer>
+  void push_along_rows(const Layer& here, int depth, double push0, const Box& ext, Box& touched) {
+    for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
+      const std::size_t row_buf = std::size_t(n0) * v;
+      const auto cell_at = here.row(v);
+      const int line_distance = std::abs(v - ev);
+      std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
+      double up = 0, dn = 0;
+      for (int i = 0; i <= ext.u_hi - ext.u_lo; ++i) {
+        const int wu = ext.u_lo + i, wd = ext.u_hi - i;
+        const double t_up = push0 * top_buf[row_buf + wu] + decay * up;
+        const double t_dn = push0 * top_buf[row_buf + wd] + decay * dn;
+        up = t_up == 0 ? 0.0 : push_pass(lane0, 1, wu, n0, cell_at(wu), t_up, touched.u_hi, nullptr);
+        dn = t_dn == 0 ? 0.0 : push_pass(lane0, -1, wd, -1, cell_at(wd), t_dn, touched.u_lo, line + wd);
+      }
+      for (int w = ext.u_lo; w <= ext.u_hi; ++w)
+        if (line[w] != 0) {
+          const std::size_t cell = cell_at(w);
+          faces[cell * nd + direction(l0, false)] += line[w];
+          faces[lane0.next(cell, -1) * nd + direction(l0, true)] += line[w];
+        }
+      // Past the loaded agents: a push reaching an agent with no load of its own.
+      for (int w = ext.u_hi + 1; up != 0 && w != n0; ++w) {
+        const std::size_t cell = cell_at(w);
+        reach(cell, depth + line_distance + std::abs(w - eu));
+        up = push_pass(lane0, 1, w, n0, cell, decay * up, touched.u_hi, nullptr);
+      }
+      for (int w = ext.u_lo - 1; dn != 0 && w != -1; --w) {
+        const std::size_t cell = cell_at(w);
+        reach(cell, depth + line_distance + std::abs(w - eu));
+        dn = push_pass(lane0, -1, w, -1, cell, decay * dn, touched.u_lo, nullptr);
+      }
+    }
+  }
+
+  // Pushes along l1 (3D) one way, one push per line along l1 in `line`; the way up over the whole
+  // plane before the way down, as each line did when scanned alone.
+  template <bool up, class Layer>
+  void push_along_lines(const Layer& here, int depth, double push1, const Box& ext, Box& touched) {
+    constexpr int sgn = up ? 1 : -1;
+    const int end = up ? n1 : -1;
+    int& reach_end = up ? touched.v_hi : touched.v_lo;
+    std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
+    bool running = true;
+    for (int v = up ? ext.v_lo : ext.v_hi; running && v != end; v += sgn) {
+      const bool in_ext = up ? v <= ext.v_hi : v >= ext.v_lo;
+      const std::size_t row_buf = std::size_t(n0) * v;
+      const auto row = here.row(v);
+      running = in_ext;
+      for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
+        double carried = line[u];
+        const std::size_t cell = row(u);
+        if (in_ext) {
+          const double t = push1 * top_buf[row_buf + u] + decay * carried;
+          carried = t == 0 ? 0.0 : push_pass(lane1, sgn, v, end, cell, t, reach_end, nullptr);
+        } else if (carried != 0) {
+          reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
+          carried = push_pass(lane1, sgn, v, end, cell, decay * carried, reach_end, nullptr);
+        }
+        line[u] = carried;
+        running |= carried != 0;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+template <int Dim, class Slots, class Rule>
+void LayerSweep::layers(const Grid& g, const Slots& layout, const EntryLoad& load, TransferResults& results) {
+  // The dimension is a template parameter so that face offsets are compile-time constants.
+  const Slots slots = layout;  // a local: its strides and flags stay in registers
+  // Locals, not members, in the hot loops: the compiler cannot keep members in registers
+  // across the stores into the face array.
+  Diagnostics d;
+  LoadSweep<Dim, Slots, Rule> s(g, slots, k_, load, d, results, fresh_.data(), line_.data());
+  const int a = s.a, step = s.step, n0 = s.n0;
+  Diagnostics& total = results.diagnostics;
+
+  total.applied += load.force;
+  if (!(load.force > s.gamma)) {
+    total.dropped += load.force;
+    return;
+  }
+  // The entry load acts like a load from above (it is sent to the sides with `emit`), except that
+  // in the patent rule set it enters with alpha1 (Rule::take).
+  down_[s.eu + std::size_t(n0) * s.ev] = load.force;
+  Box box{s.eu, s.eu, s.ev, s.ev};
+  int layer = s.entry[a];
+  for (int depth = 0;; layer += step, ++depth) {
+    if (!pending_.empty()) clear_pending(slots, s.nd, layer, results);  // the previous solve's loads in this layer
+    const auto here = slots.layer(a, layer);
+    const bool last_layer = s.forward ? layer == g.cells[a] - 1 : layer == 0;
+    double* const down_buf = down_.data();
+    double* const next_down_buf = next_down_.data();
+    Box next{INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    Box ext = box;  // grows with friction chains and Poisson pushes
+    if (s.alpha3 > 0) {
+      s.friction_along_rows(here, box, down_buf, ext);
+      if constexpr (Dim == 3) {
+        s.template friction_along_lines<true>(here, box, down_buf, ext);
+        s.template friction_along_lines<false>(here, box, down_buf, ext);
+      }
+    }
+    s.take_loads(here, depth, last_layer, depth == 0, depth == 0 ? load.force : 0.0, ext, down_buf, next_down_buf, next);
     // Poisson: each squeezed agent pushes its side neighbours with (1 - beta) nu eps A E, which
     // they pass on along the push, decaying by poisson_decay per agent, until it falls to gamma.
     Box touched = ext;
-    // push_pass() settles a push `t` leaving position w (of cell `cell`) toward sgn: dropped, or
-    // returned by a rigid face / let out by a free one (then 0), or passed on (then t), loading the
-    // agent's face and the neighbour's facing face. `deferred`, when given, takes those two loads
-    // for later instead (see below).
-    auto push_pass = [&](const auto& lane, int sgn, int w, int end, std::size_t cell, double t, int& reach_end,
-                         double* deferred) {
-      if (!(t > gamma)) {
-        d.lateral_dropped += t;
-        return 0.0;
-      }
-      const int face_out = direction(lane.axis, sgn > 0);
-      double* f = faces + cell * nd;
-      const std::size_t across = w + sgn == end ? Grid::npos : lane.next(cell, sgn);
-      if (w + sgn == end || air_at(across)) {  // a rigid face pushes back, a free one lets the push out
-        if (rigid(cell, face_out)) {
-          f[face_out] += t;
-          d.lateral_reaction += t;
-        } else {
-          d.lateral_passed_out += t;
-        }
-        return 0.0;
-      }
-      if (deferred) {
-        *deferred = t;
-      } else {
-        f[face_out] += t;
-        faces[across * nd + opposite(face_out)] += t;
-      }
-      reach_end = sgn > 0 ? std::max(reach_end, w + 1) : std::min(reach_end, w - 1);
-      return t;
-    };
     if (k_.beta < 1 && material_.poisson != 0) {
-      const double push0 = (1 - k_.beta) * material_.poisson * g.face_area(l0) / g.face_area(a);
-      // Along l0, row by row, the two ways in lockstep. A face between two agents is loaded by
-      // both ways; the way down's loads wait in `line` until the way up has loaded every face of
-      // the row, so that each face adds its loads in the same order as one way after the other.
-      for (int v = ext.v_lo; v <= ext.v_hi; ++v) {
-        const std::size_t row_buf = std::size_t(n0) * v;
-        const auto cell_at = here.row(v);
-        const int line_distance = std::abs(v - ev);
-        std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
-        double up = 0, dn = 0;
-        for (int i = 0; i <= ext.u_hi - ext.u_lo; ++i) {
-          const int wu = ext.u_lo + i, wd = ext.u_hi - i;
-          const double t_up = push0 * top_buf[row_buf + wu] + decay * up;
-          const double t_dn = push0 * top_buf[row_buf + wd] + decay * dn;
-          up = t_up == 0 ? 0.0 : push_pass(lane0, 1, wu, n0, cell_at(wu), t_up, touched.u_hi, nullptr);
-          dn = t_dn == 0 ? 0.0 : push_pass(lane0, -1, wd, -1, cell_at(wd), t_dn, touched.u_lo, line + wd);
-        }
-        for (int w = ext.u_lo; w <= ext.u_hi; ++w)
-          if (line[w] != 0) {
-            const std::size_t cell = cell_at(w);
-            faces[cell * nd + direction(l0, false)] += line[w];
-            faces[lane0.next(cell, -1) * nd + direction(l0, true)] += line[w];
-          }
-        // Past the loaded agents: a push reaching an agent with no load of its own.
-        for (int w = ext.u_hi + 1; up != 0 && w != n0; ++w) {
-          const std::size_t cell = cell_at(w);
-          reach(cell, depth + line_distance + std::abs(w - eu));
-          up = push_pass(lane0, 1, w, n0, cell, decay * up, touched.u_hi, nullptr);
-        }
-        for (int w = ext.u_lo - 1; dn != 0 && w != -1; --w) {
-          const std::size_t cell = cell_at(w);
-          reach(cell, depth + line_distance + std::abs(w - eu));
-          dn = push_pass(lane0, -1, w, -1, cell, decay * dn, touched.u_lo, nullptr);
-        }
-      }
-      // Along l1 (3D), the whole layer plane in row order, one push per column in `line`; the
-      // way up over the whole plane before the way down, as each column did before.
-      if constexpr (three_d) {
-        const double push1 = (1 - k_.beta) * material_.poisson * g.face_area(l1) / g.face_area(a);
-        auto columns = [&](auto way) {
-          constexpr bool up = decltype(way)::value;
-          constexpr int sgn = up ? 1 : -1;
-          const int end = up ? n1 : -1;
-          int& reach_end = up ? touched.v_hi : touched.v_lo;
-          std::fill(line + ext.u_lo, line + ext.u_hi + 1, 0.0);
-          bool running = true;
-          for (int v = up ? ext.v_lo : ext.v_hi; running && v != end; v += sgn) {
-            const bool in_ext = up ? v <= ext.v_hi : v >= ext.v_lo;
-            const std::size_t row_buf = std::size_t(n0) * v;
-            const auto row = here.row(v);
-            running = in_ext;
-            for (int u = ext.u_lo; u <= ext.u_hi; ++u) {
-              double carried = line[u];
-              const std::size_t cell = row(u);
-              if (in_ext) {
-                const double t = push1 * top_buf[row_buf + u] + decay * carried;
-                carried = t == 0 ? 0.0 : push_pass(lane1, sgn, v, end, cell, t, reach_end, nullptr);
-              } else if (carried != 0) {
-                reach(cell, depth + std::abs(u - eu) + std::abs(v - ev));
-                carried = push_pass(lane1, sgn, v, end, cell, decay * carried, reach_end, nullptr);
-              }
-              line[u] = carried;
-              running |= carried != 0;
-            }
-          }
-        };
-        columns(std::true_type{});
-        columns(std::false_type{});
+      const double push0 = (1 - k_.beta) * material_.poisson * g.face_area(s.l0) / g.face_area(a);
+      s.push_along_rows(here, depth, push0, ext, touched);
+      if constexpr (Dim == 3) {
+        const double push1 = (1 - k_.beta) * material_.poisson * g.face_area(s.l1) / g.face_area(a);
+        s.template push_along_lines<true>(here, depth, push1, ext, touched);
+        s.template push_along_lines<false>(here, depth, push1, ext, touched);
       }
     }
-    for (int v = ext.v_lo; v <= ext.v_hi; ++v) std::fill_n(top_buf + ext.u_lo + std::size_t(n0) * v, ext.u_hi - ext.u_lo + 1, 0.0);
+    for (int v = ext.v_lo; v <= ext.v_hi; ++v) std::fill_n(s.top_buf + ext.u_lo + std::size_t(n0) * v, ext.u_hi - ext.u_lo + 1, 0.0);
     touched_.push_back({a, layer, touched});
 
     if (next.empty()) break;

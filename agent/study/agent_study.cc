@@ -65,10 +65,8 @@ void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k
   refuse_renamed_keys(t);
   try {
     agent::check_coefficients(k, rules);  // what a rule set needs beyond the ranges
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what(), directions = "directions ";
-    if (what.rfind(directions, 0) == 0) t.fail("directions", what.substr(directions.size()));
-    t.fail("alpha2", what);
+  } catch (const agent::CoefficientError& e) {
+    t.fail(e.key, e.problem);
   }
 }
 

@@ -3,7 +3,6 @@
 
 #include <agent/columns.h>
 
-#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <sstream>
@@ -47,12 +46,6 @@ Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry
   return out;
 }
 
-int lateral_reach(const agent::Grid& grid, agent::RuleSet rules, const agent::Coefficients& k) {
-  if (rules == agent::RuleSet::Directional)
-    return int(std::ceil(std::tan(k.directional.fan_angle * M_PI / 180.0)));
-  return std::max({grid.cells[0], grid.cells[1], grid.cells[2]});
-}
-
 std::string LoadCarry::describe(const AgentStudy& study) const {
   const auto& spec = study.setup.loads[load];
   std::ostringstream s;
@@ -84,7 +77,7 @@ std::string columns_refusal(const agent::Grid& grid, const std::vector<agent::En
 
 std::vector<LoadCarry> carry_check(const AgentStudy& study) {
   const auto& grid = study.mesh.grid;
-  const int widen = lateral_reach(grid, study.rules, study.coefficients);
+  const int widen = agent::lateral_reach(grid, study.rules, study.coefficients, study.readings);
   std::vector<LoadCarry> out;
   for (std::size_t i = 0; i < study.setup.loads.size(); ++i) {
     const auto& spec = study.setup.loads[i];

@@ -13,17 +13,13 @@
 namespace agent_study {
 
 /// Where a march from `entry` agents along `march` can leave the body: the rows ahead are swept,
-/// each row's reached set widened by `widen` agents each way along every lateral axis through the
+/// each row's reached set widened by `widen` agents (the rule set's agent::lateral_reach) each way along every lateral axis through the
 /// agents of that row; a face across the march where the body ends ahead of a reached agent is an
 /// exit, rigid (a reaction) or free (passed out). Areas [m^2]. One pass over the reachable rows.
 struct Exits {
   double rigid = 0, free = 0;
 };
 Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry, int march, int widen);
-
-/// Agents per row the rule set reaches sideways: the directional fan ceil(tan(fan_angle)); the
-/// seed's rule sets pass friction along the whole row (the box's width).
-int lateral_reach(const agent::Grid& grid, agent::RuleSet rules, const agent::Coefficients& k);
 
 /// One [[load]] of the case, checked.
 struct LoadCarry {

@@ -9,7 +9,7 @@
 // into one agent, all directions together, so 1 per agent reached; the cost is that times the
 // directions, one Gaussian cdf per direction and agent edge), reached (agents), moves per agent
 // reached. Directional2DStress/n: the turning plate's stress components alone (the
-// shear, the tie scan, the base layer: agent_stress_components), per agent;
+// shear, the tie scan, the base layer: directional_stress_components), per agent;
 // Directional2DStressHoles/n: the same on a perforated plate, a hole of 4 x 4 agents every 20
 // agents each way ((n / 20)^2 holes, each one's Kirsch shear over the agents within 10 radii):
 // linear in the agents if its agents/s stay the same as n grows.
@@ -62,7 +62,7 @@ void stress_components(benchmark::State& state, bool holes) {
   m.solve(loads);
   const auto normal = agent_stresses(g, m.face_forces());
   for (auto _ : state) {
-    const auto s = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, 0.3, loads);
+    const auto s = directional_stress_components(g, normal, m.shear_stress(), m.balance_slopes(), k.directional, 0.3, loads);
     benchmark::DoNotOptimize(s.sigma.data());
   }
   state.counters["agents/s"] = benchmark::Counter(double(g.count()), benchmark::Counter::kIsIterationInvariantRate);

@@ -100,11 +100,11 @@ TEST(Columns, NavierAndJourawskiOverAColumn) {
       EXPECT_NEAR(sigma_x(m, c), M * y / I, 1e-9 * M * 0.02 / I) << i << ", " << j;
       // The parabola's mean over the agent: 1 - 4 (z^2 + h^2 / 12) / H^2.
       const double mean = 1.5 * P / A * (1 - 4 * (y * y + kH * kH / 12) / (0.04 * 0.04));
-      EXPECT_NEAR(m.shear_flux()[c], -mean, 1e-9 * P / A) << i << ", " << j;
-      shear += m.shear_flux()[c] * kH * kThick;
+      EXPECT_NEAR(m.shear_stress()[c], -mean, 1e-9 * P / A) << i << ", " << j;
+      shear += m.shear_stress()[c] * kH * kThick;
     }
     EXPECT_NEAR(shear, -P, 1e-12);  // the clamp's column too: the clamp takes the whole load
-    EXPECT_NEAR(std::abs(m.shear_flux()[g.index(i, 3, 0)]), 1.5 * P / A * (1 - 4 * (kH * kH / 4 + kH * kH / 12) / (0.04 * 0.04)), 1e-6);
+    EXPECT_NEAR(std::abs(m.shear_stress()[g.index(i, 3, 0)]), 1.5 * P / A * (1 - 4 * (kH * kH / 4 + kH * kH / 12) / (0.04 * 0.04)), 1e-6);
   }
   // sigma_y is zero in this rule: the faces along x carry nothing.
   for (std::size_t c = 0; c < g.count(); ++c) EXPECT_EQ(agent_stresses(g, m.face_forces())[c * 2 + 1], 0.0);
@@ -137,7 +137,7 @@ TEST(Columns, OddInTheLoadAndLinear) {
   for (const Grid& g : {cantilever(30, 6), supported(31, 6, 2)}) {
     const auto push = solved(g, {down(g, 20, 2.0)});
     const auto pull = solved(g, {{g.index(20, 0, 0), kPlusY, 2.0}});
-    for (auto [x, y] : {std::pair{&push.face_forces(), &pull.face_forces()}, std::pair{&push.shear_flux(), &pull.shear_flux()},
+    for (auto [x, y] : {std::pair{&push.face_forces(), &pull.face_forces()}, std::pair{&push.shear_stress(), &pull.shear_stress()},
                         std::pair{&push.displacement(), &pull.displacement()}})
       for (std::size_t i = 0; i < x->size(); ++i) ASSERT_EQ((*x)[i], -(*y)[i] + 0.0) << i;
     const auto a = solved(g, {down(g, 12, 1.0)}), b = solved(g, {down(g, 25, 3.0)});
@@ -146,8 +146,8 @@ TEST(Columns, OddInTheLoadAndLinear) {
     for (double v : both.displacement()) scale = std::max(scale, std::abs(v));
     for (std::size_t i = 0; i < both.displacement().size(); ++i)
       ASSERT_NEAR(both.displacement()[i], a.displacement()[i] + b.displacement()[i], 1e-12 * scale) << i;
-    for (std::size_t i = 0; i < both.shear_flux().size(); ++i)
-      ASSERT_NEAR(both.shear_flux()[i], a.shear_flux()[i] + b.shear_flux()[i], 1e-9) << i;
+    for (std::size_t i = 0; i < both.shear_stress().size(); ++i)
+      ASSERT_NEAR(both.shear_stress()[i], a.shear_stress()[i] + b.shear_stress()[i], 1e-9) << i;
   }
 }
 
@@ -273,7 +273,7 @@ TEST(Columns, TiledGridGivesTheDenseFields) {
   for (int j = 0; j < 20; ++j)
     for (int i = 0; i < 70; ++i) {
       const std::size_t c = dense.index(i, j, 0), d = tiled.index(i, j, 0);
-      ASSERT_EQ(a.shear_flux()[c], b.shear_flux()[d]) << i << ", " << j;
+      ASSERT_EQ(a.shear_stress()[c], b.shear_stress()[d]) << i << ", " << j;
       ASSERT_EQ(a.face_forces()[c * 4], b.face_forces()[d * 4]) << i << ", " << j;
     }
   for (int j = 0; j <= 20; ++j)

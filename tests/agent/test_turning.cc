@@ -40,7 +40,7 @@ Fields solve(const Grid& g, const Coefficients& k, const std::vector<EntryLoad>&
   LoadTransfer m(g, kSteel, k, RuleSet::Directional);
   m.solve(loads);
   const auto normal = agent_stresses(g, m.face_forces());
-  auto stress = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, kSteel.poisson, loads);
+  auto stress = directional_stress_components(g, normal, m.shear_stress(), m.balance_slopes(), k.directional, kSteel.poisson, loads);
   const auto strain = agent_strains(g, kSteel, stress.sigma);
   auto u = node_displacements_marched(g, strain, stress.shear, kSteel, choose_datums(g, loads), 1);
   hold_rigid_faces(g, u);
@@ -88,7 +88,7 @@ TEST(Turning, AUniformSigmaYGivesNoShearAndNoTie) {
   std::vector<double> normal(g.count() * 2, 0.0);
   for (std::size_t c = 0; c < g.count(); ++c) normal[2 * c + 1] = -1000.0;
   const std::vector<double> no_shear(g.count(), 0.0), no_balance(2 * (8 + 6 + 1), 0.0);
-  const auto s = agent_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
+  const auto s = directional_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
                                          {{g.index(4, 5, 0), direction(1, false), 1.0}});
   for (std::size_t c = 0; c < g.count(); ++c) {
     EXPECT_EQ(s.shear[c], 0.0);
@@ -108,7 +108,7 @@ TEST(Turning, TheTieIsHorizontalEquilibriumZeroAtTheFreeSides) {
   std::vector<double> tau(g.count(), 0.0), no_balance(2 * (nx + ny + 1), 0.0), normal(g.count() * 2, 0.0);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) tau[g.index(i, j, 0)] = c * (j + 0.5) * h * ((i + 0.5) * h - W / 2);
-  const auto s = agent_stress_components(g, normal, tau, no_balance, DirectionalCoefficients{}, 0.3,
+  const auto s = directional_stress_components(g, normal, tau, no_balance, DirectionalCoefficients{}, 0.3,
                                          {{g.index(4, ny - 1, 0), direction(1, false), 1.0}});
   auto at_face = [&](double x) { return c * (W * x / 2 - x * x / 2); };
   for (int j = 0; j < ny; ++j) {
@@ -137,7 +137,7 @@ TEST(Turning, TheTieIn3DReadsTheShearAcrossBothLateralAxes) {
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) flux[3 * g.index(i, j, k) + 2] = c * (k + 0.5) * h * ((i + 0.5) * h - W / 2);
-  const auto s = agent_stress_components(g, normal, flux, no_balance, DirectionalCoefficients{}, 0.3,
+  const auto s = directional_stress_components(g, normal, flux, no_balance, DirectionalCoefficients{}, 0.3,
                                          {{g.index(3, ny - 1, 2), direction(1, false), 1.0}});
   auto at_face = [&](double x) { return c * (W * x / 2 - x * x / 2); };
   const double D = nz * h;
@@ -238,7 +238,7 @@ StressComponents layer_only(const Grid& g, int nx, int ny, const std::function<d
   for (std::size_t c = 0; c < g.count(); ++c)
     if (!g.is_air(c)) normal[2 * c + 1] = p(g.centre(c)[0]);
   const std::vector<double> no_shear(g.count(), 0.0), no_balance(2 * (nx + ny + 1), 0.0);
-  return agent_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
+  return directional_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
                                  {{g.index(nx / 2, ny - 1, 0), direction(1, false), 1.0}});
 }
 
@@ -438,7 +438,7 @@ TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
     EXPECT_NEAR(through, 2.0, 1e-13) << "layer " << j;
   }
   const auto normal = agent_stresses(g, m.face_forces());
-  const auto s = agent_stress_components(g, normal, m.shear_flux(), m.balance_force(), k.directional, kSteel.poisson, loads);
+  const auto s = directional_stress_components(g, normal, m.shear_stress(), m.balance_slopes(), k.directional, kSteel.poisson, loads);
   const double sx_max = largest_magnitude(s.sigma, 3, 0), txy_max = largest_magnitude(s.shear, 3, 0);
   const double tyz_max = largest_magnitude(s.shear, 3, 1);
   ASSERT_GT(sx_max, 0);
@@ -463,7 +463,7 @@ TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
   // tau_yz = F s_z / A, tau_xz = -F s_x s_z / A. A row's packets are the product of one
   // distribution per axis, so at every agent the transfer's shears and the force through it
   // (sigma = F / A) keep tau_xz sigma = -tau_xy tau_yz.
-  const auto& flux = m.shear_flux();
+  const auto& flux = m.shear_stress();
   const double area = g.face_area(1);
   double txz_max = 0;
   for (std::size_t c = 0; c < g.count(); ++c) {

@@ -8,7 +8,9 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace agent {
 
@@ -93,25 +95,29 @@ inline std::optional<RuleSet> rule_set_named(const std::string& name) {
 /// Bit of a rule set in CoefficientSpec::rules.
 constexpr unsigned rule_bit(RuleSet r) { return 1u << unsigned(r); }
 
+/// The upper end of a range without one (gamma: any value >= 0).
+inline constexpr double kNoMax = 1e100;
+
 /// One coefficient: its name in case files, Python and summaries, where it lives, its default,
 /// the values it admits, its unit, the bounds a calibration searches by default, and the rule sets
-/// that use it.
+/// that use it. A row of kCoefficients is written with the builder below, each field by name:
+///   row("alpha2", "meaning").read_by(kSeedRules).range(0, 1).fit(0.01, 1.0).value(get, set)
 struct CoefficientSpec {
-  const char* name;
-  const char* unit;      ///< SI; "" for a pure number
-  const char* meaning;   ///< one line for docs/case-file.md and the Python help
-  unsigned rules;        ///< rule_bit() of every rule set whose transfer reads it
-  double min, max;       ///< admissible values
-  bool min_open, max_open;
+  const char* name = "";
+  const char* unit = "";     ///< SI; "" for a pure number
+  const char* meaning = "";  ///< one line for docs/case-file.md and the Python help
+  unsigned rules = 0;        ///< rule_bit() of every rule set whose transfer reads it
+  double min = 0, max = 0;   ///< admissible values
+  bool min_open = false, max_open = false;
   /// Fitted by a calibration (a real number a rule set reads). Not fitted: poisson_decay (unset
-  /// by default: it follows alpha2) and the integer `directions`.
-  bool fitted;
-  double fit_min, fit_max;  ///< a calibration's default bounds (fitted coefficients)
-  bool integer;          ///< an integer (directions)
-  bool optional;         ///< absent from a case, it stays unset (poisson_decay: then it follows alpha2)
-  double (*get)(const Coefficients&);  ///< the value in effect (a named choice: its index)
+  /// by default: it follows alpha2), gamma_relative, and the choices `directions` and `paths`.
+  bool fitted = false;
+  double fit_min = 0, fit_max = 0;  ///< a calibration's default bounds (the range unless narrowed)
+  bool integer = false;      ///< an integer (directions)
+  bool optional = false;     ///< absent from a case, it stays unset (poisson_decay: then it follows alpha2)
+  double (*get)(const Coefficients&) = nullptr;  ///< the value in effect (a named choice: its index)
   /// Sets the value; a threshold's key also selects its kind (gamma: absolute, gamma_relative: relative).
-  void (*set)(Coefficients&, double);
+  void (*set)(Coefficients&, double) = nullptr;
   /// A choice among names (a case file gives the name, summaries the index): `choice_count` names;
   /// nullptr for a number. A choice is an integer in [0, choice_count - 1].
   const char* const* choices = nullptr;
@@ -128,74 +134,155 @@ struct CoefficientSpec {
   }
   /// "" when `v` is admissible, else why not ("must be in [0, 1] (got 2)").
   std::string problem(double v) const;
+
+  // The builder: each returns the row with one more field set.
+  constexpr CoefficientSpec measured_in(const char* u) const { return with([&](CoefficientSpec& c) { c.unit = u; }); }
+  constexpr CoefficientSpec read_by(unsigned rule_bits) const { return with([&](CoefficientSpec& c) { c.rules = rule_bits; }); }
+  /// Admits [lo, hi]; a calibration searches the same unless fit() or bounds() narrow it.
+  constexpr CoefficientSpec range(double lo, double hi) const {
+    return with([&](CoefficientSpec& c) { c.min = c.fit_min = lo, c.max = c.fit_max = hi; });
+  }
+  constexpr CoefficientSpec at_least(double lo) const { return range(lo, kNoMax); }
+  constexpr CoefficientSpec open_min() const { return with([](CoefficientSpec& c) { c.min_open = true; }); }
+  constexpr CoefficientSpec open_max() const { return with([](CoefficientSpec& c) { c.max_open = true; }); }
+  constexpr CoefficientSpec open() const { return open_min().open_max(); }
+  /// A calibration's default bounds, the coefficient not fitted.
+  constexpr CoefficientSpec bounds(double lo, double hi) const {
+    return with([&](CoefficientSpec& c) { c.fit_min = lo, c.fit_max = hi; });
+  }
+  /// Fitted by a calibration, by default within [lo, hi].
+  constexpr CoefficientSpec fit(double lo, double hi) const {
+    return bounds(lo, hi).with([](CoefficientSpec& c) { c.fitted = true; });
+  }
+  constexpr CoefficientSpec whole() const { return with([](CoefficientSpec& c) { c.integer = true; }); }
+  constexpr CoefficientSpec unset_by_default() const { return with([](CoefficientSpec& c) { c.optional = true; }); }
+  constexpr CoefficientSpec value(double (*read)(const Coefficients&), void (*write)(Coefficients&, double)) const {
+    return with([&](CoefficientSpec& c) { c.get = read, c.set = write; });
+  }
+  /// A choice among `count` names (an integer index in [0, count - 1]).
+  constexpr CoefficientSpec named(const char* const* names, int count) const {
+    return range(0, count - 1).whole().with([&](CoefficientSpec& c) { c.choices = names, c.choice_count = count; });
+  }
+  constexpr CoefficientSpec acting_when(bool (*when)(const Coefficients&)) const {
+    return with([&](CoefficientSpec& c) { c.acts = when; });
+  }
+
+ private:
+  template <class F>
+  constexpr CoefficientSpec with(F&& change) const {
+    CoefficientSpec c = *this;
+    change(c);
+    return c;
+  }
 };
 
-namespace detail {
-constexpr unsigned kSeedRules = rule_bit(RuleSet::Patent) | rule_bit(RuleSet::Conserving);
-constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
-}  // namespace detail
+/// A row of kCoefficients: its name and meaning, the rest set by name (CoefficientSpec's builder).
+constexpr CoefficientSpec row(const char* name, const char* meaning) {
+  CoefficientSpec c;
+  c.name = name;
+  c.meaning = meaning;
+  return c;
+}
 
-/// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector.
+inline constexpr unsigned kSeedRules = rule_bit(RuleSet::Patent) | rule_bit(RuleSet::Conserving);
+inline constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
+inline constexpr unsigned kDirectionalRules = rule_bit(RuleSet::Directional);
+
+/// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector
+/// (read a row by name: coefficient_index, find_coefficient).
 inline constexpr std::array<CoefficientSpec, 15> kCoefficients{{
-    {"alpha1", "", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)",
-     rule_bit(RuleSet::Patent), 0, 1, false, false, true, 0.0, 1.0, false, false,
-     [](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }},
-    {"alpha2", "", "share passed on in the load direction (P2 = alpha2 P1)",
-     detail::kSeedRules, 0, 1, false, false, true, 0.01, 1.0, false, false,  // the conserving split needs alpha2 + alpha3 > 0
-     [](const Coefficients& k) { return k.alpha2; }, [](Coefficients& k, double v) { k.alpha2 = v; }},
-    {"alpha3", "", "friction to each side neighbour (P3 = alpha3 P0)",
-     detail::kSeedRules, 0, 1, false, false, true, 0.0, 1.0, false, false,
-     [](const Coefficients& k) { return k.alpha3; }, [](Coefficients& k, double v) { k.alpha3 = v; }},
-    {"beta", "", "share of its Poisson expansion an agent keeps; 1 - beta is pushed out sideways",
-     detail::kSeedRules, 0, 1, false, false, true, 0.0, 1.0, false, false,
-     [](const Coefficients& k) { return k.beta; }, [](Coefficients& k, double v) { k.beta = v; }},
-    {"gamma", "N", "absolute threshold: a load at or below it is not passed on (names the absolute threshold)",
-     detail::kAllRules, 0, 1e100, false, false, true, 0.0, 1e-2, false, false,
-     [](const Coefficients& k) { return k.gamma; },
-     [](Coefficients& k, double v) { k.gamma = v, k.threshold = Threshold::Absolute; }, nullptr, 0,
-     [](const Coefficients& k) { return k.threshold == Threshold::Absolute; }},
-    {"fan_angle", "degrees", "half-opening of the entry fan",
-     rule_bit(RuleSet::Directional), 0, 90, true, true, true, 20.0, 89.0, false, false,
-     [](const Coefficients& k) { return k.directional.fan_angle; },
-     [](Coefficients& k, double v) { k.directional.fan_angle = v; }},
-    {"fan_power", "", "2D: a packet at angle t from the load enters with weight cos(t)^fan_power",
-     rule_bit(RuleSet::Directional), 0, 100, false, false, true, 0.0, 8.0, false, false,
-     [](const Coefficients& k) { return k.directional.fan_power; },
-     [](Coefficients& k, double v) { k.directional.fan_power = v; }},
-    {"fan_power_3d", "", "3D: the weight is the product over both lateral axes of cos(t)^fan_power_3d",
-     rule_bit(RuleSet::Directional), 0, 100, false, false, true, 0.0, 8.0, false, false,
-     [](const Coefficients& k) { return k.directional.fan_power_3d; },
-     [](Coefficients& k, double v) { k.directional.fan_power_3d = v; }},
-    {"diffusion_length", "m", "lateral diffusion: each row adds diffusion_length x row height of variance",
-     rule_bit(RuleSet::Directional), 0, 1, false, false, true, 0.0, 0.02, false, false,
-     [](const Coefficients& k) { return k.directional.diffusion_length; },
-     [](Coefficients& k, double v) { k.directional.diffusion_length = v; }},
-    {"base_layer_3d", "", "3D turning paths: the bonded rigid face's layer, as a share of its pressure's width (2D: the half-plane's)",
-     rule_bit(RuleSet::Directional), 0, 10, false, false, true, 0.0, 1.0, false, false,
-     [](const Coefficients& k) { return k.directional.base_layer_3d; },
-     [](Coefficients& k, double v) { k.directional.base_layer_3d = v; }},
-    {"window_length", "m", "turning paths: window of the fit that takes the shear's derivative along the march",
-     rule_bit(RuleSet::Directional), 0, 1, true, false, true, 1e-3, 0.02, false, false,
-     [](const Coefficients& k) { return k.directional.window_length; },
-     [](Coefficients& k, double v) { k.directional.window_length = v; }},
-    {"poisson_decay", "", "factor per agent on a sideways (Poisson) push as it is passed on; unset: alpha2",
-     detail::kSeedRules, 0, 1, false, false, false, 0.0, 1.0, false, true,
-     [](const Coefficients& k) { return k.decay(); },
-     [](Coefficients& k, double v) { k.poisson_decay = v; }},
-    {"gamma_relative", "", "relative threshold: gamma = gamma_relative x the load entering the body (the default)",
-     detail::kAllRules, 0, 1, false, true, false, 0.0, 1e-3, false, false,
-     [](const Coefficients& k) { return k.gamma_relative; },
-     [](Coefficients& k, double v) { k.gamma_relative = v, k.threshold = Threshold::Relative; }, nullptr, 0,
-     [](const Coefficients& k) { return k.threshold == Threshold::Relative; }},
-    {"directions", "", "slopes in the fan per lateral axis, even (an odd fan has a straight-down packet)",
-     rule_bit(RuleSet::Directional), 2, 256, false, false, false, 2, 256, true, false,
-     [](const Coefficients& k) { return double(k.directional.directions); },
-     [](Coefficients& k, double v) { k.directional.directions = int(v); }},
-    {"paths", "", "how packets go: \"turning\" toward where they belong (sigma_x from the tie) or \"mirror\" (straight, mirrored by free sides)",
-     rule_bit(RuleSet::Directional), 0, 1, false, false, false, 0, 1, true, false,
-     [](const Coefficients& k) { return double(k.directional.paths); },
-     [](Coefficients& k, double v) { k.directional.paths = Paths(int(v)); }, kPathNames, 2},
+    row("alpha1", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)")
+        .read_by(rule_bit(RuleSet::Patent)).range(0, 1).fit(0.0, 1.0)
+        .value([](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }),
+    row("alpha2", "share passed on in the load direction (P2 = alpha2 P1)")
+        .read_by(kSeedRules).range(0, 1).fit(0.01, 1.0)  // the conserving split needs alpha2 + alpha3 > 0
+        .value([](const Coefficients& k) { return k.alpha2; }, [](Coefficients& k, double v) { k.alpha2 = v; }),
+    row("alpha3", "friction to each side neighbour (P3 = alpha3 P0)")
+        .read_by(kSeedRules).range(0, 1).fit(0.0, 1.0)
+        .value([](const Coefficients& k) { return k.alpha3; }, [](Coefficients& k, double v) { k.alpha3 = v; }),
+    row("beta", "share of its Poisson expansion an agent keeps; 1 - beta is pushed out sideways")
+        .read_by(kSeedRules).range(0, 1).fit(0.0, 1.0)
+        .value([](const Coefficients& k) { return k.beta; }, [](Coefficients& k, double v) { k.beta = v; }),
+    row("gamma", "absolute threshold: a load at or below it is not passed on (names the absolute threshold)")
+        .measured_in("N").read_by(kAllRules).at_least(0).fit(0.0, 1e-2)
+        .value([](const Coefficients& k) { return k.gamma; },
+               [](Coefficients& k, double v) { k.gamma = v, k.threshold = Threshold::Absolute; })
+        .acting_when([](const Coefficients& k) { return k.threshold == Threshold::Absolute; }),
+    row("fan_angle", "half-opening of the entry fan")
+        .measured_in("degrees").read_by(kDirectionalRules).range(0, 90).open().fit(20.0, 89.0)
+        .value([](const Coefficients& k) { return k.directional.fan_angle; },
+               [](Coefficients& k, double v) { k.directional.fan_angle = v; }),
+    row("fan_power", "2D: a packet at angle t from the load enters with weight cos(t)^fan_power")
+        .read_by(kDirectionalRules).range(0, 100).fit(0.0, 8.0)
+        .value([](const Coefficients& k) { return k.directional.fan_power; },
+               [](Coefficients& k, double v) { k.directional.fan_power = v; }),
+    row("fan_power_3d", "3D: the weight is the product over both lateral axes of cos(t)^fan_power_3d")
+        .read_by(kDirectionalRules).range(0, 100).fit(0.0, 8.0)
+        .value([](const Coefficients& k) { return k.directional.fan_power_3d; },
+               [](Coefficients& k, double v) { k.directional.fan_power_3d = v; }),
+    row("diffusion_length", "lateral diffusion: each row adds diffusion_length x row height of variance")
+        .measured_in("m").read_by(kDirectionalRules).range(0, 1).fit(0.0, 0.02)
+        .value([](const Coefficients& k) { return k.directional.diffusion_length; },
+               [](Coefficients& k, double v) { k.directional.diffusion_length = v; }),
+    row("base_layer_3d", "3D turning paths: the bonded rigid face's layer, as a share of its pressure's width (2D: the half-plane's)")
+        .read_by(kDirectionalRules).range(0, 10).fit(0.0, 1.0)
+        .value([](const Coefficients& k) { return k.directional.base_layer_3d; },
+               [](Coefficients& k, double v) { k.directional.base_layer_3d = v; }),
+    row("window_length", "turning paths: window of the fit that takes the shear's derivative along the march")
+        .measured_in("m").read_by(kDirectionalRules).range(0, 1).open_min().fit(1e-3, 0.02)
+        .value([](const Coefficients& k) { return k.directional.window_length; },
+               [](Coefficients& k, double v) { k.directional.window_length = v; }),
+    row("poisson_decay", "factor per agent on a sideways (Poisson) push as it is passed on; unset: alpha2")
+        .read_by(kSeedRules).range(0, 1).unset_by_default()
+        .value([](const Coefficients& k) { return k.decay(); }, [](Coefficients& k, double v) { k.poisson_decay = v; }),
+    row("gamma_relative", "relative threshold: gamma = gamma_relative x the load entering the body (the default)")
+        .read_by(kAllRules).range(0, 1).open_max().bounds(0.0, 1e-3)
+        .value([](const Coefficients& k) { return k.gamma_relative; },
+               [](Coefficients& k, double v) { k.gamma_relative = v, k.threshold = Threshold::Relative; })
+        .acting_when([](const Coefficients& k) { return k.threshold == Threshold::Relative; }),
+    row("directions", "slopes in the fan per lateral axis, even (an odd fan has a straight-down packet)")
+        .read_by(kDirectionalRules).range(2, 256).whole()
+        .value([](const Coefficients& k) { return double(k.directional.directions); },
+               [](Coefficients& k, double v) { k.directional.directions = int(v); }),
+    row("paths", "how packets go: \"turning\" toward where they belong (sigma_x from the tie) or \"mirror\" (straight, mirrored by free sides)")
+        .read_by(kDirectionalRules).named(kPathNames, 2)
+        .value([](const Coefficients& k) { return double(k.directional.paths); },
+               [](Coefficients& k, double v) { k.directional.paths = Paths(int(v)); }),
 }};
+
+/// The place of the row named `name` in kCoefficients; throws std::invalid_argument for an unknown
+/// name (at compile time where the name is a constant: coefficient_index("alpha2")).
+constexpr std::size_t coefficient_index(std::string_view name) {
+  for (std::size_t i = 0; i < kCoefficients.size(); ++i)
+    if (name == kCoefficients[i].name) return i;
+  throw std::invalid_argument("no coefficient named " + std::string(name));
+}
+
+/// What a rule set needs of its coefficients beyond their ranges: a constraint between
+/// coefficients (or on one), naming its keys; a case file's error names the first.
+struct CoefficientConstraint {
+  unsigned rules;             ///< rule_bit() of the rule sets that need it
+  const char* key;            ///< the coefficient an error names
+  const char* other;          ///< the other coefficient it reads ("" for none)
+  const char* need;           ///< what it needs, said after the key ("must be even (...)")
+  bool (*holds)(const Coefficients&);
+};
+inline constexpr std::array<CoefficientConstraint, 2> kCoefficientConstraints{{
+    {kDirectionalRules, "directions", "",
+     "must be even (an odd fan has a straight-down packet: a spike under the load)",
+     [](const Coefficients& k) { return k.directional.directions % 2 == 0; }},
+    {rule_bit(RuleSet::Conserving), "alpha2", "alpha3",
+     "must be > 0 where alpha3 is 0 (the conserving rule set splits by alpha2 + alpha3 > 0)",
+     [](const Coefficients& k) { return k.alpha2 + k.alpha3 > 0; }},
+}};
+
+/// check_coefficients' error: `key` the coefficient it names, `problem` what is wrong with it
+/// (what() is the key and the problem).
+struct CoefficientError : std::invalid_argument {
+  CoefficientError(const std::string& key_, const std::string& problem_)
+      : std::invalid_argument(key_ + " " + problem_), key(key_), problem(problem_) {}
+  std::string key, problem;
+};
 
 /// How many coefficients a calibration can fit: the first rows of kCoefficients.
 constexpr std::size_t fitted_count() {
@@ -213,10 +300,9 @@ static_assert([] {
 /// The row of a coefficient by name, or nullptr.
 const CoefficientSpec* find_coefficient(const std::string& name);
 
-/// Throws std::invalid_argument naming the first coefficient the rule set uses that lies outside
-/// its range, or what the rule set needs beyond the ranges (the conserving split: alpha2 + alpha3
-/// > 0; the directional fan: an even `directions`). Coefficients a rule set does not use are not
-/// read by it and not checked.
+/// Throws CoefficientError naming the first coefficient the rule set uses that lies outside its
+/// range, or the first of kCoefficientConstraints the rule set needs that does not hold.
+/// Coefficients a rule set does not use are not read by it and not checked.
 void check_coefficients(const Coefficients& k, RuleSet rules);
 
 }  // namespace agent

@@ -8,8 +8,10 @@
 // spreads its moment linearly over its agents (Navier) and its shear by a scan down the column
 // (Jourawski). The deflection is marched from the clamp or the supports. 2D only.
 #include <agent/grid.h>
+#include <agent/stress_components.h>
 #include <agent/transfer.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -97,6 +99,21 @@ class ColumnTransfer {
   /// Clears the whole result (a column's resultants reach all its agents), then carries `loads`.
   void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
   std::size_t memory_bytes() const { return 0; }  ///< nothing held between solves
+
+  /// The face forces and generations, the shear stress per slot and the node displacements.
+  static void size_results(const Grid& grid, TransferResults& out) {
+    out.size_forces(grid);
+    out.shear.assign(grid.count() * std::size_t(shear_count(grid.dim)), 0.0);
+    out.displacement.assign(grid.node_count() * std::size_t(grid.dim), 0.0);
+  }
+  /// Bending carries a load along the beam to a clamp or supports anywhere in the body: the box's
+  /// widest side, in agents.
+  static int lateral_reach(const Grid& grid, const Coefficients&) { return std::max({grid.cells[0], grid.cells[1], grid.cells[2]}); }
+  /// The normal stresses of the faces and the columns' own shear (TransferResults::shear).
+  static StressComponents stress_components(const Grid& grid, const TransferResults& out,
+                                            const std::vector<double>& normal, double, const std::vector<EntryLoad>&) {
+    return stress_components_with_shear(grid, normal, out.shear);
+  }
 
  private:
   Material material_;

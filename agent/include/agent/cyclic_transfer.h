@@ -7,8 +7,10 @@
 // is on).
 #include <agent/coefficients.h>
 #include <agent/grid.h>
+#include <agent/stress_components.h>
 #include <agent/transfer.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -17,7 +19,7 @@
 namespace agent {
 
 /// The work-list stops with CyclicCapReached after this many agent updates, or when one wave would
-/// hold more items (about 150 B each: 1.5 GB) (a second guard: agent::Cyclic's constructor already
+/// hold more items (about 150 B each: 1.5 GB) (a second guard: CyclicTransfer's constructor already
 /// refuses gamma = 0 and any transfer factor >= 1, so the iteration ends by itself;
 /// docs/agent-model.md gives the proof and the bound). The seed plate needs 4 k (gamma 1e-3 N).
 constexpr std::size_t kCyclicUpdateCap = 10'000'000;
@@ -71,6 +73,16 @@ class CyclicTransfer {
   void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
   /// Nothing is held between solves (the waves are allocated per solve).
   std::size_t memory_bytes() const { return 0; }
+
+  /// The face forces and generations only.
+  static void size_results(const Grid& grid, TransferResults& out) { out.size_forces(grid); }
+  /// Friction and pushes go every way through the whole body: the box's widest side, in agents.
+  static int lateral_reach(const Grid& grid, const Coefficients&) { return std::max({grid.cells[0], grid.cells[1], grid.cells[2]}); }
+  /// The normal stresses alone (normal_stress_components).
+  static StressComponents stress_components(const Grid& grid, const TransferResults&, const std::vector<double>& normal,
+                                            double, const std::vector<EntryLoad>&) {
+    return normal_stress_components(grid, normal);
+  }
 
  private:
   Material material_;

@@ -6,6 +6,7 @@
 // linearly with depth (as in elasticity) while every agent still talks only to its neighbours.
 #include <agent/coefficients.h>
 #include <agent/grid.h>
+#include <agent/stress_components.h>
 #include <agent/transfer.h>
 
 #include <cstdint>
@@ -43,6 +44,22 @@ class DirectionalTransfer {
   void solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out);
   /// Nothing is held between solves (the rows are allocated per solve).
   std::size_t memory_bytes() const { return 0; }
+
+  /// The face forces and generations, the packets' shear stress per slot and the row moment
+  /// balance's slopes per march axis and layer (TransferResults::shear, ::balance).
+  static void size_results(const Grid& grid, TransferResults& out) {
+    out.size_forces(grid);
+    out.shear.assign(grid.count() * std::size_t(shear_count(grid.dim)), 0.0);
+    out.balance.assign(2 * balance_offset(grid, 3), 0.0);
+  }
+  /// A packet drifts at most the fan's widest slope per row: ceil(tan(fan_angle)) agents.
+  static int lateral_reach(const Grid& grid, const Coefficients& k);
+  /// The packets' shear, the row balance's and, with turning paths, the tie and the bonded face's
+  /// layer (directional_stress_components).
+  StressComponents stress_components(const Grid& grid, const TransferResults& out, const std::vector<double>& normal,
+                                     double poisson, const std::vector<EntryLoad>& loads) const {
+    return directional_stress_components(grid, normal, out.shear, out.balance, k_.directional, poisson, loads);
+  }
 
  private:
   Coefficients k_;

@@ -44,7 +44,7 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads);
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains,
                                        const Datums& datums);
 
-/// With a shear (agent_stress_components' `shear`: tau_xy per slot in 2D; xy, yz, xz in 3D [Pa])
+/// With a shear (StressComponents::shear: tau_xy per slot in 2D; xy, yz, xz in 3D [Pa])
 /// and loads marching along `march_axis` onto a rigid face: u along the march as
 /// node_displacements gives it (zero at the rigid face), each u across it (u_l, l a lateral axis)
 /// integrated along each line of nodes along l, the line's constant the mean over the line of the

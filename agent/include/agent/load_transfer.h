@@ -14,7 +14,9 @@
 //   agent::DirectionalTransfer  the directional rule set: the packet fan (agent/directional.h);
 //   agent::CyclicTransfer       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h);
 //   agent::ColumnTransfer       the columns rule set: beam sections (agent/columns.h), 2D.
-// Each rule type checks its own coefficients. The stress readings (4, 5) are not the transfer's:
+// Each rule type checks its own coefficients and owns what it produces: the results it sizes
+// (size_results) and fills (solve), its stress components (stress_components) and how far it
+// reaches across a march (lateral_reach). The stress readings (4, 5) are not the transfer's:
 // agent_stresses (agent/fields.h) takes them.
 #include <agent/coefficients.h>
 #include <agent/columns.h>
@@ -29,6 +31,29 @@
 #include <vector>
 
 namespace agent {
+
+/// Every rule type, one of which a LoadTransfer runs.
+using RuleType = std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer>;
+
+/// A rule type as a value: RuleTag<T>::type is T.
+template <class T>
+struct RuleTag {
+  using type = T;
+};
+
+/// Calls f(RuleTag<T>{}) with the rule type T of the rule set and the transfer readings, and
+/// returns what f returns: the one place that maps a rule set to its type.
+template <class F>
+decltype(auto) with_rule_type(RuleSet rules, const TransferReadings& readings, F&& f) {
+  if (rules == RuleSet::Directional) return f(RuleTag<DirectionalTransfer>{});
+  if (rules == RuleSet::Columns) return f(RuleTag<ColumnTransfer>{});
+  if (readings.cyclic()) return f(RuleTag<CyclicTransfer>{});
+  return f(RuleTag<LayerSweep>{});
+}
+
+/// Agents per row the rule set reaches sideways from the agents a march reaches (its rule type's
+/// lateral_reach): the directional fan ceil(tan(fan_angle)); the others the box's widest side.
+int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings = {});
 
 class LoadTransfer {
  public:
@@ -62,10 +87,14 @@ class LoadTransfer {
   /// Transfers from the entry agent to each agent; -1 where no load arrived.
   const std::vector<std::int32_t>& generation() const { return out_.generation; }
   const Diagnostics& diagnostics() const { return out_.diagnostics; }
-  /// TransferResults::shear (the directional and column rule sets': the shear stress per slot [Pa])
-  /// and ::balance (the directional rule set's row moment balance's slopes per march axis and layer).
-  const std::vector<double>& shear_flux() const { return out_.shear; }
-  const std::vector<double>& balance_force() const { return out_.balance; }
+  /// TransferResults::shear (the directional and column rule sets': the shear stress per slot [Pa];
+  /// empty for the others) and ::balance (the directional rule set's row moment balance's slopes
+  /// per march axis and layer).
+  const std::vector<double>& shear_stress() const { return out_.shear; }
+  const std::vector<double>& balance_slopes() const { return out_.balance; }
+  /// The last solve's stress components, as its rule type gives them (`normal`: agent_stresses',
+  /// `loads`: the solve's; agent/stress_components.h).
+  StressComponents stress_components(const std::vector<double>& normal, const std::vector<EntryLoad>& loads) const;
   /// TransferResults::displacement: the column rule set's node displacements (empty for the others).
   const std::vector<double>& displacement() const { return out_.displacement; }
   /// Bytes held for the grid's slots (results, the grid's flags and tile table, the rule type's
@@ -80,7 +109,7 @@ class LoadTransfer {
   TransferReadings readings_;
   TransferResults out_;
   double gamma_;  // the gamma the rule type was built with
-  std::variant<LayerSweep, DirectionalTransfer, CyclicTransfer, ColumnTransfer> transfer_;
+  RuleType transfer_;
 };
 
 }  // namespace agent

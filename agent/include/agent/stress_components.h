@@ -1,8 +1,10 @@
 #pragma once
 // Every stress component of the agents, from what a transfer wrote: the normal stresses of the
-// face forces, and the directional rule set's shear and row moment balance (agent
-// TransferResults::shear, ::balance). With turning paths also sigma across the march by the tie
-// scan and the bonded rigid face's layer (docs/agent-model.md, "Turning paths").
+// face forces, and a rule set's own shear (TransferResults::shear: the directional packets', the
+// columns'), with the directional rule set's row moment balance (TransferResults::balance). With
+// turning paths also sigma across the march by the tie scan and the bonded rigid face's layer
+// (docs/agent-model.md, "Turning paths"). Each rule type says which it gives (its
+// stress_components; LoadTransfer::stress_components calls the one in use).
 #include <agent/coefficients.h>
 #include <agent/grid.h>
 #include <agent/transfer.h>
@@ -20,10 +22,16 @@ struct StressComponents {
 /// The shears in a slot of StressComponents::shear: 1 in 2D, 3 in 3D.
 constexpr int shear_count(int dim) { return dim == 3 ? 3 : 1; }
 
-/// The stress components of one solve. `normal` is agent_stresses' (dim per slot). `shear_flux`
-/// and `balance` are the transfer's (TransferResults::shear, ::balance; empty: no shear, as every
-/// rule set but the directional one in 2D). Per march axis a of the 2D directional rule set:
-///   tau_xy = the packets' shear_flux + the balance's shear (vertical equilibrium scanned along each row,
+/// The normal stresses alone (`normal`: agent_stresses', dim per slot), no shear: the seed's rule sets.
+StressComponents normal_stress_components(const Grid& grid, const std::vector<double>& normal);
+/// The normal stresses and a shear the transfer wrote (shear_count per slot): the columns rule set.
+StressComponents stress_components_with_shear(const Grid& grid, const std::vector<double>& normal,
+                                              const std::vector<double>& shear);
+
+/// The directional rule set's stress components of one solve. `normal` is agent_stresses' (dim per
+/// slot). `shear` and `balance` are the transfer's (TransferResults::shear, ::balance, sized by
+/// DirectionalTransfer::size_results). Per march axis a (in 2D):
+///   tau_xy = the packets' shear + the balance's shear (vertical equilibrium scanned along each row,
 ///            its derivative along a from a local quadratic fit over k.window_length);
 /// and with k.paths == Paths::Turning
 ///   sigma across a += the tie: horizontal equilibrium scanned along each run of agents from its
@@ -36,10 +44,10 @@ constexpr int shear_count(int dim) { return dim == 3 ? 3 : 1; }
 ///            width of the pressure on that face; either's shear by horizontal equilibrium;
 ///   2D, before the tie: each hole's shear (hole_shear), the stress concentration at its corners.
 /// `loads` give each march axis its direction (which end the rigid face of the layer is at).
-StressComponents agent_stress_components(const Grid& grid, const std::vector<double>& normal,
-                                         const std::vector<double>& shear_flux, const std::vector<double>& balance,
-                                         const DirectionalCoefficients& k, double poisson,
-                                         const std::vector<EntryLoad>& loads);
+StressComponents directional_stress_components(const Grid& grid, const std::vector<double>& normal,
+                                               const std::vector<double>& shear, const std::vector<double>& balance,
+                                               const DirectionalCoefficients& k, double poisson,
+                                               const std::vector<EntryLoad>& loads);
 
 /// A hole of a 2D grid: a component of air slots (4-connected) that touches no side of the box.
 struct Hole {

@@ -4,8 +4,10 @@
 // load is swept layer by layer (docs/agent-model.md, the rule sets and "Cost").
 #include <agent/coefficients.h>
 #include <agent/grid.h>
+#include <agent/stress_components.h>
 #include <agent/transfer.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -25,11 +27,23 @@ class LayerSweep {
   /// Bytes of the per-layer scratch and the lists of touched layers.
   std::size_t memory_bytes() const;
 
- private:
+  /// The face forces and generations only.
+  static void size_results(const Grid& grid, TransferResults& out) { out.size_forces(grid); }
+  /// Friction passes a load along the whole row: the box's widest side, in agents.
+  static int lateral_reach(const Grid& grid, const Coefficients&) { return std::max({grid.cells[0], grid.cells[1], grid.cells[2]}); }
+  /// The normal stresses alone (normal_stress_components).
+  static StressComponents stress_components(const Grid& grid, const TransferResults&, const std::vector<double>& normal,
+                                            double, const std::vector<EntryLoad>&) {
+    return normal_stress_components(grid, normal);
+  }
+
+  /// Lateral positions of a layer (u along l0, v along l1: agent::lateral_axes), inclusive.
   struct Box {
     int u_lo, u_hi, v_lo, v_hi;
     bool empty() const { return u_lo > u_hi; }
   };
+
+ private:
   struct Touched {
     int axis, layer;
     Box box;
@@ -55,7 +69,7 @@ class LayerSweep {
   std::vector<Touched> pending_;  // what the previous solve wrote, not yet cleared (sorted by layer)
   // Per-layer scratch, zero outside the active box: fresh (entry/friction) inputs, then each
   // agent's entering force; downward inputs; the downward inputs of the next layer. And one value
-  // per line of a layer (a chain per column while a layer plane is scanned in row order).
+  // per line of a layer (in 3D, a chain per line along l1 while a layer plane is scanned in row order).
   std::vector<double> fresh_, down_, next_down_, line_;
 };
 

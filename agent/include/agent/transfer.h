@@ -22,7 +22,8 @@ struct TransferReadings {
   /// transfer graph has cycles: solved by agent::CyclicTransfer (agent/cyclic_transfer.h).
   bool every_agent_all_operations = false;
   /// 6: a load reaching a boundary face is returned into the body (a free face reflects it, a
-  /// rigid one returns its reaction), and the agent performs its operations on it (agent::Cyclic).
+  /// rigid one returns its reaction), and the agent performs its operations on it
+  /// (agent::CyclicTransfer).
   /// Supported with or without reading 2.
   bool boundaries_return = false;
   /// Readings 2 or 6: the transfer graph has cycles.
@@ -119,10 +120,10 @@ inline std::size_t balance_offset(const Grid& g, int a) {
 struct TransferResults {
   std::vector<double> faces;
   std::vector<std::int32_t> generation;
-  /// The directional rule set: per slot, the packets' shear stresses [Pa] (sum over the packets
-  /// of force x lateral slope over the face area across their march, signed as the stress), 1 in
-  /// 2D (tau_xy), 3 in 3D (xy, yz, xz: shear_pair); empty for the other rule sets.
-  /// agent_stress_components (agent/stress_components.h) reads it.
+  /// Per slot the shear stresses [Pa] a rule type writes, 1 in 2D (tau_xy), 3 in 3D (xy, yz, xz:
+  /// shear_pair): the directional rule set's packets' (sum over the packets of force x lateral
+  /// slope over the face area across their march, signed as the stress), the column rule set's
+  /// sections' (tau = v Q / (I w)); empty for the others. The rule type's stress_components reads it.
   std::vector<double> shear;
   /// The directional rule set: per march axis a and layer across it (balance_offset), the two
   /// slopes (along l0, l1 of lateral_axes(a)) of the row moment balance's correction of the force
@@ -136,6 +137,9 @@ struct TransferResults {
   /// Zero forces, every generation -1, no diagnostics: what a rule type without its own
   /// bookkeeping of what it wrote does before a solve.
   void clear_all();
+  /// Sizes `faces` and `generation` for `grid` (cleared): what every rule type writes. A rule type's
+  /// size_results sizes these and the results of its own.
+  void size_forces(const Grid& grid);
 };
 
 }  // namespace agent

@@ -81,8 +81,8 @@ CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
       p.fail("start", "must lie within [min, max]");
     n_free += param.free;
   }
-  if (o.rules == agent::RuleSet::Conserving && o.parameters[1].free && o.parameters[2].free && o.parameters[1].lo <= 0 &&
-      o.parameters[2].lo <= 0)
+  const auto& alpha2 = o.parameters[agent::coefficient_index("alpha2")], &alpha3 = o.parameters[agent::coefficient_index("alpha3")];
+  if (o.rules == agent::RuleSet::Conserving && alpha2.free && alpha3.free && alpha2.lo <= 0 && alpha3.lo <= 0)
     t.table("alpha2").fail("min", "alpha2 and alpha3 may not both reach 0 in the conserving rule set (give one a min > 0)");
   if (n_free == 0) t.fail("alpha2", "no coefficient is free: nothing to fit");
   return plan;

@@ -1,4 +1,4 @@
-// Issue 23's load handling: a pull is the negated push, the relative threshold carries the load
+// How the agent study handles loads: a pull is the negated push, the relative threshold carries the load
 // at any scale, and the carry check says before a run which loads a rule set cannot carry.
 #include <agent_study.h>
 #include <carry_check.h>

@@ -1,0 +1,297 @@
+// The directional rule set's turning paths (docs/agent-model.md, "Turning paths"): packet k leaves
+// the load at the fan's slope s_k and turns toward its target, the quantile of its weight in the
+// fan mapped onto the body's width on its side: x_k(d) = x0 + L_k tanh(s_k d / L_k). Each row
+// deposits every direction's force as a Gaussian about its path (variance diffusion_length x
+// depth), its tails mirrored at the ends of the row's run of agents and normalised over the run, so
+// each row carries the direction's force exactly. In 3D a packet is a pair of directions, one per
+// lateral axis, its weight and its deposit the product of both axes': a row's force is the product
+// of one distribution per axis (of the runs through the entry's lateral lines). What leaves through
+// a row's exit faces (or lands on air) leaves the load; the rest goes on.
+#include "directional_march.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace agent {
+namespace directional {
+
+namespace {
+
+/// The smallest spread of a path's Gaussian, in agents (docs/agent-model.md, "Deposit"): near the
+/// loaded face sqrt(diffusion_length x depth) is far below an agent and would put a direction's
+/// force on one agent, jumping to the next as the path crosses an edge; at 0.3 agents a path near
+/// an edge shares its force with the neighbour (chosen, not fitted).
+constexpr double kMinSpreadAgents = 0.3;
+/// A path's Gaussian is deposited over the agents within this many spreads of its centre (beyond,
+/// 2e-9 of its mass; the shares are normalised over those agents).
+constexpr double kSpreadReach = 6;
+/// An image's cdf below this is dropped: round-off of a direction's force (its shares sum to 1).
+constexpr double kNegligibleCdf = 1e-18;
+/// A turn whose target lies on the wrong side of the load: this many agents, i.e. straight on.
+constexpr double kStraightTurn = 1e-9;
+
+/// One lateral axis: per direction its turn L_k and what it carries.
+struct AxisPaths {
+  int axis = 0, entry = 0;
+  double size = 1, x0 = 0;
+  std::vector<double> turn, mass;   // 2D: each direction's force; 3D: its weight (x the load's rest)
+  std::vector<double> force, shear; // a row's: sum over directions of mass x share (x slope)
+  int from = 0, to = -1;            // the agents they cover
+};
+
+double cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+
+template <class Slots>
+class TurningPaths {
+ public:
+  TurningPaths(const Positions& positions, const Fan& fan, const DirectionalCoefficients& k, Sinks& out)
+      : pos_(positions), fan_(fan), k_(k), out_(out) {}
+
+  void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
+    const int dim = f.dim;
+    row_force_.assign(f.layer_size, 0.0);  // the packets' force through each agent of a row
+    const double body_depth = depth_of_body(f, f.entry[f.a]);
+    std::array<AxisPaths, 2> axes;
+    for (int which = 0; which < (dim == 3 ? 2 : 1); ++which) axes[which] = axis_paths(f, which, load, body_depth);
+    double rest = dim == 3 ? load.force : 1.0;  // 3D: the load still in the body
+    AxisPaths& pu = axes[0];
+    AxisPaths& pv = axes[1];
+    if (dim == 2) {  // one lateral line: a single agent across l1
+      pv.force.assign(1, 1.0);
+      pv.shear.assign(1, 0.0);
+      pv.from = pv.to = 0;
+    }
+    for (int layer = f.entry[f.a], depth = 0; layer >= 0 && layer < f.g.cells[f.a]; layer += f.step, ++depth) {
+      const bool last_layer = f.last(layer);
+      const double depth_m = (depth + 0.5) * f.row;  // of the row's centre below the loaded face
+      const bool goes_on = dim == 2 && !last_layer && nearest_agent(f, layer + f.step, f.eu) >= 0;
+      if (!distribute(f, pu, 0, layer, last_layer, goes_on, depth_m) ||
+          (dim == 3 && !distribute(f, pv, 1, layer, last_layer, goes_on, depth_m))) {
+        out_.d.passed_out += rest;  // 3D: the body ends under the load's line
+        return;
+      }
+      const double left = deposit_row(f, pu, pv, rest, layer, depth, last_layer, goes_on);
+      if (dim == 3) rest = last_layer ? 0.0 : rest - left;
+      balance_row_moment(f, layer, last_layer, row_force_, out_);
+      const bool any = dim == 3 ? rest != 0 : std::any_of(pu.mass.begin(), pu.mass.end(), [](double m) { return m != 0; });
+      if (!any) break;
+    }
+  }
+
+ private:
+  // Rows of body along the march from `layer` in the entry's column: the depth the paths turn in.
+  double depth_of_body(const MarchFrame<Slots>& f, int layer) const {
+    int rows = 0;
+    for (; layer >= 0 && layer < f.g.cells[f.a] && !f.air(f.slot_of(layer, f.eu, f.ev)); layer += f.step) ++rows;
+    return rows * f.row;
+  }
+  // The run of agents along lateral axis `which` (0: l0, 1: l1) through (layer, u, v).
+  void run_of(const MarchFrame<Slots>& f, int layer, int which, int u, int v, int& lo, int& hi) const {
+    auto is_air = [&](int i) { return which == 0 ? f.air(f.slot_of(layer, i, v)) : f.air(f.slot_of(layer, u, i)); };
+    const int n_w = which == 0 ? f.n0 : f.n1;
+    lo = hi = which == 0 ? u : v;
+    while (lo > 0 && !is_air(lo - 1)) --lo;
+    while (hi < n_w - 1 && !is_air(hi + 1)) ++hi;
+  }
+  // 2D: the agent of row `layer` nearest to lateral slot `u` (u itself unless it is air), -1 if the
+  // row has none. A path over a hole or a notch goes round it by the nearer side.
+  int nearest_agent(const MarchFrame<Slots>& f, int layer, int u) const {
+    const auto row_slots = f.slots.layer(f.a, layer);
+    for (int off = 0; off < f.n0; ++off) {
+      if (u - off >= 0 && !f.air(row_slots(u - off, 0))) return u - off;
+      if (u + off < f.n0 && !f.air(row_slots(u + off, 0))) return u + off;
+      if (u - off < 0 && u + off >= f.n0) break;
+    }
+    return -1;
+  }
+  // Whether what agent (u, v) of a row carries leaves the body through its exit face (`here`,
+  // `past`: the row's slots and the next row's): at the body's last row, at a rigid face, or at a
+  // free face when the next row has no agent at all. A free face with body beyond it in the next
+  // row (a hole's, a notch's; 2D only: `goes_on`) passes nothing out.
+  template <class Layer>
+  static bool leaves(const MarchFrame<Slots>& f, const Layer& here, const Layer& past, int u, int v, bool last_layer,
+                     bool goes_on) {
+    return last_layer || (f.air(past(u, v)) && (f.rigid(here(u, v), f.exit_face) || !goes_on));
+  }
+
+  // Axis `which`'s paths: each direction's turn toward its target and the mass it starts with.
+  AxisPaths axis_paths(const MarchFrame<Slots>& f, int which, const EntryLoad& load, double body_depth) const {
+    AxisPaths p;
+    p.axis = which == 0 ? f.l0 : f.l1;
+    p.entry = which == 0 ? f.eu : f.ev;
+    p.size = f.g.size[p.axis];
+    const double* pos = pos_.at[p.axis].data();
+    p.x0 = (pos[p.entry] + 0.5) * p.size;
+    int lo = 0, hi = 0;
+    run_of(f, f.entry[f.a], which, f.eu, f.ev, lo, hi);
+    const double width_low = p.x0 - pos[lo] * p.size, width_high = (pos[hi] + 1) * p.size - p.x0;
+    double below = 0;  // the fan's weight of the directions before k
+    for (int dir = 0; dir < k_.directions; ++dir) {
+      const double s = fan_.slope[dir], q = below + 0.5 * fan_.weight[dir];
+      below += fan_.weight[dir];
+      double L = s < 0 ? -width_low * (1 - 2 * q) : width_high * (2 * q - 1);
+      if (!(s * L > 0)) L = std::copysign(kStraightTurn * p.size, s);
+      // No farther out than its straight ray reaches at the body's far face (reach 1: not fitted).
+      p.turn.push_back(std::copysign(std::min(std::abs(L), std::abs(s) * body_depth), s));
+      p.mass.push_back(fan_.weight[dir] * (f.dim == 2 ? load.force : 1.0));
+    }
+    return p;
+  }
+
+  // Row `layer`'s distribution along one lateral axis. 2D: each direction over the run its path
+  // lies in (a path over air: the nearest run), its force leaving where the row's agents exit.
+  // 3D: over the run through the entry's lateral line (false if the entry's line is air there).
+  bool distribute(const MarchFrame<Slots>& f, AxisPaths& p, int which, int layer, bool last_layer, bool goes_on,
+                  double depth_m) {
+    const int dim = f.dim;
+    const auto here = f.slots.layer(f.a, layer), past = f.past(layer, last_layer);
+    const double* pos = pos_.at[p.axis].data();
+    const double spread = std::max(std::sqrt(k_.diffusion_length * depth_m), kMinSpreadAgents * p.size);
+    const int n_w = which == 0 ? f.n0 : f.n1;
+    int lo = 0, hi = -1;  // the run the paths lie in (2D: the last one found; most paths share it)
+    if (dim == 3) {
+      if (f.air(f.slot_of(layer, f.eu, f.ev))) return false;
+      run_of(f, layer, which, f.eu, f.ev, lo, hi);
+    }
+    p.force.assign(std::size_t(n_w), 0.0);
+    p.shear.assign(std::size_t(n_w), 0.0);
+    p.from = n_w;
+    p.to = -1;
+    for (int dir = 0; dir < k_.directions; ++dir) {
+      if (p.mass[dir] == 0) continue;
+      const double s = fan_.slope[dir], L = p.turn[dir], t = std::tanh(s * depth_m / L);
+      double x = p.x0 + L * t;
+      const double slope = s * (1 - t * t);
+      if (dim == 2) {
+        int iu = pos_.slot_at(p.axis, x / p.size);
+        if (f.air(here(iu, 0))) iu = nearest_agent(f, layer, iu);
+        if (iu < 0) {  // the body ends under the path
+          out_.d.passed_out += p.mass[dir];
+          p.mass[dir] = 0;
+          continue;
+        }
+        if (iu < lo || iu > hi) run_of(f, layer, 0, iu, 0, lo, hi);
+      }
+      const double edge_lo = pos[lo] * p.size, edge_hi = (pos[hi] + 1) * p.size;
+      x = std::min(std::max(x, edge_lo), edge_hi);
+      const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
+      const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
+      const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
+      double exits = 0;
+      for (int i = from; i <= to; ++i) {
+        const double m = p.mass[dir] * shares_[i - from] / total;
+        p.force[i] += m;
+        p.shear[i] += m * slope;
+        if (dim == 2 && leaves(f, here, past, i, 0, last_layer, goes_on)) exits += m;
+      }
+      if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
+      p.from = std::min(p.from, from);
+      p.to = std::max(p.to, to);
+    }
+    return true;
+  }
+
+  // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and
+  // returns their sum. Each agent's share: the Gaussian's mass over it plus its images' (mirrored at
+  // the run's ends). A run is agents only, each one agent long (only air slots are wider), so agent
+  // i's upper edge is agent i + 1's lower one: the cdf is taken once per edge and image.
+  double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
+    const double* pos = pos_.at[p.axis].data();
+    const int count = to - from + 1;
+    shares_.assign(std::size_t(count), 0.0);
+    edge_cdf_.resize(std::size_t(count) + 1);
+    double* edge_cdf = edge_cdf_.data();
+    auto edge = [&](int j) { return j < count ? pos[from + j] * p.size : (pos[to] + 1) * p.size; };
+    const std::array<double, 3> centres{x, 2 * edge_lo - x, 2 * edge_hi - x};
+    for (int image = 0; image < 3; ++image) {
+      const double c = centres[image];
+      if (image == 0) {
+        for (int j = 0; j <= count; ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+      } else if (image == 1) {
+        // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
+        int j = 0;
+        for (; j <= count && (j == 0 || edge_cdf[j - 1] < 1.0); ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+        for (; j <= count; ++j) edge_cdf[j] = 1.0;
+      } else {
+        // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
+        // tail is by 1.
+        int j = count;
+        for (; j >= 0 && (j == count || edge_cdf[j + 1] >= kNegligibleCdf); --j) edge_cdf[j] = cdf((edge(j) - c) / spread);
+        for (; j >= 0; --j) edge_cdf[j] = 0.0;
+      }
+      for (int i = 0; i < count; ++i) shares_[i] += edge_cdf[i + 1] - edge_cdf[i];
+    }
+    double total = 0;
+    for (int i = 0; i < count; ++i) total += shares_[i];
+    if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
+      std::fill(shares_.begin(), shares_.end(), 0.0);
+      shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
+    }
+    return total;
+  }
+
+  // Puts row `layer`'s force (rest x the product of both axes' distributions) on its agents, with
+  // the packets' shear, and returns what leaves through the row's exit faces or lands on air (3D).
+  double deposit_row(const MarchFrame<Slots>& f, const AxisPaths& pu, const AxisPaths& pv, double rest, int layer,
+                     int depth, bool last_layer, bool goes_on) {
+    const int dim = f.dim, shears = f.shears, exit_face = f.exit_face;
+    double* const shear = out_.shear;
+    double left = 0;
+    const auto here = f.slots.layer(f.a, layer), past = f.past(layer, last_layer);
+    for (int v = pv.from; v <= pv.to; ++v)
+      for (int u = pu.from; u <= pu.to; ++u) {
+        const double f_uv = rest * pu.force[u] * pv.force[v];
+        if (f_uv == 0) continue;
+        const std::size_t cell = here(u, v);
+        if (f.air(cell)) {  // 3D: the body is not a box across the two runs
+          left += f_uv;
+          out_.d.passed_out += f_uv;
+          continue;
+        }
+        ++out_.d.packet_moves;
+        f.reach(out_, cell, depth + std::abs(u - f.eu) + std::abs(v - f.ev));
+        double* faces = out_.faces.data() + cell * f.nd;
+        faces[f.enter_face] += f_uv;
+        row_force_[u + std::size_t(f.n0) * v] += f_uv;
+        if (shear) {
+          shear[cell * shears + f.pair_u] += f.tau_sign * rest * pu.shear[u] * pv.force[v] / f.area_across;
+          if (dim == 3) {
+            shear[cell * shears + f.pair_v] += f.tau_sign * rest * pu.force[u] * pv.shear[v] / f.area_across;
+            // Across the two lateral axes the ray's stress has -F s_u s_v / A, whichever way it marches.
+            shear[cell * shears + f.pair_uv] -= rest * pu.shear[u] * pv.shear[v] / f.area_across;
+          }
+        }
+        if (leaves(f, here, past, u, v, last_layer, goes_on)) {
+          left += f_uv;
+          if (f.rigid(cell, exit_face)) {
+            faces[exit_face] += f_uv;
+            out_.d.rigid_reaction += f_uv;
+          } else {
+            out_.d.passed_out += f_uv;
+          }
+        } else if (!f.air(past(u, v))) {
+          faces[exit_face] += f_uv;
+        }  // else a free face with body beyond it in the next row: the load goes round, the face carries none
+      }
+    return left;
+  }
+
+  const Positions& pos_;
+  const Fan& fan_;
+  const DirectionalCoefficients& k_;
+  Sinks& out_;
+  std::vector<double> row_force_;
+  std::vector<double> shares_, edge_cdf_;  // per agent of a direction's window; per edge
+};
+
+}  // namespace
+
+void march_turning(const Grid& grid, const DirectionalCoefficients& k, double gamma,
+                   const std::vector<EntryLoad>& loads, Sinks& out) {
+  march_loads<TurningPaths>(grid, k, gamma, loads, out);
+}
+
+}  // namespace directional
+}  // namespace agent

@@ -1,7 +1,7 @@
 #pragma once
 // Each subcommand of the `workbench` program registers itself here; main() only dispatches.
 #include <CLI/CLI.hpp>
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 #include <workbench/case_file.h>
 #include <workbench/staged_directory.h>
 
@@ -15,8 +15,8 @@
 
 namespace cli {
 
-/// Every section of a case file checked, unknown keys refused (compare/case_sections.h).
-using compare::check_every_section;
+/// Every section of a case file checked, unknown keys refused (schema/every_section.h).
+using schema::check_every_section;
 
 /// `--check`: read the case file, check every section (and, but for compare, load the model's
 /// study, mesh included), write nothing.

@@ -5,13 +5,13 @@
 #include <agent_study.h>
 #include <compare/calibration.h>
 #include <compare/calibration_study.h>
-#include <compare/case_sections.h>
 #include <compare/compare_study.h>
 #include <compare/reference.h>
 #include <compare/summarize.h>
 #include <fem_reference/fem_case.h>
 #include <fem_reference/mpi.h>
 #include <pbd_study.h>
+#include <schema/every_section.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
 #include <workbench/staged_directory.h>
@@ -219,7 +219,7 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     const auto study = agent_study::load_agent_study(*file);
-    compare::check_every_section(*file);
+    schema::check_every_section(*file);
     if (output_dir)
       staged(*output_dir, *file, [&](const fs::path& dir) { return agent_study::write_agent_outputs(study, dir, log); });
     const auto& grid = study.mesh.grid;
@@ -306,7 +306,7 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     const auto problem = fem_reference::problem_from_case(*file);
-    compare::check_every_section(*file);
+    schema::check_every_section(*file);
     if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
     return staged(*output_dir, *file, [&](const fs::path& dir) {
       auto r = fem_reference::solve_fem(problem, dir, &log);
@@ -374,7 +374,7 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
     auto pbd_case = pbd_study::read_pbd_case(*file);
-    compare::check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
+    schema::check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
     auto study = pbd_study::load_pbd_study(*file, std::move(pbd_case));
     const auto& setup = study.setup;
     Out o;

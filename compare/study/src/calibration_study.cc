@@ -1,6 +1,6 @@
 // The calibration as a workbench study: the calibration file, each case's reference, the report and the calibrated case files.
 #include <compare/calibration_study.h>
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 #include <compare/compare_study.h>
 
 #include "report.h"
@@ -142,7 +142,7 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
   const auto compare_options = read_compare_options(case_file.root());
   if (compare_options.model != "agent")
     case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
-  check_every_section(case_file);
+  schema::check_every_section(case_file);
   // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
   const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
   log << c.name << ": solving the reference (" << reference.describe() << ") once\n" << std::flush;

@@ -4,7 +4,7 @@
 // and the one table of the fields a comparison compares (kFields). FEM results are sampled onto
 // the agents by point location (no case files, no I/O).
 #include <agent/mesh_import.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_result.h>
 
 #include <array>
 #include <iterator>

@@ -2,10 +2,9 @@
 #include "commands.h"
 
 #include <agent/voxelize.h>
-#include <agent_study.h>
+#include <studies/studies.h>
 #include <workbench/error.h>
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -30,14 +29,12 @@ void add_agent_command(CLI::App& app, Action& action) {
   cmd->callback([&action, case_file, output, check] {
     action = [case_file, output, check] {
       workbench::CaseFile file = read_case_file(*case_file);
-      const auto study = agent_study::load_agent_study(file);
-      check_every_section(file);
-      if (*check) return checked(file, "agent");
-      const std::string dir = output_folder(*output, file, "agent");
-      workbench::StagedDirectory staged(dir, file.path());
-      agent_study::write_agent_outputs(study, staged.path(), std::cerr);
-      staged.commit();
-      std::cerr << "agent: wrote " << staged.target().string() << "\n";
+      if (*check) {
+        studies::open_agent_study(file);
+        return checked(file, "agent");
+      }
+      const auto run = studies::run_agent_study(file, output_folder(*output, file, "agent"), std::cerr);
+      std::cerr << "agent: wrote " << run.folder.string() << "\n";
       return 0;
     };
   });

@@ -1,8 +1,7 @@
 // `workbench calibrate`: fits the agent transfer coefficients against the FEM reference.
 #include "commands.h"
 
-#include <compare/calibration_study.h>
-#include <fem_reference/mpi.h>
+#include <studies/studies.h>
 #include <workbench/case_file.h>
 
 #include <iostream>
@@ -18,17 +17,12 @@ void add_calibrate_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *output, "output folder (default: out/<file name>/calibrate)");
   cmd->callback([&action, case_file, output] {
     action = [case_file, output] {
-      workbench::CaseFile file = read_case_file(*case_file);
-      const std::string dir = output_folder(*output, file, "calibrate");
+      const auto case_ptr = read_case_file_on_every_rank(*case_file);
+      const workbench::CaseFile& file = *case_ptr;
       // Under MPI every rank solves the references and scores its share of the cases; rank 0
-      // owns the folder and writes (compare/calibration_study.h).
-      std::filesystem::path path;
-      const auto staged = stage_on_rank_0(dir, file, path);
-      compare::run_calibration(file, path, progress_log());
-      fem_reference::mpi_on_root([&] {
-        staged->commit();
-        std::cerr << "calibrate: wrote " << staged->target().string() << "\n";
-      });
+      // owns the folder and writes (compare/calibration_study.h, studies.h).
+      const auto run = studies::run_calibrate_study(file, output_folder(*output, file, "calibrate"), progress_log());
+      progress_log() << "calibrate: wrote " << run.folder.string() << "\n";
       return 0;
     };
   });

@@ -1,11 +1,8 @@
 #pragma once
 // Each subcommand of the `workbench` program registers itself here; main() only dispatches.
+// The study itself is behind each module's front door (studies/studies.h), shared with Python.
 #include <CLI/CLI.hpp>
-#include <compare/case_sections.h>
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
-
-#include <filesystem>
 
 #include <functional>
 #include <iosfwd>
@@ -15,22 +12,17 @@
 
 namespace cli {
 
-/// Every section of a case file checked, unknown keys refused (compare/case_sections.h).
-using compare::check_every_section;
-
-/// `--check`: read the case file, check every section (and, but for compare, load the model's
-/// study, mesh included), write nothing.
+/// `--check`: read the case file and open the model's study (studies::open_<module>_study: every
+/// section checked, unknown keys refused, then, for agent and pbd, the mesh), write nothing.
 inline constexpr const char* kCheckHelp = "only check the case file (every section) and write nothing";
 /// Says the case file was checked; returns exit code 0.
 int checked(const workbench::CaseFile& file, const std::string& subcommand);
 
 /// The case file at `path`; a folder or a missing file is one line naming it.
 workbench::CaseFile read_case_file(const std::string& path);
-/// The case file at `path` with every section checked, as one collective step (under MPI every
-/// rank reads it, and bad input ends every rank with one line). `first`, when given, reads the
-/// subcommand's own sections before the check of every section.
-std::unique_ptr<workbench::CaseFile> read_checked_case(const std::string& path,
-                                                       const std::function<void(const workbench::CaseFile&)>& first = {});
+/// The same as one collective step, for the distributed subcommands: under MPI every rank reads
+/// it, and bad input ends every rank with one line.
+std::unique_ptr<workbench::CaseFile> read_case_file_on_every_rank(const std::string& path);
 
 /// Refuses (one line naming `option`) a file that could not be written later: a folder, an
 /// unwritable file, or one whose nearest existing parent is not a writable folder. Writes nothing.
@@ -49,11 +41,6 @@ inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate"};
 /// The subcommands that may mesh a .geo: main() starts the mesher server for them, before MPI and
 /// any thread (gmsh_session.h).
 inline const std::set<std::string> kMeshing{"agent", "voxelize", "pbd", "fem", "compare", "calibrate"};
-
-/// The output folder `dir` staged by rank 0 (a collective step: a refusal ends every rank), null on
-/// the other ranks; `path` is set to the staging folder's path on every rank.
-std::unique_ptr<workbench::StagedDirectory> stage_on_rank_0(const std::string& dir, const workbench::CaseFile& file,
-                                                            std::filesystem::path& path);
 
 /// Where a distributed subcommand's progress goes: standard error on rank 0, nowhere on the others.
 std::ostream& progress_log();

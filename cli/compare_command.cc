@@ -1,11 +1,11 @@
 // `workbench compare`: a fast model against the FEM reference (metrics, figures, tolerance gate).
 #include "commands.h"
 
-#include <compare/compare_study.h>
 #include <fem_reference/mpi.h>
+#include <studies/studies.h>
 #include <workbench/case_file.h>
+#include <workbench/error.h>
 #include <workbench/output_file.h>
-#include <workbench/staged_directory.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,15 +17,15 @@ namespace cli {
 
 namespace {
 
-/// Rank 0, once the study is written: the folder moved into place, the JUnit copy, the gate's
-/// lines; returns the exit code.
-int finish(workbench::StagedDirectory& staged, const compare::CompareOutcome& outcome, const std::string& junit) {
-  staged.commit();
+/// Rank 0, once the study is written and its folder in place: the JUnit copy, the gate's lines;
+/// returns the exit code.
+int finish(const studies::CompareRun& run, const std::string& junit) {
+  const auto& outcome = run.outcome;
   if (!junit.empty()) {
     const auto parent = std::filesystem::path(junit).parent_path();
     std::error_code ec;
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    std::ifstream report(staged.target() / "junit.xml", std::ios::binary);
+    std::ifstream report(run.folder / "junit.xml", std::ios::binary);
     const std::string text{std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>()};
     try {
       workbench::replace_file(junit, text);  // a failed write leaves an earlier report whole
@@ -33,7 +33,7 @@ int finish(workbench::StagedDirectory& staged, const compare::CompareOutcome& ou
       throw workbench::Error(std::string(e.what()) + " (--junit; the output folder is complete)");
     }
   }
-  std::cerr << "compare: wrote " << staged.target().string() << "\n";
+  std::cerr << "compare: wrote " << run.folder.string() << "\n";
   for (const auto& f : outcome.failures) std::cerr << "compare: gate: " << f.describe() << "\n";
   if (outcome.gated > 0)
     std::cerr << "compare: gate: " << outcome.gated - outcome.failures.size() << " passed, "
@@ -58,18 +58,18 @@ void add_compare_command(CLI::App& app, Action& action) {
   cmd->add_option("--junit", *junit, "also copy the gate's JUnit XML report to this file");
   cmd->callback([&action, case_file, output, check, junit] {
     action = [case_file, output, check, junit] {
-      const auto case_ptr = read_checked_case(*case_file);
+      const auto case_ptr = read_case_file_on_every_rank(*case_file);
       const workbench::CaseFile& file = *case_ptr;
-      if (*check) return checked(file, "compare");
+      if (*check) {
+        studies::open_compare_study(file);
+        return checked(file, "compare");
+      }
       if (!junit->empty()) check_writable_file(*junit, "--junit");
-      const std::string dir = output_folder(*output, file, "compare");
-      // Rank 0 owns the staged folder; every rank solves the FEM and writes its VTU piece into it,
-      // rank 0 alone the rest (compare_study.h).
-      std::filesystem::path path;
-      const auto staged = stage_on_rank_0(dir, file, path);
-      const auto outcome = compare::run_compare(file, path, progress_log());
+      // Every rank solves the FEM and writes its VTU piece; rank 0 alone the rest and owns the
+      // folder (compare_study.h, studies.h).
+      const auto run = studies::run_compare_study(file, output_folder(*output, file, "compare"), progress_log());
       int code = 0;
-      fem_reference::mpi_on_root([&] { code = finish(*staged, outcome, *junit); });
+      fem_reference::mpi_on_root([&] { code = finish(run, *junit); });
       return code;
     };
   });

@@ -1,8 +1,7 @@
 // `workbench fem`: the deal.II FEM reference, serial or under mpirun (collective errors).
 #include "commands.h"
 
-#include <fem_reference/fem_case.h>
-#include <fem_reference/mpi.h>
+#include <studies/studies.h>
 #include <workbench/case_file.h>
 
 #include <iostream>
@@ -21,22 +20,15 @@ void add_fem_command(CLI::App& app, Action& action) {
   cmd->add_flag("--check", *check, kCheckHelp);
   cmd->callback([&action, case_file, output, check] {
     action = [case_file, output, check] {
-      fem_reference::FemProblem problem;
-      const auto case_ptr = read_checked_case(
-          *case_file, [&](const workbench::CaseFile& f) { problem = fem_reference::problem_from_case(f); });
+      const auto case_ptr = read_case_file_on_every_rank(*case_file);
       const workbench::CaseFile& file = *case_ptr;
-      if (*check) return checked(file, "fem");
-      const std::string dir = output_folder(*output, file, "fem");
-      // Rank 0 owns the staged folder; every rank writes its VTU piece into it. Steps that may fail
-      // on rank 0 alone are collective: a failure ends every rank with the same message.
-      std::filesystem::path path;
-      const auto staged = stage_on_rank_0(dir, file, path);
-      const auto result = fem_reference::solve_fem(problem, path, &std::cerr);
-      fem_reference::mpi_on_root([&] {
-        fem_reference::write_fem_csv(result, path);
-        staged->commit();
-        std::cerr << "fem: wrote " << staged->target().string() << "\n";
-      });
+      if (*check) {
+        studies::open_fem_study(file);
+        return checked(file, "fem");
+      }
+      // Every rank solves and writes its VTU piece; rank 0 owns the folder (studies.h).
+      const auto run = studies::run_fem_study(file, output_folder(*output, file, "fem"), std::cerr);
+      progress_log() << "fem: wrote " << run.folder.string() << "\n";
       return 0;
     };
   });

@@ -1,9 +1,8 @@
 // `workbench pbd`: the PBD angle bending model stepped into frames (VTU/PVD/CSV, animation).
 #include "commands.h"
 
-#include <pbd_study.h>
+#include <studies/studies.h>
 #include <workbench/case_file.h>
-#include <workbench/staged_directory.h>
 
 #include <iostream>
 #include <memory>
@@ -23,15 +22,12 @@ void add_pbd_command(CLI::App& app, Action& action) {
   cmd->callback([&action, case_file, output, check, animate] {
     action = [case_file, output, check, animate] {
       workbench::CaseFile file = read_case_file(*case_file);
-      auto setup = pbd_study::read_pbd_case(file);
-      check_every_section(file);  // before the mesh is built: unknown keys first
-      if (*check) return checked(file, "pbd");
-      auto study = pbd_study::load_pbd_study(file, std::move(setup));
-      const std::string dir = output_folder(*output, file, "pbd");
-      workbench::StagedDirectory staged(dir, file.path());
-      pbd_study::run_pbd_study(study, staged.path(), *animate, std::cerr);
-      staged.commit();
-      std::cerr << "pbd: wrote " << staged.target().string() << "\n";
+      if (*check) {
+        studies::open_pbd_study(file);
+        return checked(file, "pbd");
+      }
+      const auto folder = studies::run_pbd_study(file, output_folder(*output, file, "pbd"), *animate, std::cerr);
+      std::cerr << "pbd: wrote " << folder.string() << "\n";
       return 0;
     };
   });

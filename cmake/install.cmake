@@ -10,7 +10,7 @@ set(WORKBENCH_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/workbench)
 # The libraries another code embeds, and what they link statically.
 set(workbench_exported agent agent_io pbd pbd_io workbench_common workbench_gmsh workbench_tensor)
 if(WORKBENCH_WITH_FEM)
-  list(APPEND workbench_exported fem_reference)
+  list(APPEND workbench_exported fem_result fem_reference)
 endif()
 install(TARGETS ${workbench_exported} EXPORT workbenchTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -1,20 +1,14 @@
 // The `workbench` Python module (pybind11, docs/python.md): case files in, numpy arrays and dicts out.
-// A thin layer over the public study entry points; no model code lives here.
+// A thin layer over the modules' front doors (studies/studies.h), the ones the command line calls;
+// no model code and no study flow lives here.
 #include "arrays.h"
 
-#include <agent_study.h>
-#include <compare/calibration.h>
 #include <compare/calibration_study.h>
-#include <compare/case_sections.h>
-#include <compare/compare_study.h>
-#include <compare/reference.h>
 #include <compare/summarize.h>
-#include <fem_reference/fem_case.h>
 #include <fem_reference/mpi.h>
-#include <pbd_study.h>
+#include <studies/studies.h>
 #include <workbench/case_file.h>
 #include <workbench/error.h>
-#include <workbench/staged_directory.h>
 
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -171,15 +165,6 @@ py::list dict_list(const Items& items, Fill fill) {
   return out;
 }
 
-/// Runs `write(folder)` in a staged folder that becomes `output_dir` whole when it returns, as the
-/// program does (workbench/staged_directory.h); returns what `write` returns.
-template <class Write>
-auto staged(const fs::path& output_dir, const workbench::CaseFile& file, Write write) {
-  workbench::StagedDirectory folder(output_dir, file.path());
-  auto result = write(folder.path());
-  folder.commit();
-  return result;
-}
 
 py::dict coefficients_dict(const agent::Coefficients& k) {
   py::dict out;
@@ -201,13 +186,17 @@ py::dict run_agent(const Case& c, const std::optional<fs::path>& output_dir, dou
   };
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    const auto study = agent_study::load_agent_study(*file);
-    compare::check_every_section(*file);
-    if (output_dir)
-      staged(*output_dir, *file, [&](const fs::path& dir) { return agent_study::write_agent_outputs(study, dir, log); });
+    // With a folder, `workbench agent`'s run: its last step is the full load, solved once.
+    std::optional<studies::AgentRun> run;
+    if (output_dir) run.emplace(studies::run_agent_study(*file, *output_dir, log));
+    const auto study = run ? std::move(run->study) : studies::open_agent_study(*file);
     const auto& grid = study.mesh.grid;
-    auto model = agent_study::transfer_model(study);
-    Out o{agent_study::evaluate(study, model, load_factor), {}, {}, study.mesh.cell_of_element, grid.dim,
+    auto state = [&] {
+      if (run && load_factor == 1.0) return std::move(run->steps.back());
+      auto model = agent_study::transfer_model(study);
+      return agent_study::evaluate(study, model, load_factor);
+    };
+    Out o{state(), {}, {}, study.mesh.cell_of_element, grid.dim,
           {grid.cells[0], grid.cells[1], grid.dim == 3 ? grid.cells[2] : 1}, grid.tiled(), {}, {}, study.coefficients};
     for (std::size_t cell = 0; cell < grid.count(); ++cell) {
       const Eigen::Vector3d x = grid.centre(cell);
@@ -280,14 +269,8 @@ py::dict fem_dict(fem_reference::FemResult&& f) {
 py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const py::object& progress) {
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    const auto problem = fem_reference::problem_from_case(*file);
-    compare::check_every_section(*file);
-    if (!output_dir) return fem_reference::solve_fem(problem, {}, &log);
-    return staged(*output_dir, *file, [&](const fs::path& dir) {
-      auto r = fem_reference::solve_fem(problem, dir, &log);
-      fem_reference::write_fem_csv(r, dir);
-      return r;
-    });
+    if (!output_dir) return fem_reference::solve_fem(studies::open_fem_study(*file), {}, &log);
+    return studies::run_fem_study(*file, *output_dir, log).result;
   });
   return fem_dict(std::move(result));
 }
@@ -295,7 +278,7 @@ py::dict run_fem(const Case& c, const std::optional<fs::path>& output_dir, const
 py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto outcome = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    return staged(output_dir, *file, [&](const fs::path& dir) { return compare::run_compare(*file, dir, log); });
+    return studies::run_compare_study(*file, output_dir, log).outcome;
   });
   py::dict metrics, meanings, reference_errors;
   for (const auto& m : outcome.metrics) {
@@ -321,7 +304,7 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
 py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    return staged(output_dir, *file, [&](const fs::path& dir) { return compare::run_calibration(*file, dir, log); });
+    return studies::run_calibrate_study(*file, output_dir, log).result;
   });
   py::dict r;
   r["start"] = coefficients_dict(result.start);
@@ -348,9 +331,7 @@ py::dict run_pbd(const Case& c, const py::object& progress) {
   };
   auto out = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
-    auto pbd_case = pbd_study::read_pbd_case(*file);
-    compare::check_every_section(*file);  // as `workbench pbd` does: unknown keys before the mesh is built
-    auto study = pbd_study::load_pbd_study(*file, std::move(pbd_case));
+    auto study = studies::open_pbd_study(*file);
     const auto& setup = study.setup;
     Out o;
     o.nodes = study.mesh.mesh.points.size();

@@ -5,8 +5,6 @@
 
 namespace workbench {
 
-std::string LoadSpec::direction_name() const { return std::string(sign < 0 ? "-" : "+") + char('x' + axis); }
-
 StudySetup read_study_setup(const CaseTable& root) {
   StudySetup s;
   s.title = root.text("title", "");

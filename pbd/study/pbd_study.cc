@@ -230,7 +230,7 @@ void step_frames(PbdStudy& study, pbd::Solver& solver, const std::function<void(
   }
 }
 
-void run_pbd_study(PbdStudy& study, const fs::path& dir, bool animate, std::ostream& log) {
+void write_pbd_outputs(PbdStudy& study, const fs::path& dir, bool animate, std::ostream& log) {
   auto& model = study.model;
   const auto& mesh = study.mesh.mesh;
   const auto& setup = study.setup;

@@ -45,7 +45,7 @@ struct PbdStudy {
 
 /// Reads the mesh, resolves the pinned groups, chooses the angle form and builds the model from
 /// `setup` (read_pbd_case's): check the whole case file (reject_unknown_keys) before, so that no
-/// mesh is built from a case that is refused anyway.
+/// mesh is built from a case that is refused anyway (studies::open_pbd_study does both).
 PbdStudy load_pbd_study(const workbench::CaseFile& file, PbdCase setup);
 
 /// Steps the model through the case's frames (seed steps 3-5 per frame, pbd::Solver::step) and
@@ -60,7 +60,7 @@ void step_frames(PbdStudy& study, pbd::Solver& solver, const std::function<void(
 /// rest arc length, rest and final position, displacement; the input of a later comparison with
 /// the FEM strip). With `animate`, also render/ (CSV frames, scripts/render_frames.py's input)
 /// and animation.<mp4|gif>. Progress on `log`.
-void run_pbd_study(PbdStudy& study, const std::filesystem::path& dir, bool animate, std::ostream& log);
+void write_pbd_outputs(PbdStudy& study, const std::filesystem::path& dir, bool animate, std::ostream& log);
 
 /// The mesh at positions `x` as an output mesh.
 workbench::OutputMesh output_mesh(const pbd::Mesh& mesh, const std::vector<pbd::Vec3>& x);

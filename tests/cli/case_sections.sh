@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One case file serves every subcommand (docs/case-file.md): `workbench SUB CASE --check` reads the
-# case, checks every section with its reader (cli/case_sections.cc) and writes nothing. For every
+# case, checks every section with its reader (schema/src/every_section.cc) and writes nothing. For every
 # file in cases/ and every subcommand: the models the file is meant for accept it (exit 0); the
 # others may miss a section they need (exit 2, one line), but none refuses a key as unknown.
 # Usage: case_sections.sh WORKBENCH_BINARY SOURCE_DIR

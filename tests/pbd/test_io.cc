@@ -155,7 +155,7 @@ std::string run_rod_case(TempDir& tmp, const std::string& extra, int frames = 20
   file.reject_unknown_keys();
   auto study = pbd_study::load_pbd_study(file, setup);
   std::ostringstream log;
-  pbd_study::run_pbd_study(study, tmp.path / "out", false, log);
+  pbd_study::write_pbd_outputs(study, tmp.path / "out", false, log);
   return log.str();
 }
 std::string read_text(const fs::path& file) {

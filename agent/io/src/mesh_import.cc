@@ -52,31 +52,38 @@ double study_bytes(int dim, const std::array<int, 3>& cells, const std::vector<s
   return bytes;
 }
 
-ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
-  const std::string name = file.string();
-  ImportedMesh out;
-  try {
-    out.parameters = workbench::gmsh_load(file, parameters);
-  } catch (const std::runtime_error& e) {
-    throw MeshError(e.what());
-  }
+namespace {
 
-  const int dim = gmsh::model::getDimension();
+/// The model's elements of its own dimension as gmsh gives them: equal squares (4-node
+/// quadrangles) or cubes (8-node hexahedra), else a MeshError.
+struct GmshElements {
+  int dim = 2, corners = 4;
+  std::unordered_map<std::size_t, Eigen::Vector3d> node_at;  ///< node tag -> position
+  std::vector<std::size_t> tags;   ///< element tags
+  std::vector<std::size_t> nodes;  ///< corners node tags per element
+  std::size_t count() const { return tags.size(); }
+  const Eigen::Vector3d& corner(std::size_t e, int c) const { return node_at.at(nodes[e * corners + c]); }
+  std::string element(std::size_t e) const { return "element " + std::to_string(tags[e]); }
+};
+
+GmshElements read_elements(const std::string& name) {
+  GmshElements m;
+  m.dim = gmsh::model::getDimension();
+  const int dim = m.dim;
   if (dim != 2 && dim != 3) throw MeshError(name + ": the model must be 2D or 3D (got dimension " + std::to_string(dim) + ")");
 
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, parametric;
   gmsh::model::mesh::getNodes(node_tags, coords, parametric);
-  std::unordered_map<std::size_t, Eigen::Vector3d> node_at;
-  node_at.reserve(node_tags.size());
+  m.node_at.reserve(node_tags.size());
   for (std::size_t i = 0; i < node_tags.size(); ++i)
-    node_at[node_tags[i]] = Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+    m.node_at[node_tags[i]] = Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
 
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> element_tags, element_nodes;
   gmsh::model::mesh::getElements(types, element_tags, element_nodes, dim);
   const int wanted = dim == 2 ? 3 : 5;  // 4-node quadrangle, 8-node hexahedron
-  const int corners = dim == 2 ? 4 : 8;
+  m.corners = dim == 2 ? 4 : 8;
   for (int t : types)
     if (t != wanted) {
       std::string type_name;
@@ -87,17 +94,28 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
                       (dim == 2 ? "4-node squares" : "8-node cubes") + " (Transfinite + Recombine)");
     }
   if (types.empty()) throw MeshError(name + ": holds no " + std::to_string(dim) + "D elements");
-  const auto& elements = element_nodes[0];
-  const std::size_t n_elements = element_tags[0].size();
+  m.nodes = std::move(element_nodes[0]);
+  m.tags = std::move(element_tags[0]);
+  return m;
+}
 
-  // Bounding box of each element: all equal, axis aligned, corners at the box's corners.
-  Eigen::Vector3d lo_all = Eigen::Vector3d::Constant(1e300), hi_all = Eigen::Vector3d::Constant(-1e300);
-  std::vector<Eigen::Vector3d> element_lo(n_elements);
+/// Each element's lower corner, their common size and the bounding box of them all.
+struct ElementBoxes {
+  std::vector<Eigen::Vector3d> lo;
   Eigen::Vector3d size = Eigen::Vector3d::Ones();
-  for (std::size_t e = 0; e < n_elements; ++e) {
+  Eigen::Vector3d lo_all = Eigen::Vector3d::Constant(1e300), hi_all = Eigen::Vector3d::Constant(-1e300);
+};
+
+/// Bounding box of each element: all equal, axis aligned, corners at the box's corners.
+ElementBoxes element_boxes(const GmshElements& m, const std::string& name) {
+  const int dim = m.dim;
+  ElementBoxes b;
+  b.lo.resize(m.count());
+  Eigen::Vector3d& size = b.size;
+  for (std::size_t e = 0; e < m.count(); ++e) {
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
-    for (int c = 0; c < corners; ++c) {
-      const Eigen::Vector3d& x = node_at.at(elements[e * corners + c]);
+    for (int c = 0; c < m.corners; ++c) {
+      const Eigen::Vector3d& x = m.corner(e, c);
       lo = lo.cwiseMin(x);
       hi = hi.cwiseMax(x);
     }
@@ -105,109 +123,131 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
     if (e == 0) {
       size = s;
       for (int a = 0; a < dim; ++a)
-        if (!(size[a] > 0)) throw MeshError(name + ": element " + std::to_string(element_tags[0][e]) + " is degenerate");
+        if (!(size[a] > 0)) throw MeshError(name + ": " + m.element(e) + " is degenerate");
       if (dim == 2 && std::abs(s[2]) > 1e-12 * size.head<2>().norm())
         throw MeshError(name + ": a 2D mesh must lie in the x-y plane");
     }
     const double tol = 1e-6 * size.head(dim).minCoeff();
     for (int a = 0; a < dim; ++a)
       if (std::abs(s[a] - size[a]) > tol)
-        throw MeshError(name + ": agents must all be the same size; element " + std::to_string(element_tags[0][e]) +
-                        " at " + point_text(lo, dim) + " differs (structured mesh with uniform spacing needed)");
-    for (int c = 0; c < corners; ++c) {
-      const Eigen::Vector3d& x = node_at.at(elements[e * corners + c]);
+        throw MeshError(name + ": agents must all be the same size; " + m.element(e) + " at " + point_text(lo, dim) +
+                        " differs (structured mesh with uniform spacing needed)");
+    for (int c = 0; c < m.corners; ++c) {
+      const Eigen::Vector3d& x = m.corner(e, c);
       for (int a = 0; a < dim; ++a)
         if (std::min(std::abs(x[a] - lo[a]), std::abs(x[a] - hi[a])) > tol)
-          throw MeshError(name + ": element " + std::to_string(element_tags[0][e]) +
+          throw MeshError(name + ": " + m.element(e) +
                           " is not an axis-aligned square/cube; the agent method needs a grid aligned with x, y" +
                           (dim == 3 ? ", z" : ""));
     }
-    element_lo[e] = lo;
-    lo_all = lo_all.cwiseMin(lo);
-    hi_all = hi_all.cwiseMax(hi);
+    b.lo[e] = lo;
+    b.lo_all = b.lo_all.cwiseMin(lo);
+    b.hi_all = b.hi_all.cwiseMax(hi);
   }
-
-  // Lattice coordinates (64-bit, agent sizes from the lower corner) of every element and node,
-  // before any box is allocated.
   if (dim == 2) size[2] = 1.0;
+  return b;
+}
+
+/// The lattice the agents lie on: coordinates (64-bit, agent sizes from the lower corner) of every
+/// element, the compressed axes (only the planes that hold agents, a run of empty planes one air
+/// slot) and each element's slot, found before any box is allocated.
+struct Lattice {
+  std::vector<CompressedAxis> axes;
+  std::array<int, 3> cells{1, 1, 1};
+  std::vector<std::array<int, 3>> slot_of_element;
+};
+
+/// The lattice coordinate of x along axis a, else a MeshError naming `what`.
+std::int64_t lattice_coordinate(const ElementBoxes& b, const std::string& name, double x, int a, const std::string& what) {
   const double tol = 1e-4;
-  auto lattice_coordinate = [&](double x, int a, const std::string& what) {
-    const double f = (x - lo_all[a]) / size[a];
-    if (!(std::abs(f) < 1e15)) throw MeshError(name + ": " + what + " lies more than 1e15 agent sizes from the others");
-    const std::int64_t l = std::llround(f);
-    if (std::abs(f - double(l)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
-    return l;
-  };
+  const double f = (x - b.lo_all[a]) / b.size[a];
+  if (!(std::abs(f) < 1e15)) throw MeshError(name + ": " + what + " lies more than 1e15 agent sizes from the others");
+  const std::int64_t l = std::llround(f);
+  if (std::abs(f - double(l)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
+  return l;
+}
+
+Lattice element_lattice(const GmshElements& m, const ElementBoxes& b, const std::string& name) {
+  const int dim = m.dim;
+  const std::size_t n_elements = m.count();
   std::vector<std::array<std::int64_t, 3>> element_at(n_elements, {0, 0, 0});
   std::array<std::vector<std::int64_t>, 3> occupied;
   for (std::size_t e = 0; e < n_elements; ++e)
     for (int a = 0; a < dim; ++a) {
-      element_at[e][a] = lattice_coordinate(element_lo[e][a], a, "element " + std::to_string(element_tags[0][e]));
+      element_at[e][a] = lattice_coordinate(b, name, b.lo[e][a], a, m.element(e));
       occupied[a].push_back(element_at[e][a]);
     }
-  // The compressed lattice: only the planes that hold agents, a run of empty planes one air slot.
-  std::vector<CompressedAxis> axes;
-  for (int a = 0; a < dim; ++a) axes.emplace_back(std::move(occupied[a]));
-  std::array<int, 3> cells{1, 1, 1};
+  Lattice l;
+  for (int a = 0; a < dim; ++a) l.axes.emplace_back(std::move(occupied[a]));
   double longest = 1;
   for (int a = 0; a < dim; ++a) {
-    longest = std::max(longest, double(axes[a].slots()));
-    cells[a] = int(std::min(axes[a].slots(), std::size_t(1) << 30));
+    longest = std::max(longest, double(l.axes[a].slots()));
+    l.cells[a] = int(std::min(l.axes[a].slots(), std::size_t(1) << 30));
   }
   if (!(longest < 1e9)) {
     std::ostringstream s;
-    s << name << ": the agent grid has " << longest << " slots along an axis (bounding box " << point_text(hi_all - lo_all, dim)
-      << " m, agents of " << size[0] << " m), more than 1e9";
+    s << name << ": the agent grid has " << longest << " slots along an axis (bounding box "
+      << point_text(b.hi_all - b.lo_all, dim) << " m, agents of " << b.size[0] << " m), more than 1e9";
     throw MeshError(s.str());
   }
-  std::vector<std::array<int, 3>> slot_of_element(n_elements, {0, 0, 0});
+  l.slot_of_element.assign(n_elements, {0, 0, 0});
   for (std::size_t e = 0; e < n_elements; ++e)
-    for (int a = 0; a < dim; ++a) slot_of_element[e][a] = int(axes[a].slot(element_at[e][a]));
-  // Refuse up front a body that would not fit in memory (its stored slots: the compressed box, or
-  // the tiles its agents touch).
-  const double estimate = study_bytes(dim, cells, slot_of_element);
+    for (int a = 0; a < dim; ++a) l.slot_of_element[e][a] = int(l.axes[a].slot(element_at[e][a]));
+  return l;
+}
+
+/// Refuses up front a body that would not fit in memory (its stored slots: the compressed box, or
+/// the tiles its agents touch).
+void check_memory(const GmshElements& m, const ElementBoxes& b, const Lattice& l, const std::string& name) {
+  const int dim = m.dim;
+  const auto& cells = l.cells;
+  const double estimate = study_bytes(dim, cells, l.slot_of_element);
   const double limit = workbench::memory_limit_bytes();
   if (!(estimate <= limit)) {
     std::ostringstream s;
-    s << name << ": the agent grid (" << n_elements << " agents of " << size[0] << " m in a compressed box of " << cells[0]
+    s << name << ": the agent grid (" << m.count() << " agents of " << b.size[0] << " m in a compressed box of " << cells[0]
       << " x " << cells[1];
     if (dim == 3) s << " x " << cells[2];
-    s << " slots, bounding box " << point_text(hi_all - lo_all, dim) << " m) needs about " << estimate / workbench::kGiB
+    s << " slots, bounding box " << point_text(b.hi_all - b.lo_all, dim) << " m) needs about " << estimate / workbench::kGiB
       << " GiB, more than the " << limit / workbench::kGiB
       << " GiB allowed (the machine's memory; set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
     throw MeshError(s.str());
   }
-  // Every slot no element fills is air.
-  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo_all, size, slot_of_element);
-  // Plane index of lattice coordinate l: a slot's first coordinate or the end of the box.
-  auto plane_of = [&](std::int64_t l, int a, const std::string& what) {
-    const auto& first = axes[a].first;
-    const auto it = std::lower_bound(first.begin(), first.end(), l);
-    if (it == first.end() || *it != l) throw MeshError(name + ": " + what + " is not a corner of its element's lattice cell");
+}
+
+/// Places every element in its slot (a second element in a slot is an overlap), filling
+/// out.cell_of_element; returns the grid node of every node tag. Neighbours come from the mesh:
+/// agents that share a face must share its nodes.
+std::unordered_map<std::size_t, std::size_t> place_elements(const GmshElements& m, const ElementBoxes& b,
+                                                            const Lattice& l, const Grid& grid, const std::string& name,
+                                                            ImportedMesh& out) {
+  const int dim = m.dim;
+  // Plane index of lattice coordinate c: a slot's first coordinate or the end of the box.
+  auto plane_of = [&](std::int64_t c, int a, const std::string& what) {
+    const auto& first = l.axes[a].first;
+    const auto it = std::lower_bound(first.begin(), first.end(), c);
+    if (it == first.end() || *it != c) throw MeshError(name + ": " + what + " is not a corner of its element's lattice cell");
     return int(it - first.begin());
   };
-
-  // Place every element; a second element in a slot is an overlap.
-  out.cell_of_element.resize(n_elements);
+  out.cell_of_element.resize(m.count());
   std::vector<std::size_t> element_in(grid.count(), std::size_t(-1));
   std::unordered_map<std::size_t, std::size_t> grid_node_of_tag;
   std::vector<std::size_t> tag_at_node(grid.node_count(), 0);
-  for (std::size_t e = 0; e < n_elements; ++e) {
-    const auto& c = slot_of_element[e];
+  for (std::size_t e = 0; e < m.count(); ++e) {
+    const auto& c = l.slot_of_element[e];
     const std::size_t cell = grid.index(c[0], c[1], c[2]);
     if (element_in[cell] != std::size_t(-1))
-      throw MeshError(name + ": elements " + std::to_string(element_tags[0][element_in[cell]]) + " and " +
-                      std::to_string(element_tags[0][e]) + " overlap at " + point_text(element_lo[e], dim));
+      throw MeshError(name + ": elements " + std::to_string(m.tags[element_in[cell]]) + " and " +
+                      std::to_string(m.tags[e]) + " overlap at " + point_text(b.lo[e], dim));
     element_in[cell] = e;
     out.cell_of_element[e] = cell;
-    // Neighbours come from the mesh: agents that share a face must share its nodes.
-    for (int k = 0; k < corners; ++k) {
-      const std::size_t tag = elements[e * corners + k];
-      const Eigen::Vector3d& x = node_at.at(tag);
+    for (int k = 0; k < m.corners; ++k) {
+      const std::size_t tag = m.nodes[e * m.corners + k];
+      const Eigen::Vector3d& x = m.node_at.at(tag);
       std::array<int, 3> p{0, 0, 0};
       for (int a = 0; a < dim; ++a) {
         const std::string what = "node " + std::to_string(tag);
-        p[a] = plane_of(lattice_coordinate(x[a], a, what), a, what);
+        p[a] = plane_of(lattice_coordinate(b, name, x[a], a, what), a, what);
       }
       // A node is a corner of its element's slot (plane_of passed); that slot's corners are stored.
       const std::size_t node = grid.node_index(p[0], p[1], p[2]);
@@ -218,8 +258,14 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
       grid_node_of_tag[tag] = node;
     }
   }
+  return grid_node_of_tag;
+}
 
-  // Physical groups of dimension dim-1: outer faces.
+/// The physical groups of dimension dim-1 as outer faces: each face belongs to the agent on one
+/// side of it and must have air (or the box's outside) on the other.
+void read_face_groups(const Grid& grid, const std::unordered_map<std::size_t, std::size_t>& grid_node_of_tag,
+                      const std::string& name, ImportedMesh& out) {
+  const int dim = grid.dim;
   for (const auto& [group, elements] : workbench::gmsh_physical_groups(dim - 1)) {
     auto& faces = out.face_groups[group];
     for (const auto& element : elements) {
@@ -237,8 +283,7 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
           hi[a] = std::max(hi[a], p[a]);
         }
       }
-      // The face is normal to the axis its nodes share; it belongs to the agent on one side of
-      // it and must have air (or the box's outside) on the other.
+      // The face is normal to the axis its nodes share.
       int axis = -1;
       for (int a = 0; a < dim; ++a)
         if (lo[a] == hi[a]) axis = a;
@@ -263,6 +308,29 @@ ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, doubl
         throw MeshError(name + ": physical group '" + group + "' has a face whose nodes belong to no agent");
     }
   }
+}
+
+}  // namespace
+
+ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
+  const std::string name = file.string();
+  ImportedMesh out;
+  try {
+    out.parameters = workbench::gmsh_load(file, parameters);
+  } catch (const std::runtime_error& e) {
+    throw MeshError(e.what());
+  }
+  const auto elements = read_elements(name);
+  const auto boxes = element_boxes(elements, name);
+  const auto lattice = element_lattice(elements, boxes, name);
+  check_memory(elements, boxes, lattice, name);
+  // Every slot no element fills is air.
+  const int dim = elements.dim;
+  const auto& axes = lattice.axes;
+  Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, boxes.lo_all, boxes.size,
+                            lattice.slot_of_element);
+  const auto grid_node_of_tag = place_elements(elements, boxes, lattice, grid, name, out);
+  read_face_groups(grid, grid_node_of_tag, name, out);
   out.grid = std::move(grid);
   return out;
 }

@@ -119,40 +119,56 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   gmsh::write(file.string());
 }
 
-}  // namespace
+using Cell = std::array<std::int64_t, 3>;
 
-ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std::string, double>& parameters,
-                      const fs::path& staircase_msh) {
-  const std::string name = geometry.string();
-  if (!(size > 0) || !std::isfinite(size)) throw std::runtime_error(name + ": the agent size must be a number > 0");
-  ImportedMesh out;
-  out.parameters = workbench::gmsh_load(geometry, parameters);
-  const int dim = gmsh::model::getDimension();
-  if (dim != 2 && dim != 3) throw std::runtime_error(name + ": the model must be 2D or 3D");
+/// The mesh's nodes by tag and their bounding box.
+struct Nodes {
+  std::unordered_map<std::size_t, Vector3d> at;
+  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+};
 
+Nodes read_nodes(const std::string& name, int dim) {
   std::vector<std::size_t> node_tags;
   std::vector<double> xyz, parametric;
   gmsh::model::mesh::getNodes(node_tags, xyz, parametric);
   if (node_tags.empty()) throw std::runtime_error(name + ": the mesh has no nodes");
-  std::unordered_map<std::size_t, Vector3d> node_at;
-  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  Nodes nodes;
   for (std::size_t i = 0; i < node_tags.size(); ++i) {
     const Vector3d x(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
     if (!x.allFinite()) throw std::runtime_error(name + ": node " + std::to_string(node_tags[i]) + " is not finite");
-    node_at[node_tags[i]] = x;
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
+    nodes.at[node_tags[i]] = x;
+    nodes.lo = nodes.lo.cwiseMin(x);
+    nodes.hi = nodes.hi.cwiseMax(x);
   }
-  if (dim == 2 && hi[2] - lo[2] > 1e-12 * (hi - lo).norm()) throw std::runtime_error(name + ": a 2D model must lie in the x-y plane");
+  if (dim == 2 && nodes.hi[2] - nodes.lo[2] > 1e-12 * (nodes.hi - nodes.lo).norm())
+    throw std::runtime_error(name + ": a 2D model must lie in the x-y plane");
+  return nodes;
+}
 
-  // The lattice over the bounding box, in 64-bit lattice coordinates: its first and last planes,
-  // and the cells whose centre may lie in an element (its bounding box, one cell wider each way).
-  std::array<std::int64_t, 3> n{1, 1, 1};
+/// The lattice cells over the bounding box along each axis, in 64-bit lattice coordinates.
+Cell lattice_cells(const Nodes& nodes, double size, int dim, const std::string& name) {
+  Cell n{1, 1, 1};
   for (int a = 0; a < dim; ++a) {
-    const double along = std::max(1.0, std::ceil((hi[a] - lo[a]) / size - 1e-9));
+    const double along = std::max(1.0, std::ceil((nodes.hi[a] - nodes.lo[a]) / size - 1e-9));
     if (!(along < 1e15)) throw std::runtime_error(name + ": agent size " + std::to_string(size) + " m gives more than 1e15 agents along an axis");
     n[a] = std::int64_t(along);
   }
+  return n;
+}
+
+/// Refuses a voxelization whose `slots` would not fit in memory.
+void refuse_if_too_big(double slots, const char* what, double size, int dim, const std::string& name) {
+  if (slots * study_bytes_per_slot(dim) <= workbench::memory_limit_bytes()) return;
+  std::ostringstream s;
+  s << name << ": agent size " << size << " m gives " << slots << " " << what << ", about "
+    << slots * study_bytes_per_slot(dim) / workbench::kGiB << " GiB, more than the " << workbench::memory_limit_bytes() / workbench::kGiB
+    << " GiB allowed (set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
+  throw std::runtime_error(s.str());
+}
+
+/// The cells whose centre may lie in an element (its bounding box, one cell wider each way), in
+/// grid order (k, then j, then i), each once; refused up front when they would not fit in memory.
+std::vector<Cell> candidate_cells(const Nodes& nodes, const Cell& n, double size, int dim, const std::string& name) {
   std::vector<int> body_types;
   std::vector<std::vector<std::size_t>> body_tags, body_nodes;
   gmsh::model::mesh::getElements(body_types, body_tags, body_nodes, dim);
@@ -163,44 +179,36 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
     for (std::size_t e = 0; e < body_tags[t].size(); ++e) {
       Vector3d elo = Vector3d::Constant(std::numeric_limits<double>::infinity()), ehi = -elo;
       for (std::size_t k = 0; k < per; ++k) {
-        const Vector3d& x = node_at.at(body_nodes[t][e * per + k]);
+        const Vector3d& x = nodes.at.at(body_nodes[t][e * per + k]);
         elo = elo.cwiseMin(x);
         ehi = ehi.cwiseMax(x);
       }
       std::array<std::int64_t, 6> box{0, 0, 0, 0, 0, 0};
       double cells = 1;
       for (int a = 0; a < dim; ++a) {
-        box[a] = std::max<std::int64_t>(0, std::int64_t(std::floor((elo[a] - lo[a]) / size - 0.5)) - 1);
-        box[3 + a] = std::min<std::int64_t>(n[a] - 1, std::int64_t(std::ceil((ehi[a] - lo[a]) / size - 0.5)) + 1);
+        box[a] = std::max<std::int64_t>(0, std::int64_t(std::floor((elo[a] - nodes.lo[a]) / size - 0.5)) - 1);
+        box[3 + a] = std::min<std::int64_t>(n[a] - 1, std::int64_t(std::ceil((ehi[a] - nodes.lo[a]) / size - 0.5)) + 1);
         cells *= double(box[3 + a] - box[a] + 1);
       }
       candidates += cells;
       element_boxes.push_back(box);
     }
   }
-  // Refused up front when the candidates, or later the compressed box, would not fit in memory.
-  auto refuse_if_too_big = [&](double slots, const char* what) {
-    if (slots * study_bytes_per_slot(dim) <= workbench::memory_limit_bytes()) return;
-    std::ostringstream s;
-    s << name << ": agent size " << size << " m gives " << slots << " " << what << ", about "
-      << slots * study_bytes_per_slot(dim) / workbench::kGiB << " GiB, more than the " << workbench::memory_limit_bytes() / workbench::kGiB
-      << " GiB allowed (set WORKBENCH_MEMORY_LIMIT=<GiB> to raise it)";
-    throw std::runtime_error(s.str());
-  };
-  refuse_if_too_big(candidates, "agent slots to test");
-  using Cell = std::array<std::int64_t, 3>;
+  refuse_if_too_big(candidates, "agent slots to test", size, dim, name);
   std::vector<Cell> tried;
   tried.reserve(std::size_t(candidates));
   for (const auto& box : element_boxes)
     for (std::int64_t k = box[2]; k <= box[5]; ++k)
       for (std::int64_t j = box[1]; j <= box[4]; ++j)
         for (std::int64_t i = box[0]; i <= box[3]; ++i) tried.push_back({i, j, k});
-  // Grid order (k, then j, then i), as the cells are numbered.
   auto grid_order = [](const Cell& p, const Cell& q) { return std::tie(p[2], p[1], p[0]) < std::tie(q[2], q[1], q[0]); };
   std::sort(tried.begin(), tried.end(), grid_order);
   tried.erase(std::unique(tried.begin(), tried.end()), tried.end());
+  return tried;
+}
 
-  // An agent where its centre lies inside an element of the body (strict search: no tolerance).
+/// The cells whose centre lies inside an element of the body (strict search: no tolerance).
+std::vector<Cell> cells_inside(const std::vector<Cell>& tried, const Vector3d& lo, double size, int dim) {
   std::vector<Cell> inside;
   std::vector<std::size_t> found;
   for (const Cell& l : tried) {
@@ -214,11 +222,14 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
     }
     if (!found.empty()) inside.push_back(l);
   }
-  if (inside.empty())
-    throw std::runtime_error(name + ": no agent of size " + std::to_string(size) + " m has its centre inside the body");
+  return inside;
+}
 
-  // The compressed lattice: the planes that hold agents and the bounding box's first and last,
-  // a run of empty planes one air slot; the agents on it, every other slot air.
+/// The compressed lattice: the planes that hold agents and the bounding box's first and last, a
+/// run of empty planes one air slot; the agents on it, every other slot air. Fills
+/// out.cell_of_element (in (k, j, i) order, as `inside`).
+Grid staircase_grid(const std::vector<Cell>& inside, const Cell& n, const Vector3d& lo, double size, int dim,
+                    const std::string& name, ImportedMesh& out) {
   std::vector<CompressedAxis> axes;
   std::array<int, 3> cells{1, 1, 1};
   for (int a = 0; a < dim; ++a) {
@@ -244,17 +255,23 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
   }
   Grid grid = Grid::lattice(dim, {&axes[0], &axes[1], dim == 3 ? &axes[2] : nullptr}, lo,
                             Vector3d(size, size, dim == 3 ? size : 1.0), agents);
-  for (const auto& c : agents) out.cell_of_element.push_back(grid.index(c[0], c[1], c[2]));  // in (k, j, i) order, as `inside`
+  for (const auto& c : agents) out.cell_of_element.push_back(grid.index(c[0], c[1], c[2]));
+  return grid;
+}
 
-  // The facets of the body's boundary, each with the physical groups of its entity.
+/// The facets of the body's boundary, each with the physical groups of its entity.
+struct BodyBoundary {
+  std::map<int, std::vector<std::string>> groups_of_entity;  ///< the facets point into it
+  std::vector<Facet> facets;
+};
+
+void read_boundary(const Nodes& nodes, int dim, BodyBoundary& out) {
   gmsh::vectorpair bodies, boundary;
   gmsh::model::getEntities(bodies, dim);
   gmsh::model::getBoundary(bodies, boundary, true, false, false);
-  std::map<int, std::vector<std::string>> groups_of_entity;
-  std::vector<Facet> facets;
   for (const auto& [d, signed_tag] : boundary) {
     const int tag = std::abs(signed_tag);
-    auto& names = groups_of_entity[tag];
+    auto& names = out.groups_of_entity[tag];
     std::vector<int> physical;
     gmsh::model::getPhysicalGroupsForEntity(d, tag, physical);
     for (int p : physical) {
@@ -263,34 +280,37 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
       names.push_back(group.empty() ? std::to_string(p) : group);
     }
     std::vector<int> types;
-    std::vector<std::vector<std::size_t>> tags, nodes;
-    gmsh::model::mesh::getElements(types, tags, nodes, d, tag);
+    std::vector<std::vector<std::size_t>> tags, element_nodes;
+    gmsh::model::mesh::getElements(types, tags, element_nodes, d, tag);
     for (std::size_t t = 0; t < types.size(); ++t) {
       std::string type_name;
       int edim, order, per, primary;
       std::vector<double> local;
       gmsh::model::mesh::getElementProperties(types[t], type_name, edim, order, per, local, primary);
       for (std::size_t e = 0; e < tags[t].size(); ++e) {
-        auto x = [&](int k) { return node_at.at(nodes[t][e * per + k]); };
+        auto x = [&](int k) { return nodes.at.at(element_nodes[t][e * per + k]); };
         if (d == 1) {
-          facets.push_back({{x(0), x(1), x(1)}, 2, &names});
+          out.facets.push_back({{x(0), x(1), x(1)}, 2, &names});
         } else {  // triangles, and quadrangles as two triangles
-          facets.push_back({{x(0), x(1), x(2)}, 3, &names});
-          if (primary == 4) facets.push_back({{x(0), x(2), x(3)}, 3, &names});
+          out.facets.push_back({{x(0), x(1), x(2)}, 3, &names});
+          if (primary == 4) out.facets.push_back({{x(0), x(2), x(3)}, 3, &names});
         }
       }
     }
   }
-  for (const auto& [tag, names] : groups_of_entity)
-    for (const auto& group : names) out.face_groups[group];  // every boundary group, even if no face lands in it
+}
 
-  // Each staircase boundary face joins the groups of the facet nearest to its centre.
+/// Every boundary group (even if no face lands in it); each staircase boundary face joins the
+/// groups of the facet nearest to its centre.
+void assign_groups(const Grid& grid, const BodyBoundary& boundary, ImportedMesh& out) {
+  for (const auto& [tag, names] : boundary.groups_of_entity)
+    for (const auto& group : names) out.face_groups[group];
   for (const auto& f : grid.boundary_faces()) {
     Vector3d centre = grid.centre(f.cell);
     centre[axis_of(f.side)] += (is_positive(f.side) ? 0.5 : -0.5) * grid.size[axis_of(f.side)];
     double best = std::numeric_limits<double>::infinity();
     const Facet* nearest = nullptr;
-    for (const auto& facet : facets) {
+    for (const auto& facet : boundary.facets) {
       const double dist = distance(centre, facet);
       if (dist < best) {
         best = dist;
@@ -300,6 +320,28 @@ ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std:
     if (nearest)
       for (const auto& group : *nearest->groups) out.face_groups[group].push_back(f);
   }
+}
+
+}  // namespace
+
+ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std::string, double>& parameters,
+                      const fs::path& staircase_msh) {
+  const std::string name = geometry.string();
+  if (!(size > 0) || !std::isfinite(size)) throw std::runtime_error(name + ": the agent size must be a number > 0");
+  ImportedMesh out;
+  out.parameters = workbench::gmsh_load(geometry, parameters);
+  const int dim = gmsh::model::getDimension();
+  if (dim != 2 && dim != 3) throw std::runtime_error(name + ": the model must be 2D or 3D");
+  const Nodes nodes = read_nodes(name, dim);
+  // The lattice over the bounding box: the cells that may hold an agent, those that do.
+  const Cell n = lattice_cells(nodes, size, dim, name);
+  const auto inside = cells_inside(candidate_cells(nodes, n, size, dim, name), nodes.lo, size, dim);
+  if (inside.empty())
+    throw std::runtime_error(name + ": no agent of size " + std::to_string(size) + " m has its centre inside the body");
+  Grid grid = staircase_grid(inside, n, nodes.lo, size, dim, name, out);
+  BodyBoundary boundary;
+  read_boundary(nodes, dim, boundary);
+  assign_groups(grid, boundary, out);
   out.grid = std::move(grid);
   if (!staircase_msh.empty()) write_staircase(out, staircase_msh);
   return out;

@@ -3,6 +3,7 @@
 // loads and the load steps (docs/case-file.md). Model-specific sections ([agent], [fem], ...)
 // are read by their modules.
 #include <workbench/case_file.h>
+#include <workbench/load_spec.h>
 
 #include <filesystem>
 #include <map>
@@ -10,16 +11,6 @@
 #include <vector>
 
 namespace workbench {
-
-/// A load on the outer faces of a physical group: total `force` [N] along axis `axis` with
-/// sign `sign` (direction "-y" is axis 1, sign -1), shared over the faces by area.
-struct LoadSpec {
-  std::string group;
-  int axis = 1;
-  int sign = -1;
-  double force = 0;
-  std::string direction_name() const;
-};
 
 struct StudySetup {
   std::string title;

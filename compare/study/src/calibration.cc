@@ -190,6 +190,96 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
   return total;
 }
 
+namespace {
+
+/// The starts: the given point, then uniform random points in the bounds (seeded).
+std::vector<std::vector<double>> starting_points(const CalibrationOptions& o, const std::vector<int>& free) {
+  std::vector<std::vector<double>> starts;
+  std::mt19937_64 rng(o.seed);
+  for (int s = 0; s < o.starts; ++s) {
+    std::vector<double> x;
+    for (int i : free) {
+      const auto& p = o.parameters[i];
+      x.push_back(s == 0 ? p.start : std::uniform_real_distribution<double>(p.lo, p.hi)(rng));
+    }
+    starts.push_back(x);
+  }
+  return starts;
+}
+
+/// The best point one start reached, and how many evaluations it took.
+struct StartFit {
+  double best_f = INFINITY;
+  std::vector<double> best_x;
+  long evaluations = 0;
+};
+
+/// Minimises J over the free coefficients from `x` with BOBYQA in the bounds (10 % of each range
+/// as the first step); keeps the best point evaluated.
+void minimise(std::vector<double> x, const std::vector<int>& free, const CalibrationOptions& o,
+              const std::function<double(const std::vector<double>&)>& J, StartFit& fit) {
+  nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(free.size()));
+  std::vector<double> lo, hi;
+  for (int i : free) {
+    lo.push_back(o.parameters[i].lo);
+    hi.push_back(o.parameters[i].hi);
+  }
+  opt.set_lower_bounds(lo);
+  opt.set_upper_bounds(hi);
+  opt.set_maxeval(o.max_evaluations);
+  opt.set_ftol_rel(o.tolerance);
+  std::vector<double> step;
+  for (std::size_t j = 0; j < free.size(); ++j) step.push_back(0.1 * (hi[j] - lo[j]));
+  opt.set_initial_step(step);
+  struct Data {
+    const std::function<double(const std::vector<double>&)>& f;
+    StartFit& fit;
+  } data{J, fit};
+  opt.set_min_objective(
+      [](const std::vector<double>& x, std::vector<double>&, void* raw) {
+        auto* d = static_cast<Data*>(raw);
+        const double f = d->f(x);
+        ++d->fit.evaluations;
+        if (f < d->fit.best_f) {
+          d->fit.best_f = f;
+          d->fit.best_x = x;
+        }
+        return f;
+      },
+      &data);
+  double f = 0;
+  try {
+    opt.optimize(x, f);
+  } catch (const nlopt::roundoff_limited&) {
+  } catch (const nlopt::forced_stop&) {
+  }
+}
+
+/// The objective 10 % of each free coefficient's range either side of the optimum `v`.
+void add_sensitivity(const std::vector<int>& free, const CalibrationOptions& o, const CoefficientValues& v,
+                     const std::function<double(const CoefficientValues&)>& J, CalibrationResult& result) {
+  for (int i : free) {
+    const auto& p = o.parameters[i];
+    const double h = 0.1 * (p.hi - p.lo);
+    auto at = [&](double value) {
+      CoefficientValues w = v;
+      w[i] = std::min(p.hi, std::max(p.lo, value));
+      return J(w);
+    };
+    Sensitivity s;
+    s.name = p.name;
+    s.objective_minus = at(v[i] - h);
+    s.objective_plus = at(v[i] + h);
+    s.curvature = (s.objective_minus - 2 * result.objective_best + s.objective_plus) / std::max(result.objective_best, 1e-300);
+    s.pinned = std::abs(s.curvature) > 0.01 ||
+               std::min(s.objective_minus, s.objective_plus) > result.objective_best * 1.01;
+    result.sensitivity.push_back(s);
+    result.evaluations += 2;
+  }
+}
+
+}  // namespace
+
 CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& options,
                             std::ostream* progress) {
   // The load balance at the start is what every fitted point must keep (keep_load).
@@ -219,78 +309,29 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   auto J = [&](const CoefficientValues& v, const CaseShare& on) {
     return objective(cases, coefficients_from(v), o.rules, o.weights, nullptr, on);
   };
-
-  // The starts: the given point, then uniform random points in the bounds (seeded).
-  std::vector<std::vector<double>> starts;
-  std::mt19937_64 rng(o.seed);
-  for (int s = 0; s < o.starts; ++s) {
-    std::vector<double> x;
-    for (int i : free) {
-      const auto& p = o.parameters[i];
-      x.push_back(s == 0 ? p.start : std::uniform_real_distribution<double>(p.lo, p.hi)(rng));
-    }
-    starts.push_back(x);
-  }
+  const auto starts = starting_points(o, free);
 
   CalibrationResult result;
   result.start = coefficients_from(start_values);
   result.objective_start = objective(cases, result.start, o.rules, o.weights, &result.before, share);
   if (o.weights.keep_load)
     for (const auto& s : result.before) o.weights.equilibrium_ceiling.push_back(s.equilibrium_dev + kLoadTolerance);
-  std::vector<double> best_f(starts.size(), INFINITY);
-  std::vector<std::vector<double>> best_x = starts;
-  std::vector<long> evaluations(starts.size(), 0);
+  std::vector<StartFit> fits(starts.size());
+  for (std::size_t s = 0; s < starts.size(); ++s) fits[s].best_x = starts[s];
   std::atomic<int> next{0}, done{0};
   std::mutex log_mutex;
 
   auto run_start = [&](int s) {
-    std::vector<double> x = starts[s];
     if (free.empty()) {
-      best_f[s] = J(full(x), start_share);
-      evaluations[s] = 1;
+      fits[s].best_f = J(full(starts[s]), start_share);
+      fits[s].evaluations = 1;
       return;
     }
-    nlopt::opt opt(nlopt::LN_BOBYQA, unsigned(free.size()));
-    std::vector<double> lo, hi;
-    for (int i : free) {
-      lo.push_back(o.parameters[i].lo);
-      hi.push_back(o.parameters[i].hi);
-    }
-    opt.set_lower_bounds(lo);
-    opt.set_upper_bounds(hi);
-    opt.set_maxeval(o.max_evaluations);
-    opt.set_ftol_rel(o.tolerance);
-    std::vector<double> step;
-    for (std::size_t j = 0; j < free.size(); ++j) step.push_back(0.1 * (hi[j] - lo[j]));
-    opt.set_initial_step(step);
-    struct Data {
-      std::function<double(const std::vector<double>&)> f;
-      long* count;
-      double* best_f;
-      std::vector<double>* best_x;
-    } data{[&](const std::vector<double>& y) { return J(full(y), start_share); }, &evaluations[s], &best_f[s], &best_x[s]};
-    opt.set_min_objective(
-        [](const std::vector<double>& x, std::vector<double>&, void* raw) {
-          auto* d = static_cast<Data*>(raw);
-          const double f = d->f(x);
-          ++*d->count;
-          if (f < *d->best_f) {
-            *d->best_f = f;
-            *d->best_x = x;
-          }
-          return f;
-        },
-        &data);
-    double f = 0;
-    try {
-      opt.optimize(x, f);
-    } catch (const nlopt::roundoff_limited&) {
-    } catch (const nlopt::forced_stop&) {
-    }
+    minimise(starts[s], free, o, [&](const std::vector<double>& y) { return J(full(y), start_share); }, fits[s]);
     if (progress) {
       std::lock_guard<std::mutex> lock(log_mutex);
       *progress << "calibrate: start " << ++done << "/" << starts.size() << " (#" << s + 1 << "): objective "
-                << best_f[s] << " after " << evaluations[s] << " evaluations\n"
+                << fits[s].best_f << " after " << fits[s].evaluations << " evaluations\n"
                 << std::flush;
     }
   };
@@ -305,34 +346,17 @@ CalibrationResult calibrate(const std::vector<CalibrationCase>& cases, const Cal
   // The best start (ties to the lowest index, so the thread count cannot change the answer).
   int best = 0;
   for (std::size_t s = 1; s < starts.size(); ++s)
-    if (best_f[s] < best_f[best]) best = int(s);
-  result.start_objectives = best_f;
-  for (long e : evaluations) result.evaluations += e;
-  CoefficientValues v = full(best_x[best]);
+    if (fits[s].best_f < fits[best].best_f) best = int(s);
+  for (const auto& fit : fits) {
+    result.start_objectives.push_back(fit.best_f);
+    result.evaluations += fit.evaluations;
+  }
+  CoefficientValues v = full(fits[best].best_x);
   // Never worse than the start.
-  if (!(best_f[best] <= result.objective_start)) v = start_values;
+  if (!(fits[best].best_f <= result.objective_start)) v = start_values;
   result.best = coefficients_from(v);
   result.objective_best = objective(cases, result.best, o.rules, o.weights, &result.after, share);
-
-  // Sensitivity: the objective 10 % of each free coefficient's range either side of the optimum.
-  for (int i : free) {
-    const auto& p = o.parameters[i];
-    const double h = 0.1 * (p.hi - p.lo);
-    auto at = [&](double value) {
-      CoefficientValues w = v;
-      w[i] = std::min(p.hi, std::max(p.lo, value));
-      return J(w, share);
-    };
-    Sensitivity s;
-    s.name = p.name;
-    s.objective_minus = at(v[i] - h);
-    s.objective_plus = at(v[i] + h);
-    s.curvature = (s.objective_minus - 2 * result.objective_best + s.objective_plus) / std::max(result.objective_best, 1e-300);
-    s.pinned = std::abs(s.curvature) > 0.01 ||
-               std::min(s.objective_minus, s.objective_plus) > result.objective_best * 1.01;
-    result.sensitivity.push_back(s);
-    result.evaluations += 2;
-  }
+  add_sensitivity(free, o, v, [&](const CoefficientValues& w) { return J(w, share); }, result);
   return result;
 }
 

@@ -1,6 +1,6 @@
 // The calibration as a workbench study: the calibration file, each case's reference, the report and the calibrated case files.
 #include <compare/calibration_study.h>
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 #include <compare/compare_study.h>
 
 #include "report.h"
@@ -133,16 +133,18 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
                                       const workbench::CaseTable* readings_key, std::ostream& log) {
   CalibrationCase c;
   c.name = case_file.path().stem().string();
+  // Checked as every front door checks a case (studies/studies.h): every section, unknown keys
+  // refused, before the mesh is read.
+  schema::check_every_section(case_file);
+  const auto compare_options = read_compare_options(case_file.root());
+  if (compare_options.model != "agent")
+    case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
   c.study = agent_study::load_agent_study(case_file);
   if (readings) {
     c.study.readings = *readings;
     agent_study::check_readings_fit_loads(c.study, *readings_key);
   }
   auto problem = fem_reference::problem_from_case(case_file);
-  const auto compare_options = read_compare_options(case_file.root());
-  if (compare_options.model != "agent")
-    case_file.root().table("compare").fail("model", "calibration fits the agent model: a case with model = \"agent\"");
-  check_every_section(case_file);
   // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
   const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
   log << c.name << ": solving the reference (" << reference.describe() << ") once\n" << std::flush;
@@ -152,33 +154,32 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
   return c;
 }
 
-CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
-  const auto start_time = std::chrono::steady_clock::now();
-  // The plan and every load case (the agent study, and the FEM reference solved once); under MPI
-  // on every rank, the references across the ranks, bad input one line.
-  CalibrationPlan plan;
-  std::vector<CalibrationCase> cases;
-  fem_reference::mpi_collective([&] {
-    plan = read_calibration_plan(file);
-    file.reject_unknown_keys();
-    const auto calibrate_table = file.root().table("calibrate");
-    for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
-      workbench::CaseFile case_file(plan.case_files[i]);
-      log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
-      CalibrationCase c;
-      try {
-        c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
-      } catch (...) {
-        log << "\n" << std::flush;  // the error's line (`workbench: error: ...`) starts a line of its own
-        throw;
-      }
-      c.weight = plan.case_weights[i];
-      cases.push_back(std::move(c));
-    }
-  });
+namespace {
 
-  // Start from the first case's own coefficients, and hold each case's own where not fitted,
-  // unless the calibration file gives a start.
+/// The plan's load cases (the agent study, and the FEM reference solved once); under MPI on every
+/// rank, the references across the ranks, bad input one line.
+std::vector<CalibrationCase> load_cases(const workbench::CaseFile& file, const CalibrationPlan& plan, std::ostream& log) {
+  std::vector<CalibrationCase> cases;
+  const auto calibrate_table = file.root().table("calibrate");
+  for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
+    workbench::CaseFile case_file(plan.case_files[i]);
+    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
+    CalibrationCase c;
+    try {
+      c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
+    } catch (...) {
+      log << "\n" << std::flush;  // the error's line (`workbench: error: ...`) starts a line of its own
+      throw;
+    }
+    c.weight = plan.case_weights[i];
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+/// Starts from the first case's own coefficients, and holds each case's own where not fitted,
+/// unless the calibration file gives a start.
+void start_from_first_case(CalibrationPlan& plan, const std::vector<CalibrationCase>& cases, const workbench::CaseFile& file) {
   for (std::size_t i = 0; i < kCoefficientCount; ++i) {
     if (plan.start_given[i]) continue;
     auto& p = plan.options.parameters[i];
@@ -188,35 +189,66 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
       file.root().table("calibrate").table(p.name).fail(
           "start", "the first case's own value " + std::to_string(p.start) + " lies outside [min, max]: give a start");
   }
-  const auto& o = plan.options;
-  log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
-  auto result = calibrate(cases, o, &log);
+}
 
-  // Cross-validation: fit on all cases but one, score the one left out.
-  struct Fold {
-    std::string held_out;
-    double fitted_on_others, fitted_on_all, start;
-    agent::Coefficients k;
-    Score held_out_score;  ///< the case left out, scored with the others' fit: its error per field
-  };
+/// One fold of the cross-validation: the fit on all cases but one, and that one's score.
+struct Fold {
+  std::string held_out;
+  double fitted_on_others, fitted_on_all, start;
+  agent::Coefficients k;
+  Score held_out_score;  ///< the case left out, scored with the others' fit: its error per field
+  int dim;               ///< the held-out case's dimension
+};
+
+std::vector<Fold> cross_validate(const std::vector<CalibrationCase>& cases, const CalibrationOptions& o,
+                                 const CalibrationResult& result, std::ostream& log) {
   std::vector<Fold> folds;
-  if (plan.cross_validate && cases.size() >= 2) {
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-      std::vector<CalibrationCase> train;
-      for (std::size_t j = 0; j < cases.size(); ++j)
-        if (j != i) train.push_back(cases[j]);
-      log << "calibrate: cross-validation " << i + 1 << "/" << cases.size() << ": fitting without " << cases[i].name
-          << "\n" << std::flush;
-      const auto fold = calibrate(train, o, nullptr);
-      std::vector<Score> score;
-      objective({cases[i]}, fold.best, o.rules, o.weights, &score);
-      folds.push_back({cases[i].name, score[0].objective, result.after[i].objective, result.before[i].objective, fold.best,
-                       score[0]});
-    }
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    std::vector<CalibrationCase> train;
+    for (std::size_t j = 0; j < cases.size(); ++j)
+      if (j != i) train.push_back(cases[j]);
+    log << "calibrate: cross-validation " << i + 1 << "/" << cases.size() << ": fitting without " << cases[i].name
+        << "\n" << std::flush;
+    const auto fold = calibrate(train, o, nullptr);
+    std::vector<Score> score;
+    objective({cases[i]}, fold.best, o.rules, o.weights, &score);
+    folds.push_back({cases[i].name, score[0].objective, result.after[i].objective, result.before[i].objective, fold.best,
+                     score[0], cases[i].study.mesh.grid.dim});
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return folds;
+}
 
-  // Report.
+/// The warnings of the fit: load balance lost, or too little of the load reaching a rigid face.
+std::vector<std::string> fit_warnings(const std::vector<CalibrationCase>& cases, const CalibrationResult& result) {
+  std::vector<std::string> warnings;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto &b = result.before[i], &a = result.after[i];
+    if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
+      warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + cases[i].name +
+                         ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
+                         std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
+    if (a.equilibrium_dev > 0.1)
+      warnings.push_back("calibrate: WARNING: " + cases[i].name + ": the rigid reaction is " +
+                         std::to_string(a.reaction_share) + " of the applied load after the fit");
+  }
+  return warnings;
+}
+
+/// What a calibration found, for its reports.
+struct Found {
+  const CalibrationPlan& plan;
+  const std::vector<CalibrationCase>& cases;
+  const CalibrationResult& result;
+  std::vector<Fold> folds;
+  std::vector<std::string> warnings;
+  double seconds;
+};
+
+/// report.txt: the objective, the fit, each field's error per case before and after, the load
+/// balance, the sensitivity and the cross-validation.
+std::string report_text(const workbench::CaseFile& file, const Found& found) {
+  const auto& [plan, cases, result, folds, warnings, seconds] = found;
+  const auto& o = plan.options;
   std::ostringstream r;
   r << std::setprecision(4);
   r << "Calibration of " << file.path().string() << " (" << (agent::rule_set_name(o.rules))
@@ -241,19 +273,11 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
     << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
     << "reach before" << std::setw(10) << "after" << "\n";
-  std::vector<std::string> warnings;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto &b = result.before[i], &a = result.after[i];
     r << std::left << std::setw(28) << cases[i].name << std::right << std::setw(22) << b.equilibrium_dev
       << std::setw(10) << a.equilibrium_dev << std::setw(22) << b.reaction_share << std::setw(10) << a.reaction_share
       << std::setw(14) << b.reach << std::setw(10) << a.reach << "\n";
-    if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
-      warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + cases[i].name +
-                         ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
-                         std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
-    if (a.equilibrium_dev > 0.1)
-      warnings.push_back("calibrate: WARNING: " + cases[i].name + ": the rigid reaction is " +
-                         std::to_string(a.reaction_share) + " of the applied load after the fit");
   }
   r << "load balance: " << (o.weights.keep_load ? "kept (calibrate.keep_load): no case may end with a larger "
                                                  "equilibrium_dev than at the start"
@@ -272,69 +296,93 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   r << "\n";
   if (!folds.empty()) {
     r << "\ncross-validation (fit on the other cases, score the one left out):\n";
-    for (const auto& f : folds)
-    {
+    for (const auto& f : folds) {
       r << "  " << std::left << std::setw(28) << f.held_out << std::right << " held out: " << std::setw(10)
         << f.fitted_on_others << "  fitted on all: " << std::setw(10) << f.fitted_on_all << "  start: " << std::setw(10)
         << f.start << "\n    held-out error per field:";
-      const int dim = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.name == f.held_out; })
-                          ->study.mesh.grid.dim;
       for (std::size_t k = 0; k < kFieldCount; ++k)
-        if (kFields[k].in(dim)) r << " " << kFields[k].name << " " << f.held_out_score.error[k];
+        if (kFields[k].in(f.dim)) r << " " << kFields[k].name << " " << f.held_out_score.error[k];
       r << "\n";
     }
   } else if (plan.cross_validate) {
     r << "\ncross-validation: needs two or more cases\n";
   }
+  return r.str();
+}
+
+/// The errors of a score per field of kFields compared in `dim` dimensions.
+nlohmann::json field_errors(const Score& s, int dim) {
+  nlohmann::json e = nlohmann::json::object();
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    if (kFields[k].in(dim)) e[kFields[k].name] = s.error[k];
+  return e;
+}
+
+nlohmann::json coefficients_json(const agent::Coefficients& k) {
+  nlohmann::json j;
+  for (const auto& [name, value] : agent_study::coefficient_values(k)) j[name] = value;
+  return j;
+}
+
+/// report.json: what report.txt says, as data.
+nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) {
+  const auto& [plan, cases, result, folds, warnings, seconds] = found;
+  const auto& o = plan.options;
+  nlohmann::json j;
+  j["calibration"] = file.path().string();
+  j["title"] = file.root().text("title", "");
+  j["rule_set"] = agent::rule_set_name(o.rules);
+  if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
+  j["start"] = coefficients_json(result.start);
+  j["fitted"] = coefficients_json(result.best);
+  j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
+  j["evaluations"] = result.evaluations;
+  j["seconds"] = seconds;
+  j["start_objectives"] = result.start_objectives;
+  for (std::size_t k = 0; k < kFieldCount; ++k) j["weights"][kFields[k].name] = o.weights.field[k];
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    j["cases"][cases[i].name] = {
+        {"before", field_errors(result.before[i], cases[i].study.mesh.grid.dim)},
+        {"after", field_errors(result.after[i], cases[i].study.mesh.grid.dim)},
+        {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
+        {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
+        {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
+  j["keep_load"] = o.weights.keep_load;
+  j["warnings"] = warnings;
+  for (const auto& s : result.sensitivity)
+    j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
+  for (const auto& f : folds)
+    j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all},
+                                         {"start", f.start}, {"held_out_errors", field_errors(f.held_out_score, f.dim)}};
+  return j;
+}
+
+}  // namespace
+
+CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
+  const auto start_time = std::chrono::steady_clock::now();
+  CalibrationPlan plan;
+  std::vector<CalibrationCase> cases;
+  fem_reference::mpi_collective([&] {
+    plan = read_calibration_plan(file);
+    file.reject_unknown_keys();
+    cases = load_cases(file, plan, log);
+  });
+  start_from_first_case(plan, cases, file);
+  const auto& o = plan.options;
+  log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
+  auto result = calibrate(cases, o, &log);
+  Found found{plan, cases, result, {}, {}, 0};
+  // Cross-validation: fit on all cases but one, score the one left out.
+  if (plan.cross_validate && cases.size() >= 2) found.folds = cross_validate(cases, o, result, log);
+  found.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  found.warnings = fit_warnings(cases, result);
+  const std::string report = report_text(file, found);
   // The files, written once (rank 0 under MPI).
   fem_reference::mpi_on_root([&] {
-    report::write_text(dir / "report.txt", r.str());
-    log << r.str();
-
-    nlohmann::json j;
-    auto coeffs = [](const agent::Coefficients& k) {
-      nlohmann::json j;
-      for (const auto& [name, value] : agent_study::coefficient_values(k)) j[name] = value;
-      return j;
-    };
-    j["calibration"] = file.path().string();
-    j["title"] = file.root().text("title", "");
-    j["rule_set"] = agent::rule_set_name(o.rules);
-    if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
-    j["start"] = coeffs(result.start);
-    j["fitted"] = coeffs(result.best);
-    j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
-    j["evaluations"] = result.evaluations;
-    j["seconds"] = seconds;
-    j["start_objectives"] = result.start_objectives;
-    // Errors per field of kFields compared in the case's dimension.
-    auto errors = [](const Score& s, int dim) {
-      nlohmann::json e = nlohmann::json::object();
-      for (std::size_t k = 0; k < kFieldCount; ++k)
-        if (kFields[k].in(dim)) e[kFields[k].name] = s.error[k];
-      return e;
-    };
-    for (std::size_t k = 0; k < kFieldCount; ++k) j["weights"][kFields[k].name] = o.weights.field[k];
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      j["cases"][cases[i].name] = {
-          {"before", errors(result.before[i], cases[i].study.mesh.grid.dim)},
-          {"after", errors(result.after[i], cases[i].study.mesh.grid.dim)},
-          {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
-          {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
-          {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
-    j["keep_load"] = o.weights.keep_load;
-    j["warnings"] = warnings;
-    for (const auto& s : result.sensitivity)
-      j["sensitivity"][s.name] = {{"minus", s.objective_minus}, {"plus", s.objective_plus}, {"curvature", s.curvature}, {"pinned", s.pinned}};
-    for (const auto& f : folds)
-    {
-      const int dim = std::find_if(cases.begin(), cases.end(), [&](const auto& c) { return c.name == f.held_out; })
-                          ->study.mesh.grid.dim;
-      j["cross_validation"][f.held_out] = {{"held_out", f.fitted_on_others}, {"fitted_on_all", f.fitted_on_all},
-                                           {"start", f.start}, {"held_out_errors", errors(f.held_out_score, dim)}};
-    }
-    report::write_text(dir / "report.json", j.dump(2) + "\n");
-
+    report::write_text(dir / "report.txt", report);
+    log << report;
+    report::write_text(dir / "report.json", report_json(file, found).dump(2) + "\n");
     fs::create_directories(dir / "calibrated");
     for (std::size_t i = 0; i < cases.size(); ++i)
       write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),

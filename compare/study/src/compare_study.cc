@@ -277,6 +277,33 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   return json;
 }
 
+/// The carry check in summary.json: each load, where it marches and whether the rule set carries it.
+nlohmann::json carry_check_json(const std::vector<agent_study::LoadCarry>& carry, const agent_study::AgentStudy& study) {
+  auto json = nlohmann::json::array();
+  for (const auto& c : carry)
+    json.push_back({{"load", c.load}, {"group", c.group}, {"march", agent::kDirectionNames[c.march]},
+                    {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
+                    {"carries", !c.refused()}, {"said", c.describe(study)}});
+  return json;
+}
+
+/// summary.txt's notes on the reference: its level and error estimate, the far field, the staircase.
+std::vector<std::string> reference_notes(const AgentCompareInput& in, const Reference& reference) {
+  std::vector<std::string> notes{
+      "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
+          " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
+          " DoFs) against it",
+      "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
+          " mm from every loaded face"};
+  if (reference.staircase_fields)
+    notes.push_back("the staircase's own error (column staircase_error): the same norm of FEM on the agents' mesh (" +
+                    std::to_string(reference.staircase_dofs) + " DoFs, the reference's degree and refinement) against "
+                    "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
+                    std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
+                    "nearest element's stress / nearest node's displacement");
+  return notes;
+}
+
 CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
                                  std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
@@ -385,26 +412,10 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     // 9. The gate, summary.json / summary.txt / junit.xml, then report.html (rendered by the figures' process).
     outcome.fields = compared_fields(in, agent_fields, reference.fields, agent_state, options.mask, samples);
     auto json = summary_header(file, in, options, reference, agent_state.diagnostics);
-    json["carry_check"] = nlohmann::json::array();
-    for (const auto& c : carry)
-      json["carry_check"].push_back({{"load", c.load}, {"group", c.group}, {"march", agent::kDirectionNames[c.march]},
-                                     {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
-                                     {"carries", !c.refused()}, {"said", c.describe(in.study)}});
+    json["carry_check"] = carry_check_json(carry, in.study);
     for (const auto& r : outcome.refused) outcome.warnings.push_back("agent: carry check: " + r);
-    std::vector<std::string> notes{
-        "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
-            " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
-            " DoFs) against it",
-        "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
-            " mm from every loaded face"};
-    if (reference.staircase_fields)
-      notes.push_back("the staircase's own error (column staircase_error): the same norm of FEM on the agents' mesh (" +
-                      std::to_string(reference.staircase_dofs) + " DoFs, the reference's degree and refinement) against "
-                      "the reference; " + std::to_string(reference.outside[0]) + " agents (wholly) and " +
-                      std::to_string(reference.outside[1]) + " agent nodes lie outside the true geometry and take its "
-                      "nearest element's stress / nearest node's displacement");
-    report::finish(dir, file.path(), std::move(json), options.gate, notes, outcome, log, options.better_than_zero,
-                   figures ? &*figures : nullptr);
+    report::finish(dir, file.path(), std::move(json), options.gate, reference_notes(in, reference), outcome, log,
+                   options.better_than_zero, figures ? &*figures : nullptr);
   });
   return outcome;
 }

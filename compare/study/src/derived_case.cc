@@ -1,5 +1,5 @@
 // `workbench case set`: a case file derived from another by KEY=VALUE settings.
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 #include <compare/derived_case.h>
 #include <workbench/case_edit.h>
 #include <workbench/case_file.h>
@@ -96,7 +96,7 @@ CaseSetting parse_case_setting(const std::string& text, const std::string& case_
 
 std::string derive_case(const fs::path& original, const fs::path& target, const std::vector<std::string>& settings) {
   const workbench::CaseFile source(original);
-  check_every_section(source);  // the original is a valid case before anything is set in it
+  schema::check_every_section(source);  // the original is a valid case before anything is set in it
   std::string text = read_text(original);
   std::vector<std::string> set_keys;
   for (const auto& s : settings) {
@@ -126,7 +126,7 @@ std::string derive_case(const fs::path& original, const fs::path& target, const 
   text = "# Derived by `" + command + "`\n" + text;
   // Checked as every subcommand checks a case, read from where it will be written.
   const workbench::CaseFile derived(text, target);
-  check_every_section(derived);
+  schema::check_every_section(derived);
   const toml::table parsed = toml::parse(text);
   for (const auto& key : derived.path_keys()) {
     fs::path p(*parsed.at_path(key).value<std::string>());

@@ -1,6 +1,7 @@
 // What both comparisons share: the gate, summary.json / summary.txt / junit.xml, the FEM run and the figure script.
 #include "report.h"
 
+#include <fem_reference/fem_case.h>
 #include <fem_reference/mpi.h>
 #include <workbench/child_process.h>
 #include <workbench/csv_file.h>

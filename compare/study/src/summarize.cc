@@ -1,5 +1,5 @@
 // `workbench summarize`: many output folders' summaries as one table.
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 #include <compare/summarize.h>
 #include <workbench/case_file.h>
 #include <workbench/csv_file.h>
@@ -105,7 +105,7 @@ SummaryRow read_row(const fs::path& dir) {
   const toml::table parsed = toml::parse_file(case_path.string());
   flatten(parsed, "", row.parameters);
   if (comparison) {  // a study case: its paths as the files they name, however each case spells them
-    check_every_section(file);
+    schema::check_every_section(file);
     for (const auto& key : file.path_keys()) {
       fs::path p(*parsed.at_path(key).value<std::string>());
       if (p.is_relative()) p = fs::absolute(case_path.parent_path() / p);

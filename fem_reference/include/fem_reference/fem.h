@@ -1,8 +1,9 @@
 #pragma once
-// The deal.II linear-elastic FEM reference (docs/fem-reference.md), seen through plain data only:
-// this header includes no deal.II and no case-file reader, so the comparison module, the tests and
-// programs that build a FemProblem themselves compile against it cheaply. The deal.II code lives in
-// fem_reference/src/ (problem/, mg/, amg/); reading a case file into a FemProblem is
+// The deal.II linear-elastic FEM reference (docs/fem-reference.md): the problem and the solve, seen
+// through plain data only. This header includes no deal.II and no case-file reader, so tests and
+// programs that build a FemProblem themselves compile against it cheaply; the result alone is
+// fem_reference/fem_result.h. The core (src/solve_fem.cc, then the deal.II code in problem/, mg/,
+// amg/) knows no case file: reading a case file into a FemProblem and writing a study's CSV files is
 // fem_reference/fem_case.h, the MPI runtime (start-up settings, ranks, collective steps)
 // fem_reference/mpi.h.
 //
@@ -16,6 +17,8 @@
 // thickness) or plane strain, and 3D; Q1/Q2 on quadrilateral/hexahedral meshes (serial or MPI on a
 // p4est mesh), P1/P2 on triangle/tetrahedron meshes (serial only). Units: SI (m, N, Pa).
 // Every bad input raises a workbench::Error with a one-line message naming the file and the cause.
+#include <fem_reference/fem_result.h>
+
 #include <array>
 #include <filesystem>
 #include <functional>
@@ -118,73 +121,10 @@ struct FemProblem {
   std::vector<std::array<double, 3>> probe_points;
 };
 
-struct GroupReaction {
-  std::string group;
-  std::string kind;              ///< "clamped", "roller" or "displacement"
-  std::array<double, 3> force{}; ///< force the support exerts on the body [N]
-};
-
-struct FemResult {
-  int dim = 2;
-  int degree = 1;
-  std::string model;             ///< "plane_stress", "plane_strain" or "3d"
-  std::string cells;             ///< "quadrilateral", "hexahedron", "triangle" or "tetrahedron"
-  int ranks = 1;
-  std::size_t n_dofs = 0, n_active_cells = 0;
-
-  /// Mesh nodes (the gmsh nodes of the elements, in gmsh node order): 3 coordinates each, and
-  /// dim displacement components each [m].
-  std::vector<double> node_points, node_displacement;
-  std::size_t node_count() const { return node_points.size() / 3; }
-  /// Per element in gmsh element order (getElements of the model dimension), averaged over the
-  /// element (over its refined children too) [Pa]: centre (3 each), stresses, von Mises.
-  std::vector<double> cell_centres;
-  std::vector<double> sigma_x, sigma_y, sigma_z, tau_xy, tau_yz, tau_xz, von_mises;
-  std::size_t cell_count() const { return sigma_x.size(); }
-
-  std::vector<GroupReaction> reactions;  ///< one per support, in the order of the supports
-  std::array<double, 3> applied{};       ///< total applied force (tractions, points, body) [N]
-
-  std::string solver;                    ///< "direct (Amesos_Klu)", "cg+amg (ML)", "cg+gmg (matrix-free, ...)"
-  int iterations = 0;                    ///< CG iterations (0 for the direct solver)
-  double residual = 0;                   ///< final ||K u - f|| / ||f||
-  /// Only when residual > options.tolerance: max_i |f - K u|_i / (|K| |u| + |f|)_i (at most 1e-12,
-  /// else solve_fem throws): the rounding floor of an ill-conditioned system, docs/fem-reference.md.
-  std::optional<double> backward_error;
-  double l2_error = std::numeric_limits<double>::quiet_NaN();  ///< ||u - u_exact||_L2
-  double h1_error = std::numeric_limits<double>::quiet_NaN();  ///< |u - u_exact|_H1 (seminorm)
-  double mesh_seconds = 0, setup_seconds = 0, assemble_seconds = 0, solve_seconds = 0, output_seconds = 0;
-  double peak_memory_bytes = 0;          ///< this process's peak resident size after solving
-
-  /// The solution at FemProblem::probe_points, in their order (serial runs; under MPI a point on a
-  /// partition boundary may be missed). `found`: the point lies in a cell of the mesh (1e-10 in unit
-  /// cell coordinates); otherwise u and sigma are 0.
-  struct Probe {
-    bool found = false;
-    std::array<double, 3> u{};      ///< displacement [m]
-    std::array<double, 6> sigma{};  ///< stress xx, yy, zz, xy, yz, xz [Pa]
-  };
-  std::vector<Probe> probes;
-
-  /// Displacement (3 entries, z = 0 in 2D) at the mesh node nearest to x.
-  std::array<double, 3> displacement_at(const std::array<double, 3>& x) const;
-
-  /// FemOptions::coarser_level: the same problem on the mesh one refinement coarser, solved from the
-  /// multigrid hierarchy; its fields on the same gmsh elements and nodes (no reactions, VTU or exact
-  /// errors).
-  std::shared_ptr<const FemResult> coarser;
-  /// With `coarser`: ||K P u0 - f|| / ||f|| on this mesh (P u0 the coarser solution embedded in its
-  /// space), where this solution's CG started.
-  double coarser_start_residual = 0;
-};
-
 /// Solves; with `output_dir` non-empty and options.write_vtu, writes fem.pvd and fem_000.vtu
 /// (fem_000.pvtu + pieces under MPI) there. Runs on MPI_COMM_WORLD when MPI is initialised with
 /// more than one rank (initialises MPI itself if needed). Progress goes to `log` (rank 0 only).
 FemResult solve_fem(const FemProblem& problem, const std::filesystem::path& output_dir = {},
                     std::ostream* log = nullptr);
-
-/// Writes fem_cells.csv, fem_nodes.csv, fem_reactions.csv and fem_summary.csv into `dir`.
-void write_fem_csv(const FemResult& result, const std::filesystem::path& dir);
 
 }  // namespace fem_reference

@@ -375,6 +375,63 @@ class PCoarsenedSolver : public CoarseLevel {
   mutable Vector b_, x_, r_, e_, rc_, ec_;
 };
 
+/// The homogeneous version of the supports' constraints (zero lines only; a globally refined mesh
+/// has no hanging nodes) and the constrained DoFs.
+template <int dim>
+void homogeneous_constraints(const DoFHandler<dim>& dof, const AffineConstraints<double>& constraints,
+                             AffineConstraints<double>& homogeneous, IndexSet& constrained) {
+  IndexSet relevant;
+  DoFTools::extract_locally_relevant_dofs(dof, relevant);
+  homogeneous.reinit(relevant);
+  for (const auto& line : constraints.get_lines()) {
+    AssertThrow(line.entries.empty(), ExcMessage("the multigrid solver takes supports only, no hanging nodes"));
+    homogeneous.add_line(line.index);
+    constrained.add_index(line.index);
+  }
+  homogeneous.close();
+  constrained.compress();
+}
+
+/// Chebyshev smoothing on every level. The finest level's eigenvalue bound is the next coarser
+/// one's (the Lanczos estimate times 1.2, computed here rather than in the first V-cycle): the
+/// largest eigenvalue of diag(K)^-1 K belongs to the element-scale modes, the same on every level
+/// of a uniform refinement, and its 12 CG steps on the finest level cost as much as a V-cycle's
+/// smoothing there.
+template <class LevelOperator, class LevelVector, class Smoother>
+void chebyshev_smoother(const MGLevelObject<LevelOperator>& levels, int smoother_degree,
+                        mg::SmootherRelaxation<Smoother, LevelVector>& smoother) {
+  const unsigned n_levels = levels.max_level() + 1;
+  MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
+  for (unsigned level = 0; level < n_levels; ++level) {
+    smoother_data[level].smoothing_range = 15.;
+    smoother_data[level].degree = unsigned(smoother_degree);
+    smoother_data[level].eig_cg_n_iterations = 12;
+    smoother_data[level].preconditioner = levels[level].inverse_diagonal();
+  }
+  smoother.initialize(levels, smoother_data);
+  if (n_levels > 2) {
+    LevelVector v;
+    levels[n_levels - 2].initialize_dof_vector(v);
+    v = 1.;
+    const auto info = smoother[n_levels - 2].estimate_eigenvalues(v);
+    smoother_data[n_levels - 1].eig_cg_n_iterations = 0;
+    smoother_data[n_levels - 1].max_eigenvalue = info.max_eigenvalue_estimate;
+    smoother[n_levels - 1].initialize(levels[n_levels - 1], smoother_data[n_levels - 1]);
+  }
+}
+
+/// ||K x - b|| with the constrained entries left out.
+template <class Operator, class VectorType>
+double residual_norm(const Operator& system, const AffineConstraints<double>& homogeneous, const VectorType& x,
+                     const VectorType& b) {
+  VectorType r;
+  r.reinit(x);
+  system.vmult(r, x);
+  r -= b;
+  homogeneous.set_zero(r);
+  return r.l2_norm();
+}
+
 template <int dim, int degree>
 MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, const AffineConstraints<double>& constraints,
                           const MgBoundaries& boundaries, const TrilinosWrappers::MPI::Vector& rhs,
@@ -390,18 +447,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   // supports; a globally refined mesh has no hanging nodes).
   AffineConstraints<double> homogeneous;
   IndexSet constrained(dof.n_dofs());
-  {
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(dof, relevant);
-    homogeneous.reinit(relevant);
-    for (const auto& line : constraints.get_lines()) {
-      AssertThrow(line.entries.empty(), ExcMessage("the multigrid solver takes supports only, no hanging nodes"));
-      homogeneous.add_line(line.index);
-      constrained.add_index(line.index);
-    }
-    homogeneous.close();
-    constrained.compress();
-  }
+  homogeneous_constraints(dof, constraints, homogeneous, constrained);
   SystemOperator system;
   system.build(mapping, dof, constrained, s.lambda, s.mu);
 
@@ -426,27 +472,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   profile("smoothers");
   using Smoother = PreconditionChebyshev<LevelOperator, LevelVector>;
   mg::SmootherRelaxation<Smoother, LevelVector> smoother;
-  MGLevelObject<typename Smoother::AdditionalData> smoother_data(0, n_levels - 1);
-  for (unsigned level = 0; level < n_levels; ++level) {
-    smoother_data[level].smoothing_range = 15.;
-    smoother_data[level].degree = unsigned(s.smoother_degree);
-    smoother_data[level].eig_cg_n_iterations = 12;
-    smoother_data[level].preconditioner = levels[level].inverse_diagonal();
-  }
-  smoother.initialize(levels, smoother_data);
-  // The finest level's eigenvalue bound is the next coarser one's (the Lanczos estimate times 1.2,
-  // computed here rather than in the first V-cycle): the largest eigenvalue of diag(K)^-1 K belongs to
-  // the element-scale modes, the same on every level of a uniform refinement, and its 12 CG steps on
-  // the finest level cost as much as a V-cycle's smoothing there.
-  if (n_levels > 2) {
-    LevelVector v;
-    levels[n_levels - 2].initialize_dof_vector(v);
-    v = 1.;
-    const auto info = smoother[n_levels - 2].estimate_eigenvalues(v);
-    smoother_data[n_levels - 1].eig_cg_n_iterations = 0;
-    smoother_data[n_levels - 1].max_eigenvalue = info.max_eigenvalue_estimate;
-    smoother[n_levels - 1].initialize(levels[n_levels - 1], smoother_data[n_levels - 1]);
-  }
+  chebyshev_smoother(levels, s.smoother_degree, smoother);
   profile("coarse solver");
   std::string coarse_name;
   std::unique_ptr<CoarseLevel> coarse_level;
@@ -485,12 +511,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
     homogeneous.set_zero(x);
     for (auto i : x.get_partitioner()->locally_owned_range()) (*coarser)(i) = x(i);
     coarser->compress(VectorOperation::insert);
-    VectorType r;
-    r.reinit(x);
-    system.vmult(r, x);
-    r -= b;
-    homogeneous.set_zero(r);
-    const double start = r.l2_norm();
+    const double start = residual_norm(system, homogeneous, x, b);
     out.coarser_start_residual = b_norm == 0 ? 0.0 : start / b_norm;
     stop = std::max(stop, s.coarser_share * start);
   }
@@ -502,14 +523,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
 
   out.iterations = int(control.last_step());
   for (unsigned level = 0; level < n_levels; ++level) out.matrices_per_level.push_back(levels[level].shapes());
-  {
-    VectorType r;
-    r.reinit(x);
-    system.vmult(r, x);
-    r -= b;
-    homogeneous.set_zero(r);
-    out.residual = b_norm == 0 ? 0.0 : r.l2_norm() / b_norm;
-  }
+  const double residual = residual_norm(system, homogeneous, x, b);
+  out.residual = b_norm == 0 ? 0.0 : residual / b_norm;
   for (auto i : x.get_partitioner()->locally_owned_range()) solution(i) = x(i);
   solution.compress(VectorOperation::insert);
   out.solver = "cg+gmg (matrix-free, " + std::to_string(n_levels) + " levels, Chebyshev " +

@@ -3,7 +3,7 @@
 // agent/FEM ratios with a mask where the reference is too small for a ratio to mean anything.
 #include <agent/grid.h>
 #include <agent/mesh_import.h>
-#include <workbench/study_setup.h>
+#include <workbench/load_spec.h>
 
 #include <Eigen/Core>
 

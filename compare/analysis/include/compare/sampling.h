@@ -6,7 +6,7 @@
 // files, no I/O).
 #include <agent/mesh_import.h>
 #include <agent/state.h>
-#include <fem_reference/fem.h>
+#include <fem_reference/fem_result.h>
 #include <workbench/symmetric_tensor.h>
 
 #include <array>

@@ -2,8 +2,9 @@
 // The FEM reference of a comparison: the same geometry refined and/or of higher degree, solved
 // with its output files, with its own discretisation error estimated from a second refinement
 // level, and sampled onto the agent grid (compare/sampling.h; docs/compare.md).
-#include <compare/compare_options.h>
 #include <compare/sampling.h>
+#include <fem_reference/fem.h>
+#include <schema/compare_options.h>
 
 #include <filesystem>
 #include <iosfwd>
@@ -13,6 +14,11 @@
 #include <vector>
 
 namespace compare {
+
+// The [compare] section's options, read by the case schema (schema/compare_options.h).
+using schema::CompareOptions;
+using schema::read_compare_options;
+using schema::ReferenceOptions;
 
 /// An agent state in the same layout: its stress record (in 2D sigma_z = 0, plane stress, as the
 /// agents' strains; the shears the directional and column rule sets' only, the others' 0, the zero

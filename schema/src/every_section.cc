@@ -1,14 +1,14 @@
 // Every section a case file may have, each checked by its module's reader (one list, shared by the
 // command line and the Python module).
-#include <compare/case_sections.h>
+#include <schema/every_section.h>
 
 #include <agent_study.h>
-#include <compare/compare_options.h>
+#include <schema/compare_options.h>
 #include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/study_setup.h>
 
-namespace compare {
+namespace schema {
 
 namespace {
 
@@ -33,7 +33,7 @@ const Section kSections[] = {
        agent_study::read_readings(f.root().table("agent"), rules);
      }},
     {"fem", [](const workbench::CaseFile& f) { fem_reference::read_fem_section(f.root()); }},
-    {"compare", [](const workbench::CaseFile& f) { compare::read_compare_options(f.root()); }},
+    {"compare", [](const workbench::CaseFile& f) { read_compare_options(f.root()); }},
     {"pbd",
      [](const workbench::CaseFile& f) {
        if (f.root().has("pbd")) pbd_study::read_pbd_case(f);
@@ -47,4 +47,4 @@ void check_every_section(const workbench::CaseFile& file) {
   file.reject_unknown_keys();
 }
 
-}  // namespace compare
+}  // namespace schema

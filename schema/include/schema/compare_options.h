@@ -1,6 +1,7 @@
 #pragma once
 // The [compare] section of a case file, read and checked: what a comparison is asked to do. Part of
-// the case schema (compare/case_sections.h), so that checking a case needs no comparison code.
+// the case schema (schema/every_section.h), so that checking a case needs no comparison code; the
+// comparison (compare/reference.h) uses these types as compare::CompareOptions.
 #include <workbench/case_file.h>
 
 #include <Eigen/Core>
@@ -11,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace compare {
+namespace schema {
 
 /// [compare.reference]: FEM on the agents' geometry (or on `mesh`, the true geometry) with `refine`
 /// global refinements of the gmsh mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the
@@ -67,4 +68,4 @@ struct CompareOptions {
 /// lines for the agent model only), figures, gate.
 CompareOptions read_compare_options(const workbench::CaseTable& root);
 
-}  // namespace compare
+}  // namespace schema

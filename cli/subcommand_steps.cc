@@ -1,8 +1,9 @@
-// What every subcommand does with a case file: read it, check its output options, name the output folder.
+// What every subcommand does around its study: read the case file, check its output options, name
+// the output folder, say what it did.
 #include "commands.h"
 
-
 #include <fem_reference/mpi.h>
+#include <workbench/error.h>
 
 #include <filesystem>
 #include <iostream>
@@ -27,14 +28,11 @@ workbench::CaseFile read_case_file(const std::string& path) {
   return workbench::CaseFile(path);
 }
 
-std::unique_ptr<workbench::CaseFile> read_checked_case(const std::string& path,
-                                                       const std::function<void(const workbench::CaseFile&)>& first) {
+std::unique_ptr<workbench::CaseFile> read_case_file_on_every_rank(const std::string& path) {
   std::unique_ptr<workbench::CaseFile> file;
   fem_reference::mpi_collective([&] {
     check_not_a_folder(path);
     file = std::make_unique<workbench::CaseFile>(path);
-    if (first) first(*file);
-    check_every_section(*file);
   });
   return file;
 }
@@ -61,17 +59,6 @@ int checked(const workbench::CaseFile& file, const std::string& subcommand) {
   return 0;
 }
 
-std::unique_ptr<workbench::StagedDirectory> stage_on_rank_0(const std::string& dir, const workbench::CaseFile& file,
-                                                            std::filesystem::path& path) {
-  const bool root = fem_reference::mpi_rank() == 0;
-  std::unique_ptr<workbench::StagedDirectory> staged;
-  fem_reference::mpi_collective([&] {
-    if (root) staged = std::make_unique<workbench::StagedDirectory>(dir, file.path());
-  });
-  path = fem_reference::mpi_broadcast(root ? staged->path().string() : std::string());
-  return staged;
-}
-
 std::ostream& progress_log() {
   static std::ostream nowhere(nullptr);  // a stream without a buffer drops what it is given
   return !fem_reference::started_by_launcher() || fem_reference::mpi_rank() == 0 ? std::cerr : nowhere;
@@ -80,6 +67,5 @@ std::ostream& progress_log() {
 std::string output_folder(const std::string& option, const workbench::CaseFile& file, const std::string& subcommand) {
   return option.empty() ? "out/" + file.path().stem().string() + "/" + subcommand : option;
 }
-
 
 }  // namespace cli

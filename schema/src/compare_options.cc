@@ -1,12 +1,12 @@
 // The [compare] section: the options a comparison reads from its case file.
-#include <compare/compare_options.h>
+#include <schema/compare_options.h>
 
 #include <workbench/error.h>
 
 #include <cmath>
 #include <optional>
 
-namespace compare {
+namespace schema {
 
 namespace fs = std::filesystem;
 
@@ -59,4 +59,4 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
   return o;
 }
 
-}  // namespace compare
+}  // namespace schema

@@ -52,7 +52,8 @@ void check_coefficients(const Coefficients& k, RuleSet rules) {
     if (c.used_by(rules))
       if (const auto why = c.problem(c.get(k)); !why.empty()) throw CoefficientError(c.name, why);
   for (const auto& constraint : kCoefficientConstraints)
-    if ((constraint.rules & rule_bit(rules)) && !constraint.holds(k)) throw CoefficientError(constraint.key, constraint.need);
+    if ((constraint.rules & rule_bit(rules)) && !constraint.holds(k))
+      throw CoefficientError(constraint.key, constraint.need);
 }
 
 }  // namespace agent

@@ -78,6 +78,21 @@ Factors factors_of(const Grid& g, const Material& m, const Coefficients& k) {
   return f;
 }
 
+void bump(Item& i, int slot) {
+  if (slot >= 0) i.e[slot / kPerWord] += std::uint64_t(1) << (kBits * (slot % kPerWord));
+}
+
+// The second guard: what is still in transit (`wave` from item `from` on, and `next`) is
+// reported, and nothing computed so far may be used.
+[[noreturn]] void stop_at_cap(Diagnostics& d, const std::vector<Item>& wave, std::size_t from,
+                              const std::vector<Item>& next, int depth) {
+  for (std::size_t i = from; i < wave.size(); ++i) d.unfinished += wave[i].weight;
+  for (const auto& i : next) d.unfinished += i.weight;
+  throw CyclicCapReached("cyclic transfer: stopped after " + std::to_string(d.agent_updates) + " agent updates and " +
+                         std::to_string(depth) + " waves with " + std::to_string(d.unfinished) +
+                         " N still in transit (the results are incomplete)");
+}
+
 }  // namespace
 
 std::vector<double> cyclic_factors(const Grid& grid, const Material& material, const Coefficients& k) {
@@ -106,178 +121,120 @@ void check_cyclic(const Grid& grid, const Material& material, const Coefficients
                                           std::string(1, char('x' + a)));
 }
 
-namespace {
-
-// One cyclic_transfer call: the waves of the work-list, each item an agent update whose
-// transfers make the next wave.
-class WorkList {
- public:
-  WorkList(const Grid& g, const Material& material, const Coefficients& k, const TransferReadings& readings,
-           std::vector<double>& faces, std::vector<std::int32_t>& generation, Diagnostics& d)
-      : g_(g), k_(k), f_(factors_of(g, material, k)), nd_(2 * g.dim),
-        every_operation_(readings.every_agent_all_operations),  // reading 2
-        returns_(readings.boundaries_return),                    // reading 6
-        once_alpha1_(readings.non_compounding_entry),            // reading 1
-        pushes_(k.beta < 1 && material.poisson != 0), gamma_(k.gamma), faces_(faces), generation_(generation), d_(d) {
-    if (f_.values.size() > std::size_t(kMaxSlots)) throw std::logic_error("cyclic_transfer: too many distinct factors");
-  }
-
-  // Solves one load (above gamma) wave by wave until nothing is in transit.
-  void run(const EntryLoad& load, std::size_t update_cap) {
-    wave_.assign(1, Item{{0, 0}, load.cell, kEntry, std::uint8_t(load.dir), kAnySide, false, load.force, load.force});
-    for (int depth = 0; !wave_.empty(); ++depth) {
-      next_.clear();
-      at_.clear();
-      if (depth > kMaxWaves || d_.agent_updates + wave_.size() > update_cap) stop(0, depth);
-      for (std::size_t n = 0; n < wave_.size(); ++n) {
-        if (next_.size() > update_cap) stop(n, depth);  // the next wave alone would exceed the cap: memory
-        update(wave_[n], depth);
-      }
-      wave_.swap(next_);
-    }
-  }
-
- private:
-  static void bump(Item& i, int slot) {
-    if (slot >= 0) i.e[slot / kPerWord] += std::uint64_t(1) << (kBits * (slot % kPerWord));
-  }
-
-  // The second guard: what is still in transit (the wave from item `from` on, and the next wave)
-  // is reported, and nothing computed so far may be used.
-  [[noreturn]] void stop(std::size_t from, int depth) {
-    for (std::size_t i = from; i < wave_.size(); ++i) d_.unfinished += wave_[i].weight;
-    for (const auto& i : next_) d_.unfinished += i.weight;
-    throw CyclicCapReached("cyclic transfer: stopped after " + std::to_string(d_.agent_updates) + " agent updates and " +
-                           std::to_string(depth) + " waves with " + std::to_string(d_.unfinished) +
-                           " N still in transit (the results are incomplete)");
-  }
-
-  // One agent update: the item's TOP force, and its transfers along, by friction and by pushes.
-  void update(const Item& it, int depth) {
-    const Coefficients& k = k_;
-    const Factors& f = f_;
-    ++d_.agent_updates;
-    const std::size_t c = it.cell;
-    const auto current = std::uint32_t(generation_[c]);
-    d_.agents_generated += current == UINT32_MAX;
-    generation_[c] = std::int32_t(std::min(current, std::uint32_t(depth)));
-    double* fc = faces_.data() + c * nd_;
-    const int m = it.dir, axis = axis_of(m);
-    const bool top_alpha1 = it.kind == kEntry || (it.kind == kFriction && !once_alpha1_);
-    const double top = top_alpha1 ? k.alpha1 : 1.0;  // the TOP force per newton of input
-    if (!it.free_return) fc[opposite(m)] += top * it.weight;
-    const bool is_push = it.kind == kPush;
-    double passed = 0;  // loads (not pushes) this agent passes on, for `lost`
-    const Transfer from{it, fc, passed};
-
-    // Along the load: alpha2 of the TOP (reading 1: of the input); a push goes on with poisson_decay.
-    if (is_push) transfer(from, k.decay(), f.decay, -1, kPush, m, m, true);
-    else if (top_alpha1 && !(it.kind == kEntry && once_alpha1_))
-      transfer(from, k.alpha1 * k.alpha2, f.alpha1, f.alpha2, kAlong, m, m, true);
-    else transfer(from, k.alpha2, f.alpha2, -1, kAlong, m, m, true);
-    // Friction, alpha3 of the input, onto the TOP of the agents beside: to every side (reading 2),
-    // else from the entry and loads along to every side and a friction load straight on only.
-    for (int s = 0; s < nd_; ++s) {
-      if (axis_of(s) == axis) continue;
-      const bool goes = every_operation_ || it.kind == kEntry || it.kind == kAlong ||
-                        (it.kind == kFriction && (it.in_side == kAnySide || s == opposite(it.in_side)));
-      if (goes) transfer(from, k.alpha3, f.alpha3, -1, kFriction, m, s, false);
-    }
-    // Poisson: (1 - beta) nu A_side / A_top of the TOP force to every side; a pushed agent pushes
-    // on only under reading 2.
-    if (pushes_ && (!is_push || every_operation_))
-      for (int s = 0; s < nd_; ++s) {
-        if (axis_of(s) == axis) continue;
-        const int b = axis_of(s);
-        transfer(from, top * f.push_value[axis][b], top_alpha1 ? f.alpha1 : -1, f.push[axis][b], kPush, s, s, true);
-      }
-    // What this agent received (a push is not a load: it is tallied apart) less what it passed on.
-    d_.lost += (is_push ? 0.0 : it.weight) - passed;
-  }
-
-  // The agent a transfer leaves: its item, its faces, and the loads it has passed on so far.
-  struct Transfer {
-    const Item& it;
-    double* fc;
-    double& passed;
-  };
-
-  // One transfer of `factor` of the input (slots: its factors) leaving through face `side`.
-  void transfer(const Transfer& from, double factor, int slot_a, int slot_b, Kind kind, int dir, int side,
-                bool loads_face) {
-    const Item& it = from.it;
-    double* fc = from.fc;
-    const std::size_t c = it.cell;
-    Item child = it;
-    bump(child, slot_a);
-    bump(child, slot_b);
-    child.kind = kind;
-    child.dir = std::uint8_t(dir);
-    child.free_return = false;
-    child.value = it.value * factor;
-    child.weight = it.weight * factor;
-    const bool push = kind == kPush;
-    if (!push) from.passed += child.weight;
-    if (!(child.value > gamma_)) {
-      (push ? d_.lateral_dropped : d_.dropped) += child.weight;
-      return;
-    }
-    const std::size_t across = g_.neighbour(c, side);
-    if (across != Grid::npos && !g_.is_air(across)) {
-      if (loads_face) fc[side] += child.weight;
-      child.cell = across;
-      child.in_side = std::uint8_t(opposite(side));
-    } else {
-      const bool rigid = g_.boundary(side, c) == Boundary::Rigid;
-      if (!returns_) {
-        if (rigid && loads_face) fc[side] += child.weight;
-        (rigid ? (push ? d_.lateral_reaction : d_.rigid_reaction) : (push ? d_.lateral_passed_out : d_.passed_out)) +=
-            child.weight;
-        return;
-      }
-      // Reading 6: the boundary agent returns the load to this agent. A load along a chain or a
-      // push comes back through the face it left by (a rigid face carries it on entry, a free
-      // one nothing); a friction load comes back to this agent's TOP and goes on away from
-      // that face.
-      (rigid ? d_.returned_rigid : d_.returned_free) += child.weight;
-      if (kind != kFriction) child.dir = std::uint8_t(opposite(dir));
-      child.free_return = !rigid && kind != kFriction;
-      child.in_side = std::uint8_t(side);
-    }
-    // Only a friction load's side steers it (straight on, without reading 2): merge the rest.
-    if (kind != kFriction || every_operation_) child.in_side = kAnySide;
-    const auto [place, added] = at_.emplace(child, next_.size());
-    if (added) next_.push_back(child);
-    else next_[place->second].weight += child.weight;
-  }
-
-  const Grid& g_;
-  const Coefficients& k_;
-  const Factors f_;
-  const int nd_;
-  const bool every_operation_, returns_, once_alpha1_, pushes_;
-  const double gamma_;
-  std::vector<double>& faces_;
-  std::vector<std::int32_t>& generation_;
-  Diagnostics& d_;
-  std::vector<Item> wave_, next_;
-  std::unordered_map<Item, std::size_t, ItemHash, ItemEqual> at_;  // an item of `next_` -> its place
-};
-
-}  // namespace
-
 void cyclic_transfer(const Grid& g, const Material& material, const Coefficients& k, const TransferReadings& readings,
                      const std::vector<EntryLoad>& loads, std::vector<double>& faces,
                      std::vector<std::int32_t>& generation, Diagnostics& d, std::size_t update_cap) {
   check_cyclic(g, material, k);
-  WorkList work(g, material, k, readings, faces, generation, d);
+  const Factors f = factors_of(g, material, k);
+  if (f.values.size() > std::size_t(kMaxSlots)) throw std::logic_error("cyclic_transfer: too many distinct factors");
+  const int nd = 2 * g.dim;
+  const bool every_operation = readings.every_agent_all_operations;  // reading 2
+  const bool returns = readings.boundaries_return;                   // reading 6
+  const bool once_alpha1 = readings.non_compounding_entry;           // reading 1
+  const bool pushes = k.beta < 1 && material.poisson != 0;
+  const double gamma = k.gamma;
+
+  std::vector<Item> wave, next;
+  std::unordered_map<Item, std::size_t, ItemHash, ItemEqual> at;  // an item of `next` -> its place
+
   for (const auto& load : loads) {
     d.applied += load.force;
-    if (!(load.force > k.gamma)) {
+    if (!(load.force > gamma)) {
       d.dropped += load.force;
       continue;
     }
-    work.run(load, update_cap);
+    wave.assign(1, Item{{0, 0}, load.cell, kEntry, std::uint8_t(load.dir), kAnySide, false, load.force, load.force});
+    for (int depth = 0; !wave.empty(); ++depth) {
+      next.clear();
+      at.clear();
+      if (depth > kMaxWaves || d.agent_updates + wave.size() > update_cap) stop_at_cap(d, wave, 0, next, depth);
+      for (std::size_t n = 0; n < wave.size(); ++n) {
+        if (next.size() > update_cap) stop_at_cap(d, wave, n, next, depth);  // the next wave alone would exceed the cap
+        const Item& it = wave[n];
+        ++d.agent_updates;
+        const std::size_t c = it.cell;
+        const auto current = std::uint32_t(generation[c]);
+        d.agents_generated += current == UINT32_MAX;
+        generation[c] = std::int32_t(std::min(current, std::uint32_t(depth)));
+        double* fc = faces.data() + c * nd;
+        const int m = it.dir, axis = axis_of(m);
+        const bool top_alpha1 = it.kind == kEntry || (it.kind == kFriction && !once_alpha1);
+        const double top = top_alpha1 ? k.alpha1 : 1.0;  // the TOP force per newton of input
+        if (!it.free_return) fc[opposite(m)] += top * it.weight;
+        const bool is_push = it.kind == kPush;
+        double passed = 0;  // loads (not pushes) this agent passes on, for `lost`
+
+        // One transfer of `factor` of the input (slots: its factors) leaving through face `side`.
+        auto transfer = [&](double factor, int slot_a, int slot_b, Kind kind, int dir, int side, bool loads_face) {
+          Item child = it;
+          bump(child, slot_a);
+          bump(child, slot_b);
+          child.kind = kind;
+          child.dir = std::uint8_t(dir);
+          child.free_return = false;
+          child.value = it.value * factor;
+          child.weight = it.weight * factor;
+          const bool push = kind == kPush;
+          if (!push) passed += child.weight;
+          if (!(child.value > gamma)) {
+            (push ? d.lateral_dropped : d.dropped) += child.weight;
+            return;
+          }
+          const std::size_t across = g.neighbour(c, side);
+          if (across != Grid::npos && !g.is_air(across)) {
+            if (loads_face) fc[side] += child.weight;
+            child.cell = across;
+            child.in_side = std::uint8_t(opposite(side));
+          } else {
+            const bool rigid = g.boundary(side, c) == Boundary::Rigid;
+            if (!returns) {
+              if (rigid && loads_face) fc[side] += child.weight;
+              (rigid ? (push ? d.lateral_reaction : d.rigid_reaction) : (push ? d.lateral_passed_out : d.passed_out)) +=
+                  child.weight;
+              return;
+            }
+            // Reading 6: the boundary agent returns the load to this agent. A load along a chain or a
+            // push comes back through the face it left by (a rigid face carries it on entry, a free
+            // one nothing); a friction load comes back to this agent's TOP and goes on away from
+            // that face.
+            (rigid ? d.returned_rigid : d.returned_free) += child.weight;
+            if (kind != kFriction) child.dir = std::uint8_t(opposite(dir));
+            child.free_return = !rigid && kind != kFriction;
+            child.in_side = std::uint8_t(side);
+          }
+          // Only a friction load's side steers it (straight on, without reading 2): merge the rest.
+          if (kind != kFriction || every_operation) child.in_side = kAnySide;
+          const auto [place, added] = at.emplace(child, next.size());
+          if (added) next.push_back(child);
+          else next[place->second].weight += child.weight;
+        };
+
+        // Along the load: alpha2 of the TOP (reading 1: of the input); a push goes on with poisson_decay.
+        if (is_push) transfer(k.decay(), f.decay, -1, kPush, m, m, true);
+        else if (top_alpha1 && !(it.kind == kEntry && once_alpha1))
+          transfer(k.alpha1 * k.alpha2, f.alpha1, f.alpha2, kAlong, m, m, true);
+        else transfer(k.alpha2, f.alpha2, -1, kAlong, m, m, true);
+        // Friction, alpha3 of the input, onto the TOP of the agents beside: to every side (reading 2),
+        // else from the entry and loads along to every side and a friction load straight on only.
+        for (int s = 0; s < nd; ++s) {
+          if (axis_of(s) == axis) continue;
+          const bool goes = every_operation || it.kind == kEntry || it.kind == kAlong ||
+                            (it.kind == kFriction && (it.in_side == kAnySide || s == opposite(it.in_side)));
+          if (goes) transfer(k.alpha3, f.alpha3, -1, kFriction, m, s, false);
+        }
+        // Poisson: (1 - beta) nu A_side / A_top of the TOP force to every side; a pushed agent pushes
+        // on only under reading 2.
+        if (pushes && (!is_push || every_operation))
+          for (int s = 0; s < nd; ++s) {
+            if (axis_of(s) == axis) continue;
+            const int b = axis_of(s);
+            transfer(top * f.push_value[axis][b], top_alpha1 ? f.alpha1 : -1, f.push[axis][b], kPush, s, s, true);
+          }
+        // What this agent received (a push is not a load: it is tallied apart) less what it passed on.
+        d.lost += (is_push ? 0.0 : it.weight) - passed;
+      }
+      wave.swap(next);
+    }
   }
 }
 

@@ -12,6 +12,7 @@
 #include <workbench/interruption.h>
 #include <workbench/output_file.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -23,6 +24,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <pthread.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 namespace workbench {
@@ -82,6 +85,43 @@ std::string file_text(const std::filesystem::path& file) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+/// The mesher's time limit (a hung gmsh holds no cluster job for ever): the report it sends and
+/// where, formatted before the alarm so that the handler only sends it and ends the process.
+char time_limit_report[1024];
+std::size_t time_limit_report_size = 0;
+int time_limit_fd = -1;
+
+extern "C" void on_time_limit(int) {
+  if (time_limit_fd >= 0) ::send(time_limit_fd, time_limit_report, time_limit_report_size, MSG_NOSIGNAL);
+  ::_exit(kMesherRefused);
+}
+
+/// Arms the time limit: WORKBENCH_MESH_TIME_LIMIT seconds (kDefaultMeshTimeLimit unset), after
+/// which this process reports that gmsh did not finish and ends (SIGALRM).
+void arm_time_limit(int report_fd, const std::string& geo) {
+  long seconds = kDefaultMeshTimeLimit;
+  if (const char* text = std::getenv("WORKBENCH_MESH_TIME_LIMIT")) {
+    char* end = nullptr;
+    seconds = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || seconds < 1 || seconds > kMaxMeshTimeLimit)
+      throw std::runtime_error(geo + ": WORKBENCH_MESH_TIME_LIMIT: must be a whole number of seconds in [1, " +
+                               std::to_string(kMaxMeshTimeLimit) + "] (got '" + text + "')");
+  }
+  const std::string report = "error\n" + geo + ": gmsh did not finish meshing it within " + std::to_string(seconds) +
+                             " s (the time limit; WORKBENCH_MESH_TIME_LIMIT=<seconds> sets it)\n";
+  time_limit_report_size = std::min(report.size(), sizeof time_limit_report);
+  std::copy_n(report.data(), time_limit_report_size, time_limit_report);
+  time_limit_fd = report_fd;
+  struct sigaction action {};
+  action.sa_handler = on_time_limit;
+  ::sigaction(SIGALRM, &action, nullptr);
+  sigset_t alarm_only;
+  ::sigemptyset(&alarm_only);
+  ::sigaddset(&alarm_only, SIGALRM);
+  ::pthread_sigmask(SIG_UNBLOCK, &alarm_only, nullptr);  // gmsh's threads inherit this mask
+  ::alarm(unsigned(seconds));
+}
+
 }  // namespace
 
 std::vector<std::string> load_geo_in_child(std::filesystem::path mesher, const std::filesystem::path& file,
@@ -102,8 +142,11 @@ std::vector<std::string> load_geo_in_child(std::filesystem::path mesher, const s
     report = last_meshed->report;
     write_file(msh, last_meshed->msh);
   } else {
+    // The time limit as this process's environment says now (the server's is that of its start).
+    const char* limit = std::getenv("WORKBENCH_MESH_TIME_LIMIT");
     std::vector<std::string> server_request{std::filesystem::current_path().string(),
-                                            (folder.path() / "mesher.log").string(), name, msh.string()};
+                                            (folder.path() / "mesher.log").string(), name, msh.string(),
+                                            limit ? limit : ""};
     server_request.insert(server_request.end(), request.begin() + 1, request.end());
     int status = 0;
     if (const auto served = mesh_in_server(server_request, report)) {
@@ -151,6 +194,7 @@ int mesh_and_report(int report_fd, const std::string& geo, const std::string& ms
                     const std::map<std::string, double>& parameters) {
   std::signal(SIGXFSZ, SIG_IGN);  // a file-size limit is a failed write (EFBIG), as in the workbench
   try {
+    arm_time_limit(report_fd, geo);
     check_load_request(geo, parameters);
     const auto declared = load_here(geo, parameters);
     // Binary, so that every coordinate comes back exactly; every element, not only those of
@@ -161,6 +205,7 @@ int mesh_and_report(int report_fd, const std::string& geo, const std::string& ms
     gmsh::option::setNumber("Mesh.SaveParametric", 0);
     gmsh::option::setNumber("Mesh.ScalingFactor", 1);
     gmsh_write_checked(msh);
+    ::alarm(0);
     std::string report = "ok " + model_counts() + "\n";
     for (const auto& n : declared) report += n + "\n";
     send_all(report_fd, report);

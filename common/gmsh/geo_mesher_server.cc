@@ -47,8 +47,12 @@ int exit_status(int status) {
 [[noreturn]] void mesher_worker(const std::vector<std::string>& request, int report_fd, pid_t server) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != server) ::_exit(1);
-  // request: the workbench's folder, the log, GEO, MSH, NAME VALUE...
+  // request: the workbench's folder, the log, GEO, MSH, the time limit ("": none set), NAME VALUE...
   if (::chdir(request[0].c_str()) != 0) ::_exit(71);
+  if (request[4].empty())
+    ::unsetenv("WORKBENCH_MESH_TIME_LIMIT");
+  else
+    ::setenv("WORKBENCH_MESH_TIME_LIMIT", request[4].c_str(), 1);
   // Its scratch files (the size estimate's unrolled .geo) in the workbench's folder for this load,
   // which the workbench removes, also when an interruption ends this process half-way.
   ::setenv("TMPDIR", std::filesystem::path(request[1]).parent_path().c_str(), 1);
@@ -59,7 +63,7 @@ int exit_status(int status) {
     ::close(log);
   }
   std::map<std::string, double> parameters;
-  for (std::size_t i = 4; i + 1 < request.size(); i += 2) parameters[request[i]] = std::strtod(request[i + 1].c_str(), nullptr);
+  for (std::size_t i = 5; i + 1 < request.size(); i += 2) parameters[request[i]] = std::strtod(request[i + 1].c_str(), nullptr);
   const int code = mesh_and_report(report_fd, request[2], request[3], parameters);
   std::fflush(nullptr);
   ::_exit(code);  // no exit handlers: they belong to the workbench this process was forked from
@@ -71,7 +75,7 @@ int exit_status(int status) {
   for (std::vector<std::string> request; receive_message(channel, request);) {
     std::vector<std::string> reply{"71", ""};  // EX_OSERR: could not fork
     int ends[2];
-    if (request.size() >= 4 && ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) == 0) {
+    if (request.size() >= 5 && ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) == 0) {
       const pid_t server = ::getpid();
       const pid_t pid = ::fork();
       if (pid == 0) {

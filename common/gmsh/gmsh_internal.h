@@ -41,6 +41,12 @@ std::string model_counts();
 std::vector<std::string> load_geo_in_child(std::filesystem::path mesher, const std::filesystem::path& file,
                                            const std::map<std::string, double>& parameters);
 
+/// The mesher child's time limit in seconds, unless WORKBENCH_MESH_TIME_LIMIT sets another (up to
+/// kMaxMeshTimeLimit): past it, the child reports "<geo>: gmsh did not finish meshing it within N s"
+/// and ends (docs/reliability.md, "Meshes").
+inline constexpr long kDefaultMeshTimeLimit = 600;
+inline constexpr long kMaxMeshTimeLimit = 7 * 24 * 3600;
+
 /// The mesher's work in a child (the mesher program or a process the server forked): GEO loaded as
 /// gmsh_load does in this process, the meshed model written to MSH; the report sent on socket
 /// `report_fd`. Returns the exit status: 0, or kMesherRefused.
@@ -50,7 +56,8 @@ int mesh_and_report(int report_fd, const std::string& geo, const std::string& ms
 /// True while the mesher server runs.
 bool geo_mesher_server_running();
 
-/// Meshes through the server: `request` = the workbench's folder, the log, GEO, MSH, NAME VALUE...;
+/// Meshes through the server: `request` = the workbench's folder, the log, GEO, MSH, the time
+/// limit (WORKBENCH_MESH_TIME_LIMIT's value, "" unset), NAME VALUE...;
 /// the meshing process's exit status and its report, or nothing when no server runs (it was not
 /// started, or it ended: then none is used again).
 std::optional<int> mesh_in_server(const std::vector<std::string>& request, std::string& report);

@@ -23,13 +23,23 @@ printf '[steps]\ncount = 6\n' >>"$work/case.toml"
 sed 's/^figures = false/figures = true/' "$work/case.toml" >"$work/held.toml"
 fake_python
 
-# digest DIR: every file's path and SHA-256 (the stamp's case path, the timings and the logs aside).
+# digest DIR: every file's path and SHA-256, timings aside (as tests/same_outputs.py sets them
+# aside): JSON keys starting with "time" or ending in "seconds", CSV rows of seconds and memory, the text
+# reports and logs (their numbers are in summary.json); the stamp without its case path.
+timeless_json='
+import json, sys
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items() if not (k.startswith("time") or k.endswith("seconds"))}
+    return [strip(v) for v in x] if isinstance(x, list) else x
+print(json.dumps(strip(json.load(open(sys.argv[1]))), sort_keys=True))'
 digest() {
   (cd "$1" && find . -type f | sort | while read -r f; do
     case "$f" in
       ./.workbench-output) echo "$f $(grep -v '^case' "$f" | sha256sum | cut -c1-64)" ;;
-      */summary.json) echo "$f $($py -c 'import json,sys; d=json.load(open(sys.argv[1])); m=d.get("metrics",{}); [m.pop(k) for k in list(m) if k.startswith("time.")]; print(json.dumps(d, sort_keys=True))' "$f" | sha256sum | cut -c1-64)" ;;
-      *summary.txt|*.log) echo "$f" ;;
+      *.json) echo "$f $($py -c "$timeless_json" "$f" | sha256sum | cut -c1-64)" ;;
+      *summary.csv) echo "$f $(grep -v '_seconds,\|memory' "$f" | sha256sum | cut -c1-64)" ;;
+      *.txt|*.log|*.html) echo "$f" ;;
       *) echo "$f $(sha256sum <"$f" | cut -c1-64)" ;;
     esac
   done)
@@ -94,7 +104,8 @@ for f in "${folders[@]}"; do
   elif [ "$now" = "$(cat "$logs/serial_$(study_of "$f").digest")" ]; then state=new
   else state=mixed; fi
   outcome+="$f:${rc[$f]}:$state "
-  check "${f}_earlier_or_whole_new" $([ $state != mixed ] && echo 0 || echo 1) "exit ${rc[$f]}, neither the earlier result nor a whole new one"
+  check "${f}_earlier_or_whole_new" $([ $state != mixed ] && echo 0 || echo 1) \
+    "exit ${rc[$f]}, neither the earlier result nor a whole new one: $(diff <(echo "$now") "$logs/serial_$(study_of "$f").digest" | head -4)"
   case $f in
     k*) check "${f}_killed_while_held" $(([ "${rc[$f]}" = 137 ] && [ $state = earlier ] && grep -q compare.vtu "$logs/held_$f" && echo 0) || echo 1) \
           "exit ${rc[$f]}, $state, staging held: $(tr '\n' ' ' <"$logs/held_$f")" ;;

@@ -86,7 +86,7 @@ stop_cluster() {
     pid=${cluster_pids[i]}
     kill -TERM "$pid" 2>/dev/null || continue
     for _ in $(seq 100); do
-      [ -r "/proc/$pid/stat" ] && [ "$(cut -d' ' -f3 "/proc/$pid/stat")" != Z ] || break  # ended (a zombie until waited for)
+      [ "$(cut -d' ' -f3 "/proc/$pid/stat" 2>/dev/null)" = Z ] || [ ! -e "/proc/$pid" ] && break  # ended (a zombie until waited for)
       sleep 0.1
     done
     kill -KILL "$pid" 2>/dev/null

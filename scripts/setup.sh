@@ -13,6 +13,7 @@ packages=(
   ffmpeg
   python3-jinja2 chromium python3-meshio
   snakemake
+  slurm-wlm munge  # a one-node Slurm cluster for ctest -L slurm (tests/slurm/), started by the test itself
 )
 
 missing=()
@@ -27,6 +28,14 @@ echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive
+# Packages with daemons (munge, slurmctld, slurmd) are not started by their installation: the tests
+# start their own. A policy-rc.d that says no, as in Docker images, for the installation only.
+policy=/usr/sbin/policy-rc.d
+if [ ! -e "$policy" ]; then
+  printf '#!/bin/sh\n# scripts/setup.sh: no service starts while it installs packages\nexit 101\n' | $SUDO tee "$policy" >/dev/null
+  $SUDO chmod 755 "$policy"
+  trap '$SUDO rm -f "$policy"' EXIT
+fi
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "setup: done"

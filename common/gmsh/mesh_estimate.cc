@@ -1,5 +1,6 @@
 // How many elements a loaded .geo will mesh into, estimated before gmsh meshes it, so that a
 // problem too large for the memory limit is refused up front instead of exhausting the machine.
+#include "gmsh_write.h"
 #include "mesh_checks.h"
 
 #include <workbench/memory_limit.h>
@@ -131,7 +132,7 @@ std::vector<int> boundary(int dim, int tag) {
 
 void check_geo_mesh_size(const fs::path& file) {
   ScratchFile scratch;
-  gmsh::write(scratch.file.string());
+  gmsh_write_checked(scratch.file);  // a short file would count too few elements
   const GeoSizes sizes = read_unrolled(scratch.file);
 
   double factor = 1, size_min = 0, size_max = 1e22;

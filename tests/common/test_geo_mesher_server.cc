@@ -1,12 +1,16 @@
 // The mesher server (gmsh_session.h, start_geo_mesher_server): .geo files meshed in processes it
 // forks, a crash or abort of gmsh one error while the server goes on, several .geo files in one
-// process, the server ending with its parent, and the mesher program when the server is gone.
+// process, the server ending with its parent, the mesher program when the server is gone, and a
+// hung gmsh ended at the mesher's time limit.
 #include <gmsh_session.h>
+
+#include "../support/scratch_folder.h"
 
 #include <gmsh.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -120,4 +124,30 @@ TEST(GeoMesherServer, EndsWithItsParent) {
     if (!ended) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_TRUE(ended) << "the server " << server << " outlived its parent";
+}
+
+TEST(GeoMesherServer, AHungGmshEndsAtTheTimeLimit) {
+  const int server = workbench::start_geo_mesher_server();
+  // The limit is this process's environment at the load (the server was started before it is set).
+  ::setenv("WORKBENCH_MESH_TIME_LIMIT", "1", 1);
+  ASSERT_GT(server, 0);
+  // gmsh's parser counts to 2e9 (minutes): it is ended after 1 s, one error naming the .geo.
+  const fs::path hang = test_support::scratch_folder() / "hang.geo";
+  std::ofstream(hang) << "x = 0;\nFor i In {1:2e9}\n  x = x + i;\nEndFor\nPoint(1) = {0, 0, 0, 1};\n";
+  const std::string expected =
+      hang.string() + ": gmsh did not finish meshing it within 1 s (the time limit; WORKBENCH_MESH_TIME_LIMIT=<seconds> sets it)";
+  EXPECT_EQ(load_error(hang), expected);
+  // The server goes on; a .geo that meshes in time is not ended.
+  EXPECT_EQ(workbench::geo_mesher_server_pid(), server);
+  workbench::gmsh_load(source / "meshes/cook.geo", {{"n", 4}});
+  EXPECT_EQ(loaded_nodes(), 25u);
+  // The mesher program, once the server is gone, keeps the same limit.
+  ::kill(server, SIGKILL);
+  EXPECT_EQ(load_error(hang), expected);
+  EXPECT_EQ(workbench::geo_mesher_server_pid(), 0);
+  // A limit that is no whole number of seconds is one error.
+  ::setenv("WORKBENCH_MESH_TIME_LIMIT", "1e3", 1);
+  const auto cook = source / "meshes/cook.geo";
+  EXPECT_EQ(load_error(cook), cook.string() + ": WORKBENCH_MESH_TIME_LIMIT: must be a whole number of seconds in [1, 604800] (got '1e3')");
+  ::unsetenv("WORKBENCH_MESH_TIME_LIMIT");
 }

@@ -163,9 +163,11 @@ def run_one(binary, work, index, command, case_text, extra_file, timeout):
     # Its own temporary folder, in which nothing of the workbench's may be left (the .geo mesher's).
     tmp = os.path.join(folder, "tmp")
     os.makedirs(tmp)
-    # Its own process group, so that a hang is ended with everything it started.
+    # Its own process group, so that a hang is ended with everything it started. A .geo that gmsh
+    # does not finish meshing within half the timeout is the workbench's one error (its time limit).
+    env = dict(os.environ, TMPDIR=tmp, WORKBENCH_MESH_TIME_LIMIT=str(max(1, timeout // 2)))
     p = subprocess.Popen([binary, command, case, "-o", out], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         text=True, errors="replace", start_new_session=True, env=dict(os.environ, TMPDIR=tmp))
+                         text=True, errors="replace", start_new_session=True, env=env)
     try:
         _, stderr = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <gmsh.h>
 #include <gmsh_session.h>
+#include <gmsh_write.h>
 #include <workbench/memory_limit.h>
 
 #include <algorithm>
@@ -116,7 +117,7 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   }
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::option::setNumber("Mesh.SaveAll", 0);
-  gmsh::write(file.string());
+  workbench::gmsh_write_checked(file);  // gmsh does not check its writes
 }
 
 using Cell = std::array<std::int64_t, 3>;

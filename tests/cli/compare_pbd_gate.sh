@@ -84,6 +84,11 @@ bad agent_metric 's/^"pbd.load_dev"/"body.sigma_y.rel_l2"/' 'compare.gate.body.s
 bad agent_key 's/^model = "pbd"/model = "pbd"\ndepths = [0.5]/' "agent_key.toml: unknown key 'compare.depths'"
 bad misspelt 's/^damping = /dampin = /' "misspelt.toml: unknown key 'pbd.dampin'"
 bad no_load 's/^body_force = .*//' 'no_load.toml: load: missing: nothing loads the body'
+# A rod and a strip of different lengths are two bodies: refused before either model runs.
+bad other_strip 's/^L = 0.5$/L = 0.4/' \
+  'other_strip.toml: the PBD rod spans x = 0 .. 0.5 m beyond its clamp, the FEM strip x = 0 .. 0.4 m (the same strip is needed; nothing was solved)'
+grep -q "frame\|fem:" "$work/log"
+check other_strip_before_solving $((! $?)) "$(cat "$work/log")"
 
 # The same case file runs the PBD model alone; `workbench pbd` checks the FEM sections it does not use.
 "$bin" pbd "$work/tight.toml" -o "$work/pbd_alone" 2>"$work/log"

@@ -7,6 +7,8 @@
 #include "report.h"
 
 #include <fem_reference/fem_case.h>
+#include <gmsh.h>
+#include <gmsh_session.h>
 #include <pbd_study.h>
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
@@ -162,15 +164,27 @@ Steady steady_state(pbd_study::PbdStudy& study) {
   return s;
 }
 
-/// The FEM strip's height D from its nodes, after checking that it is the rod's strip: x from the
-/// clamp over L, the rod at mid-height.
-double strip_height(const fem_reference::FemResult& fem, const Rod& rod, const std::string& case_name) {
-  double lo[2] = {1e308, 1e308}, hi[2] = {-1e308, -1e308};
-  for (std::size_t i = 0; i < fem.node_count(); ++i)
+/// The FEM strip's extent per axis (x, y: lo, hi) from the mesh it will be solved on, read before
+/// either model runs (the box, or the mesh file loaded as the FEM loads it).
+std::array<std::array<double, 2>, 2> strip_extent(const fem_reference::FemProblem& problem) {
+  if (problem.box) return {{{problem.box->lo[0], problem.box->hi[0]}, {problem.box->lo[1], problem.box->hi[1]}}};
+  workbench::gmsh_load(problem.mesh_file, problem.mesh_parameters);
+  std::vector<std::size_t> tags;
+  std::vector<double> xyz, parametric;
+  gmsh::model::mesh::getNodes(tags, xyz, parametric);
+  std::array<std::array<double, 2>, 2> box{{{1e308, -1e308}, {1e308, -1e308}}};
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
     for (int a = 0; a < 2; ++a) {
-      lo[a] = std::min(lo[a], fem.node_points[3 * i + a]);
-      hi[a] = std::max(hi[a], fem.node_points[3 * i + a]);
+      box[a][0] = std::min(box[a][0], xyz[i + a]);
+      box[a][1] = std::max(box[a][1], xyz[i + a]);
     }
+  return box;
+}
+
+/// The FEM strip's height D from its extent, after checking that it is the rod's strip: x from the
+/// clamp over L, the rod at mid-height. Before any solve: two bodies are an error, not a bad score.
+double strip_height(const std::array<std::array<double, 2>, 2>& extent, const Rod& rod, const std::string& case_name) {
+  const double lo[2] = {extent[0][0], extent[1][0]}, hi[2] = {extent[0][1], extent[1][1]};
   const double L = rod.L;
   const double L_fem = hi[0] - lo[0], D = hi[1] - lo[1], y_mid = 0.5 * (lo[1] + hi[1]);
   std::ostringstream geometry;
@@ -180,7 +194,8 @@ double strip_height(const fem_reference::FemResult& fem, const Rod& rod, const s
              << " m beyond its clamp, the FEM strip x = " << lo[0] << " .. " << hi[0] << " m";
   else if (std::abs(rod.root_point[1] - y_mid) > 1e-6 * D)
     geometry << "the PBD rod lies at y = " << rod.root_point[1] << " m, not at the FEM strip's mid-height y = " << y_mid << " m";
-  if (!geometry.str().empty()) throw Error(case_name + ": " + geometry.str() + " (the same strip is needed)");
+  if (!geometry.str().empty())
+    throw Error(case_name + ": " + geometry.str() + " (the same strip is needed; nothing was solved)");
   return D;
 }
 
@@ -364,6 +379,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   auto study = pbd_study::load_pbd_study(file, std::move(pbd_case));
   const std::string case_name = file.path().string();
   const Rod rod = check_rod(study, root.table("pbd"));
+  const double D = strip_height(strip_extent(problem), rod, case_name);
 
   // PBD to rest: the case's frames.
   auto t = std::chrono::steady_clock::now();
@@ -377,7 +393,7 @@ CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOpt
   const auto fem = report::run_fem(problem, dir, log, fem_seconds);
   t = std::chrono::steady_clock::now();
   if (fem.dim != 2) throw Error(case_name + ": model = \"pbd\" compares with a 2D FEM strip (plane stress), got a 3D mesh");
-  const Strip st = strip(problem, study, rod, strip_height(fem, rod, case_name));
+  const Strip st = strip(problem, study, rod, D);
   Samples samples = sample_centreline(study, rod, st, fem, case_name, dir);
 
   CompareOutcome outcome;

@@ -27,19 +27,15 @@ LIBC.mallopt(-4, 0)  # M_MMAP_MAX
 LIBC.mallopt(-1, 1 << 30)  # M_TRIM_THRESHOLD, 1 GiB
 import argparse  # noqa: E402
 import csv  # noqa: E402
-import functools  # noqa: E402
 import gc  # noqa: E402
-import io  # noqa: E402
 import json  # noqa: E402
 import multiprocessing  # noqa: E402
 import os  # noqa: E402
 import signal  # noqa: E402
-import struct  # noqa: E402
 import sys  # noqa: E402
 import textwrap  # noqa: E402
 import time  # noqa: E402
 import types  # noqa: E402
-import zlib  # noqa: E402
 
 import matplotlib  # noqa: E402
 
@@ -49,34 +45,9 @@ from matplotlib.cm import ScalarMappable  # noqa: E402
 from matplotlib.colors import Normalize  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402  (matplotlib's own dependency)
-from matplotlib import font_manager, ft2font  # noqa: E402
-
-# Fonts from memory: matplotlib 3.6 hands FreeType a Python file object of the font, through which
-# every glyph is read with a seek and a read (73,000 lseek and 33,000 read system calls for the
-# seed study's figures); a BytesIO of the same bytes gives the same glyphs without them. As
-# matplotlib's own font_manager._get_font, cached per font and process (its cache is emptied in a
-# forked child: FreeType objects are not shared across a fork). For PNG figures only: the PDF
-# backend embeds the font it finds by the FT2Font's file name (main() installs it).
-@functools.lru_cache(64)
-def _font_bytes(path):
-    with open(path, "rb") as f:
-        return f.read()
-
-
-@functools.lru_cache(64)
-def _get_font_from_memory(font_filepaths, hinting_factor, *, _kerning_factor, thread_id):
-    first, *rest = font_filepaths
-    fallback = [ft2font.FT2Font(io.BytesIO(_font_bytes(p)), hinting_factor, _kerning_factor=_kerning_factor)
-                for p in rest]
-    return ft2font.FT2Font(io.BytesIO(_font_bytes(first)), hinting_factor, _fallback_list=fallback,
-                           _kerning_factor=_kerning_factor)
-
-
-def fonts_from_memory():
-    font_manager._get_font = _get_font_from_memory
-    os.register_at_fork(after_in_child=_get_font_from_memory.cache_clear)
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from figure_files import fonts_from_memory, write_png  # noqa: E402
 from child_report import DISK_ERRORS, WRITE_FAILED, guarded, tell_workbench, write_failed  # noqa: E402
 
 # The cyclic garbage collector: the modules' objects, made once, are frozen out of its scans, and it
@@ -143,36 +114,6 @@ def saving(path, write):
 DPI = 150  # of the PNG figures; they are made at it, so that their layout is computed for it
 
 
-def write_png(fig, path):
-    """The figure as savefig draws it, in one draw, as an RGB PNG (the figure is opaque: the same
-    pixels without the alpha channel)."""
-    fig.canvas.draw()  # as savefig draws it: the figure is made at DPI
-    rgb = np.asarray(fig.canvas.buffer_rgba())[:, :, :3]
-    with open(path, "wb") as f:
-        f.write(png_bytes(rgb, DPI, f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/"))
-
-
-def png_bytes(rgb, dpi, software):
-    """A PNG file of `rgb` (height x width x 3, uint8) at `dpi`, with a Software text. Written here
-    rather than by PIL, which tries all five PNG row filters on every row with no way to choose one:
-    no filter and zlib level 3 take 0.45x its CPU for files 10-15 % larger (docs/performance.md)."""
-    height, width, _ = rgb.shape
-    rows = np.empty((height, 1 + 3 * width), np.uint8)
-    rows[:, 0] = 0  # each row's filter: none
-    rows[:, 1:] = rgb.reshape(height, -1)
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-    per_metre = round(dpi / 0.0254)
-    return b"".join((b"\x89PNG\r\n\x1a\n",
-                     chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)),  # 8-bit RGB
-                     chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)),
-                     chunk(b"tEXt", b"Software\0" + software.encode("latin-1")),
-                     chunk(b"IDAT", zlib.compress(rows, 3)),
-                     chunk(b"IEND", b"")))
-
-
 # Fixed layouts, their margins in inches: room for tick labels and an axis label left of and below
 # each axes, a title above each and the figure's title at the top, wrapped to the figure's width
 # (each more line of it takes TITLE_LINE more). matplotlib's constrained layout measures every
@@ -228,7 +169,7 @@ def map_panels(rows, cols, figsize, aspect, title):
 
 def save(fig, out, name, formats):
     for ext in formats:
-        write = (lambda p: write_png(fig, p)) if ext == "png" else (lambda p: fig.savefig(p, dpi=DPI))
+        write = (lambda p: write_png(fig, p, DPI)) if ext == "png" else (lambda p: fig.savefig(p, dpi=DPI))
         saving(os.path.join(out, f"{name}.{ext}"), write)
     plt.close(fig)
     progress(f"{name} drawn")

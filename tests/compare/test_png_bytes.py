@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""figures.py's own PNG writer (png_bytes, docs/compare.md "Figures"): a known file byte for byte,
+"""figures.py's own PNG writer (png_bytes in compare/figure_files.py, docs/compare.md "Figures"): a known file byte for byte,
 and any image read back by PIL (which checks every chunk's CRC) as the same pixels, dpi and text.
 
     /usr/bin/python3 tests/compare/test_png_bytes.py SOURCE_DIR
@@ -13,7 +13,7 @@ import zlib
 sys.path.insert(0, os.path.join(sys.argv[1], "compare"))
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
-from figures import png_bytes  # noqa: E402
+from figure_files import png_bytes  # noqa: E402
 
 checks = failures = 0
 

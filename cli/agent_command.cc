@@ -79,8 +79,11 @@ void add_voxelize_command(CLI::App& app, Action& action) {
       } catch (const std::runtime_error& e) {
         std::error_code ignored;
         fs::remove(staged, ignored);
-        if (dynamic_cast<const workbench::Error*>(&e)) throw;
-        throw workbench::Error(e.what());
+        // The user named the target: a failed write of the staged file is said of it.
+        std::string what = e.what();
+        for (auto at = what.find(staged.string()); at != std::string::npos; at = what.find(staged.string(), at))
+          what.replace(at, staged.string().size(), target.string());
+        throw workbench::Error(what);
       }
       return 0;
     };

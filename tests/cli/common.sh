@@ -60,15 +60,3 @@ FAKE
 
 # wait_for FILE: up to 60 s for FILE to appear.
 wait_for() { for _ in $(seq 600); do [ -e "$1" ] && return 0; sleep 0.1; done; return 1; }
-
-# refused NAME MESSAGE: `workbench compare $work/NAME.toml` is bad input: exit 2, MESSAGE in its
-# error, no output folder.
-refused() {
-  "$bin" compare "$work/$1.toml" -o "$work/$1" 2>"$work/log"
-  local rc=$?
-  check "$1_exit" $((rc != 2)) "exit $rc"
-  grep -q "$2" "$work/log"
-  check "$1_message" $? "$(cat "$work/log")"
-  [ ! -e "$work/$1" ]
-  check "$1_no_output" $? "output written"
-}

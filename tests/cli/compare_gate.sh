@@ -86,6 +86,15 @@ check zero_bad_exit $((rc != 2)) "exit $rc"
 grep -q 'zero_bad.toml: compare.better_than_zero: "far.tau" is no compared field' "$work/log"
 check zero_bad_message $? "$(cat "$work/log")"
 
+refused() {  # refused NAME MESSAGE: $work/NAME.toml is bad input: exit 2, the message, no output
+  "$bin" compare "$work/$1.toml" -o "$work/$1" 2>"$work/log"
+  local rc=$?
+  check "$1_exit" $((rc != 2)) "exit $rc"
+  grep -q "$2" "$work/log"
+  check "$1_message" $? "$(cat "$work/log")"
+  [ ! -e "$work/$1" ]
+  check "$1_no_output" $? "output written"
+}
 # A relative L2 limit at or above predicting zero's 1 passes a model that predicts nothing: refused
 # unless the field must also beat zero.
 sed -e 's/^better_than_zero = .*/better_than_zero = ["body.sigma_y"]/' -e 's/^"far.sigma_y.rel_l2" = .*/"far.sigma_y.rel_l2" = 1.05/' \

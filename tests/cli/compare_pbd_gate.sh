@@ -70,7 +70,13 @@ check tight_count $? "$(tail -1 "$work/log")"
 
 bad() {  # bad NAME SED_EXPRESSION EXPECTED_MESSAGE: exit 2, the message, no output
   sed -e "$2" "$work/tight.toml" >"$work/$1.toml"
-  refused "$1" "$3"
+  "$bin" compare "$work/$1.toml" -o "$work/$1" 2>"$work/log"
+  local rc=$?
+  check "$1_exit" $((rc != 2)) "exit $rc"
+  grep -q "$3" "$work/log"
+  check "$1_message" $? "$(cat "$work/log")"
+  [ ! -e "$work/$1" ]
+  check "$1_no_output" $? "output written"
 }
 bad unknown 's/^"tip.deflection.rel_error"/"tip.deflection.rel_err"/' \
   'unknown.toml: compare.gate.tip.deflection.rel_err: unknown metric for model "pbd"'

@@ -86,7 +86,7 @@ check zero_bad_exit $((rc != 2)) "exit $rc"
 grep -q 'zero_bad.toml: compare.better_than_zero: "far.tau" is no compared field' "$work/log"
 check zero_bad_message $? "$(cat "$work/log")"
 
-refused() {  # refused NAME MESSAGE: $work/NAME.toml is bad input: exit 2, the message, no output
+bad_gate() {  # bad_gate NAME MESSAGE: $work/NAME.toml is bad input: exit 2, the message, no output
   "$bin" compare "$work/$1.toml" -o "$work/$1" 2>"$work/log"
   local rc=$?
   check "$1_exit" $((rc != 2)) "exit $rc"
@@ -99,9 +99,9 @@ refused() {  # refused NAME MESSAGE: $work/NAME.toml is bad input: exit 2, the m
 # unless the field must also beat zero.
 sed -e 's/^better_than_zero = .*/better_than_zero = ["body.sigma_y"]/' -e 's/^"far.sigma_y.rel_l2" = .*/"far.sigma_y.rel_l2" = 1.05/' \
   "$work/tight.toml" >"$work/lax.toml"
-refused lax 'lax.toml: compare.gate.far.sigma_y.rel_l2: a limit of 1.05 passes a model that predicts nothing (predicting zero scores 1): set it below 1, or add "far.sigma_y" to better_than_zero'
+bad_gate lax 'lax.toml: compare.gate.far.sigma_y.rel_l2: a limit of 1.05 passes a model that predicts nothing (predicting zero scores 1): set it below 1, or add "far.sigma_y" to better_than_zero'
 sed 's/^"fem.equilibrium_dev"/"fem.equilibrium"/' "$work/tight.toml" >"$work/unknown.toml"
-refused unknown "unknown.toml: compare.gate.fem.equilibrium: unknown metric"
+bad_gate unknown "unknown.toml: compare.gate.fem.equilibrium: unknown metric"
 
 # A 3D study (cube agents, hexahedral FEM) goes through the same comparison; figures are drawn in a slice.
 sed -e "s#\.\./meshes#$src/meshes#" -e 's/^h = 0.002 .*/h = 0.004/' -e 's/^lw = 0.004 .*/lw = 0.008/' \

@@ -36,11 +36,11 @@ using Action = std::function<int()>;
 
 /// The subcommands that run distributed under mpirun (each rank runs the action; rank 0 writes);
 /// main() runs every other one on rank 0 alone.
-inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate"};
+inline const std::set<std::string> kDistributed{"fem", "compare", "calibrate", "front"};
 
 /// The subcommands that may mesh a .geo: main() starts the mesher server for them, before MPI and
 /// any thread (gmsh_session.h).
-inline const std::set<std::string> kMeshing{"agent", "voxelize", "pbd", "fem", "compare", "calibrate"};
+inline const std::set<std::string> kMeshing{"agent", "voxelize", "pbd", "fem", "compare", "calibrate", "front"};
 
 /// Where a distributed subcommand's progress goes: standard error on rank 0, nowhere on the others.
 std::ostream& progress_log();
@@ -51,6 +51,7 @@ void add_pbd_command(CLI::App& app, Action& action);
 void add_fem_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_calibrate_command(CLI::App& app, Action& action);
+void add_front_command(CLI::App& app, Action& action);
 void add_case_command(CLI::App& app, Action& action);
 void add_summarize_command(CLI::App& app, Action& action);
 

@@ -4,13 +4,15 @@
 //   workbench fem cases/seed_plate.toml              deal.II FEM reference (mpirun -np N for MPI)
 //   workbench compare cases/seed_plate.toml          both on one mesh: metrics, Figures 8-11, gate
 //   workbench calibrate cases/calibrate_plate.toml   fit alpha1..3, beta (gamma) against FEM
+//   workbench front cases/seed_plate_directional.toml  cost against error: agent and FEM ladders, verdicts
 //   workbench pbd cases/pbd_strip.toml --animate     PBD angle bending frames (VTU/PVD/CSV, MP4)
 //   workbench case set CASE KEY=VALUE -o NEW.toml    a derived case file (sweeps)
 //   workbench summarize DIR... -o table.csv          many output folders' summaries as one table
 //   workbench <subcommand> --help                    the options of each subcommand
 //
 // Under mpirun, fem, compare and calibrate run distributed (the FEM over the ranks, the rest on
-// rank 0); every other subcommand runs once, on rank 0 (docs/scaling.md). Every rank ends with the
+// rank 0), front refuses more than one rank (it times each model on one core); every other
+// subcommand runs once, on rank 0 (docs/scaling.md). Every rank ends with the
 // same exit code, and every line is printed once.
 //
 // Every error is one line "workbench: error: <file>: <what>"; bad input (command line included)
@@ -45,6 +47,7 @@ int main(int argc, char** argv) {
   cli::add_pbd_command(app, action);
   cli::add_fem_command(app, action);
   cli::add_compare_command(app, action);
+  cli::add_front_command(app, action);
   cli::add_calibrate_command(app, action);
   cli::add_case_command(app, action);
   cli::add_summarize_command(app, action);

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""One page per study: report.html from a comparison's summary.json (or a calibration's report.json)
-and its figures.
+"""One page per study: report.html from a comparison's summary.json (a calibration's report.json, a
+front's front.json) and its figures.
 
     /usr/bin/python3 compare/report_html.py OUT_DIR
 
-`workbench compare` and `workbench calibrate` run it once everything else is written, before the
+`workbench compare`, `workbench calibrate` and `workbench front` run it once everything else is written, before the
 output folder is committed. The page is rendered with Jinja2 (Debian's python3-jinja2) from
 report.html.j2 beside this script and written through a temporary file renamed into place: a
 page is whole or not there. The figures (PNG, GIF) are embedded as data: URIs, so report.html alone
@@ -123,14 +123,14 @@ def template():
 def render(out, page_template=None):
     """Writes OUT/report.html with `page_template` (template() when None)."""
     page_template = page_template or template()
-    summary = os.path.join(out, "summary.json")
-    source = summary if os.path.exists(summary) else os.path.join(out, "report.json")
+    sources = [os.path.join(out, name) for name in ("summary.json", "report.json", "front.json")]
+    source = next((s for s in sources if os.path.exists(s)), sources[1])
     try:
         with open(source) as f:
             data = json.load(f)
     except (OSError, ValueError) as e:
         raise SystemExit(f"report_html.py: {source}: cannot read it ({e})")
-    kind = "calibration" if source.endswith("report.json") else data.get("model", "agent")
+    kind = {"report.json": "calibration", "front.json": "front"}.get(os.path.basename(source), data.get("model", "agent"))
     try:
         html = page_template.render(
             kind=kind, page=Page(data), d=data, source=os.path.basename(source), fields=FIELDS,

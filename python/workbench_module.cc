@@ -301,6 +301,18 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
   return r;
 }
 
+/// front.json as a dict (the file the study wrote: one description of a front, read the same way
+/// from Python and from disk).
+py::object run_front(const Case& c, const fs::path& output_dir, const py::object& progress) {
+  const auto folder = with_progress(progress, [&](std::ostream& log) {
+    auto file = c.open();
+    return studies::run_front_study(*file, output_dir, log).folder;
+  });
+  std::ifstream in(folder / "front.json");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return py::module_::import("json").attr("loads")(text);
+}
+
 py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::object& progress) {
   auto result = with_progress(progress, [&](std::ostream& log) {
     auto file = c.open();
@@ -541,6 +553,10 @@ PYBIND11_MODULE(workbench, m) {
         "also the files of `workbench fem`.");
   m.def("compare", &run_compare, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
         "`workbench compare`: writes everything into output_dir, returns the metrics and the gate's verdict.");
+  m.def("front", &run_front, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
+        "`workbench front`: the cost-accuracy front; writes everything into output_dir and returns front.json as a "
+        "dict: points (model, label, size, work, seconds {min, median}, errors), verdicts (point, metric, "
+        "dominated_by, speedup), crossovers, reference {errors}, gate {checked, failed, failures}.");
   m.def("calibrate", &run_calibrate, py::arg("calibration"), py::arg("output_dir"), py::arg("progress") = py::none(),
         "`workbench calibrate` on a calibration file: the fitted coefficients and the objective.");
   m.def(

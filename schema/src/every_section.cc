@@ -4,6 +4,7 @@
 
 #include <agent_study.h>
 #include <schema/compare_options.h>
+#include <schema/front_options.h>
 #include <fem_reference/fem_case.h>
 #include <pbd_study.h>
 #include <workbench/study_setup.h>
@@ -34,6 +35,7 @@ const Section kSections[] = {
      }},
     {"fem", [](const workbench::CaseFile& f) { fem_reference::read_fem_section(f.root()); }},
     {"compare", [](const workbench::CaseFile& f) { read_compare_options(f.root()); }},
+    {"front", [](const workbench::CaseFile& f) { read_front_options(f.root()); }},
     {"pbd",
      [](const workbench::CaseFile& f) {
        if (f.root().has("pbd")) pbd_study::read_pbd_case(f);

@@ -99,6 +99,18 @@ CompareRun run_compare_study(const workbench::CaseFile& file, const fs::path& fo
   return run;
 }
 
+void open_front_study(const workbench::CaseFile& file) {
+  compare::require_one_rank(file);
+  schema::check_every_section(file);
+}
+
+FrontRun run_front_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {
+  open_front_study(file);
+  FrontRun run;
+  run.folder = write_staged_on_rank_0(folder, file, [&](const fs::path& dir) { run.outcome = compare::run_front(file, dir, log); });
+  return run;
+}
+
 CalibrateRun run_calibrate_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {
   CalibrateRun run;
   run.folder = write_staged_on_rank_0(folder, file, [&](const fs::path& dir) { run.result = compare::run_calibration(file, dir, log); });

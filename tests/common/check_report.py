@@ -8,7 +8,7 @@ no port, no websocket library).
 For each folder: the page loads with no console error, no exception and no failed request (a
 missing file, a blocked network load); every image is a data: URI that decoded; every src/href
 (html.parser) is a data: URI or a file that exists beside the page; every value marked data-key
-equals the value at that JSON pointer of summary.json (report.json for a calibration) as its
+equals the value at that JSON pointer of summary.json (report.json for a calibration, front.json for a front) as its
 data-format shows it (numbers to their 4 significant digits); the page shows no other number;
 the keys a reader needs are there (every gated metric's value, limit and verdict, every warning,
 the body and far-field errors with the reference's own error, every flag that is true).
@@ -163,6 +163,14 @@ def check_value(value, fmt, text):
 def required(data):
     """JSON pointers the page must show."""
     keys = [f"/warnings/{i}" for i in range(len(data.get("warnings", [])))]
+    if data.get("model") == "front":  # every point's time and headline errors, the case point's verdicts
+        keys += ["/gate/checked", "/case_point", "/reference/dofs"]
+        for i, p in enumerate(data["points"]):
+            keys += [f"/points/{i}/label", f"/points/{i}/seconds/min", f"/points/{i}/seconds/median"]
+            keys += [f"/points/{i}/errors/{m}" for m in ("far.sigma_y.rel_l2", "far.von_mises.rel_l2")]
+        keys += [f"/reference/errors/{v['metric']}" for v in data["verdicts"] if v["point"] == data["case_point"]]
+        keys += [f"/skipped/{i}" for i in range(len(data["skipped"]))]
+        return keys
     if "metrics" not in data:  # a calibration
         keys += ["/objective/start", "/objective/fitted"]
         keys += [f"/fitted/{k}" for k in data["fitted"] if k != "directions"]
@@ -188,9 +196,8 @@ def check(browser, folder, screenshot):
     page = os.path.abspath(os.path.join(folder, "report.html"))
     if not os.path.isfile(page):
         return ["no report.html"]
-    source = os.path.join(folder, "summary.json")
-    if not os.path.exists(source):
-        source = os.path.join(folder, "report.json")
+    sources = [os.path.join(folder, n) for n in ("summary.json", "report.json", "front.json")]
+    source = next((s for s in sources if os.path.exists(s)), sources[1])
     with open(source) as f:
         data = json.load(f)
     problems = []

@@ -163,4 +163,69 @@ GridFields fem_at_agents(const agent::Grid& grid, const fem_reference::FemResult
   return out;
 }
 
+namespace {
+
+/// The stress record of the source agent holding `p` (`slot` set to it), or its agent neighbours'
+/// bilinear value in air (`slot` npos); false outside their reach.
+bool source_stress(const agent::Grid& source, const GridFields& fields, const std::array<double, 3>& p,
+                   std::size_t& slot, double s[kStressSlots]) {
+  int c[3];
+  slot = locate_cell(source, p.data(), c) ? source.index(c[0], c[1], c[2]) : agent::Grid::npos;
+  if (slot != agent::Grid::npos && !source.is_air(slot)) {
+    std::copy_n(&fields.stress[kStressSlots * slot], kStressSlots, s);
+    return true;
+  }
+  slot = agent::Grid::npos;
+  const Eigen::Vector3d x(p[0], p[1], p[2]);
+  for (int k = 0; k < kStressSlots; ++k) s[k] = sample_cells(source, fields.stress, kStressSlots, k, x);
+  return std::isfinite(s[0]);
+}
+
+}  // namespace
+
+GridFields agents_on_grid(const agent::Grid& grid, const agent::Grid& source, const GridFields& fields,
+                          const std::string& what) {
+  if (grid.dim == source.dim && grid.cells == source.cells && grid.origin == source.origin &&
+      grid.size == source.size && grid.flags == source.flags && grid.planes == source.planes)
+    return fields;  // the same grid: its own values, bit for bit
+  const auto points = agent_probe_points(grid);
+  const int dim = grid.dim, gauss = 1 << dim;
+  auto outside = [&](const std::array<double, 3>& p) {
+    return Error(what + ": the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " +
+                 std::to_string(p[2]) + ") m of the body lies beyond its agents");
+  };
+  GridFields out;
+  out.stress.assign(grid.count() * kStressSlots, 0.0);
+  out.u.assign(grid.node_count() * dim, 0.0);
+  std::size_t at = 0;
+  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+    if (grid.is_air(cell)) continue;
+    double* s = &out.stress[kStressSlots * cell];
+    double q[kStressSlots];
+    std::size_t first = agent::Grid::npos, slot = 0;
+    bool one_agent = true;
+    for (int g = 0; g < gauss; ++g, ++at) {
+      if (!source_stress(source, fields, points[at], slot, q)) throw outside(points[at]);
+      one_agent = one_agent && slot != agent::Grid::npos && (g == 0 || slot == first);
+      if (g == 0) first = slot;
+      for (int k = 0; k < kStressSlots; ++k) s[k] += q[k];
+    }
+    if (one_agent) {
+      std::copy_n(&fields.stress[kStressSlots * first], kStressSlots, s);
+    } else {
+      for (int k = 0; k < 6; ++k) s[k] /= gauss;
+      s[kVonMises] = von_mises(s);
+    }
+  }
+  for (std::size_t node : body_node_ids(grid)) {  // the order of agent_probe_points
+    const Eigen::Vector3d x(points[at][0], points[at][1], points[at][2]);
+    for (int a = 0; a < dim; ++a) {
+      out.u[node * dim + a] = sample_nodes(source, fields.u, dim, a, x);
+      if (!std::isfinite(out.u[node * dim + a])) throw outside(points[at]);
+    }
+    ++at;
+  }
+  return out;
+}
+
 }  // namespace compare

@@ -30,6 +30,10 @@ struct AgentCompareInput {
   ReferenceOptions reference;  ///< resolved for the mesh's dimension
 };
 
+/// Step 1: reads and checks the case (`options` already read): the study, its FEM problem, the
+/// loads' frames, the lines, the far field; gate names checked, unknown keys refused.
+AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptions& options);
+
 // Steps 5 and 7: what a comparison samples, from where.
 /// The fields compared: the agent model, the reference, the reference's second level (for its own
 /// error) and, beside a true-geometry reference, FEM on the agents' staircase mesh (else null).
@@ -45,6 +49,10 @@ struct Samples {
 };
 /// A scope's values of each field of kFields (empty for a field not compared in the grid's dimension).
 using ScopeSamples = std::array<Samples, std::size(kFields)>;
+/// Step 7: the metrics of the body's cells and nodes (box order) and the far field's, every field
+/// of kFields: the agent source's errors against the reference, each with the estimate's beside it
+/// (air counts in neither scope).
+void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask);
 /// Each source with where its samples go.
 inline const std::pair<const GridFields* Sources::*, std::vector<double> Samples::*> kSources[] = {
     {&Sources::agent, &Samples::agent},

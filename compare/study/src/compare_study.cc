@@ -96,10 +96,7 @@ std::vector<std::string> metric_names(const CompareOptions& options, const std::
   return options.model == "pbd" ? pbd_metric_names() : agent_metric_names(line_names, dim);
 }
 
-namespace {
-
-
-AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptions& options) {
+AgentCompareInput agent_compare::read_input(const workbench::CaseFile& file, const CompareOptions& options) {
   AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
   const auto& grid = in.study.mesh.grid;
   in.reference = options.reference.resolved(grid.dim);
@@ -121,6 +118,8 @@ AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptio
   file.reject_unknown_keys();
   return in;
 }
+
+namespace {
 
 // Step 3: the agent model at every load step, each solved once (the last is the full load).
 std::vector<agent_study::AgentState> run_agent(const agent_study::AgentStudy& study, const fs::path& dir,
@@ -177,8 +176,9 @@ void add_scope(CompareOutcome& out, const std::string& scope, const ScopeSamples
   }
 }
 
-/// The body's cells and nodes (box order), and the far field's: air counts in neither.
-void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask) {
+}  // namespace
+
+void agent_compare::add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask) {
   const auto& mesh = in.study.mesh;
   const auto& grid = mesh.grid;
   std::vector<char> body_cells(grid.count(), 0);
@@ -206,6 +206,8 @@ void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const So
     add_scope(out, scope, s, mask, grid.dim);
   }
 }
+
+namespace {
 
 /// Where the agent model's load went; warnings when it does not reach a rigid face.
 void add_load_balance(CompareOutcome& out, const agent::Diagnostics& d, double min_share, std::size_t n_cells) {

@@ -5,6 +5,7 @@
 //   1. every section read and checked, unknown keys refused (schema::check_every_section);
 //   2. the module's own reading, then its mesh (nothing is meshed for a case refused anyway);
 //   3. the output folder staged (workbench/staged_directory.h), written, moved into place whole.
+// (`workbench front` is the comparison's cost-accuracy front: a door of its own, compare/front.h.)
 // open_<module>_study is steps 1-2 (what `--check` runs and what Python uses without a folder);
 // run_<module>_study all three. fem, compare and calibrate run distributed under mpirun: every
 // rank calls their doors (each step collective, rank 0 owns the folder); agent and pbd run on one
@@ -16,6 +17,7 @@
 #include <agent_study.h>
 #include <compare/calibration.h>
 #include <compare/compare_study.h>
+#include <compare/front.h>
 #include <fem_reference/fem.h>
 #include <pbd_study.h>
 #include <workbench/case_file.h>
@@ -60,6 +62,15 @@ struct CompareRun {
 };
 /// Writes compare::run_compare's files into `folder`.
 CompareRun run_compare_study(const workbench::CaseFile& file, const std::filesystem::path& folder, std::ostream& log);
+
+/// `workbench front`: the case checked (the front reads the rest as it runs).
+void open_front_study(const workbench::CaseFile& file);
+struct FrontRun {
+  compare::FrontOutcome outcome;
+  std::filesystem::path folder;
+};
+/// Writes compare::run_front's files into `folder` (one rank: under mpirun with more, an error on every rank).
+FrontRun run_front_study(const workbench::CaseFile& file, const std::filesystem::path& folder, std::ostream& log);
 
 /// `workbench calibrate`, on a calibration file (its own format, docs/calibration.md: each case it
 /// lists is checked as a study case when it is loaded).

@@ -94,6 +94,16 @@ constexpr double kUnresolvedReferenceError = 0.5;
 GridFields fem_on_grid(const agent::ImportedMesh& mesh, const fem_reference::FemResult& fem,
                        const std::string& case_name);
 
+/// The fields of an agent model on `source`, another grid of the same body (another agent size), on
+/// `grid`: an agent's stress is the mean over its 2 x 2 (2 x 2 x 2) Gauss points of the source agent
+/// holding each, von Mises of that mean, or, when one source agent holds them all (a coarser grid),
+/// that agent's stress record whole; a node's displacement is the source's there (sample_nodes:
+/// bilinear, exact where the grids share nodes). A Gauss point in the source's air takes
+/// sample_cells's value there (its agent neighbours'). The same grid gives `fields` as they are.
+/// Throws workbench::Error naming `what` when a point of `grid`'s body is in no source agent's reach.
+GridFields agents_on_grid(const agent::Grid& grid, const agent::Grid& source, const GridFields& fields,
+                          const std::string& what);
+
 /// The points where a FEM on another mesh (the true geometry) is evaluated for the agents, as
 /// FemProblem::probe_points: the 2 x 2 (2 x 2 x 2) Gauss points of every agent (grid order, air
 /// left out), then every grid node of the body (Grid::node_index order).

@@ -7,7 +7,9 @@ Reads OUT_DIR/front.json (written by `workbench front`) and writes OUT_DIR/figur
 for each far-field metric of the front ("far.sigma_y.rel_l2" -> front_sigma_y.png): one line per
 model family (each agent rule set, FEM Q1, FEM Q2) through its points' minimum times, each point
 labelled with its size, the case's own agent point ringed, and the reference's own error in that
-metric as a shaded floor (no verdict is given below it), as DiffEqDevTools' work-precision diagrams.
+metric as a shaded floor (no verdict is given below it; the axis stops a decade below it, so that a
+point at round-off, the reference's own level, is off the figure), as DiffEqDevTools' work-precision
+diagrams.
 Uses Debian's python3-matplotlib and python3-numpy only; call it with /usr/bin/python3.
 """
 import argparse
@@ -53,7 +55,8 @@ def draw(front, metric, title):
             if p["label"] == front["case_point"]:
                 ax.plot([e], [t], "o", ms=14, mfc="none", color="k", label="the case's own agents")
     floor = front["reference"]["errors"].get(metric)
-    if floor and floor > 0:
+    if floor and floor > 0:  # below it no verdict: the axis shows a decade of it, not the round-off beyond
+        ax.set_xlim(left=max(ax.get_xlim()[0], floor / 10))
         ax.axvspan(ax.get_xlim()[0], floor, color="0.85", label="below the reference's own error")
     ax.set_xlabel(f"{metric} (against the converged reference)")
     ax.set_ylabel("time, min of warm runs [s]")

@@ -6,6 +6,7 @@ membrane 23.96), tests/cli/compare_gate.sh (the gate plate passes its gate), tes
 errors arrive as workbench.Error with the command line's one-line message, arrays without copies,
 progress through a callback. Run by ctest with PYTHONPATH=<build>/python, WORKBENCH_SOURCE_DIR and WORKBENCH_BIN (the program) set.
 """
+import json
 import os
 import subprocess
 import tempfile
@@ -207,6 +208,29 @@ class Compare(unittest.TestCase):
         np.testing.assert_array_equal(c["fem_u"], np.column_stack([csv["fem_u_x"], csv["fem_u_y"]]))
         np.testing.assert_array_equal(c["eb_u_y"], csv["eb_u_y"])
         self.assertAlmostEqual(abs(c["pbd_u"][-1, 1] / c["fem_u"][-1, 1] - 1) / r["metrics"]["tip.deflection.rel_error"], 1, 12)
+
+
+class Front(unittest.TestCase):
+    def test_front_is_its_file_and_scores_as_compare(self):
+        d = plate()
+        d["compare"] = {"figures": False}
+        d["front"] = {"agent_sizes": [1, 0.5], "fem_sizes": [1, 0.5], "fem_degrees": [1], "runs": 1}
+        case = workbench.Case.from_dict(d, name=os.path.join(SRC, "cases", "python_front.toml"))
+        with tempfile.TemporaryDirectory() as tmp:
+            front = workbench.front(case, os.path.join(tmp, "f"))
+            compared = workbench.compare(case, os.path.join(tmp, "c"))
+            with open(os.path.join(tmp, "f", "front.json")) as f:
+                self.assertEqual(front, json.load(f))  # the dict is the file
+        self.assertEqual(front["case_point"], "agent conserving 10 mm")
+        self.assertEqual(sorted(p["label"] for p in front["points"]),
+                         ["agent conserving 10 mm", "agent conserving 5 mm", "fem Q1 10 mm", "fem Q1 5 mm"])
+        own = next(p for p in front["points"] if p["label"] == front["case_point"])
+        for name in front["metrics"]:  # the same numbers as `workbench compare`'s, bit for bit
+            self.assertEqual(own["errors"][name], compared["metrics"][name], name)
+        # 10 mm agents and FEM Q1 on the same 20 x 20 mesh: the FEM's DoFs are its nodes' two components.
+        fem = next(p for p in front["points"] if p["label"] == "fem Q1 10 mm")
+        self.assertEqual(fem["work"]["dofs"], 2 * 21 * 21)
+        self.assertEqual(own["work"]["agents"], 400)
 
 
 class Pbd(unittest.TestCase):

@@ -79,6 +79,12 @@ CaseFile::~CaseFile() = default;
 
 CaseTable CaseFile::root() const { return CaseTable(this, table_.get(), ""); }
 
+std::string CaseFile::text() const {
+  std::ostringstream out;
+  out << toml::toml_formatter(*table_);
+  return out.str();
+}
+
 namespace {
 void collect_unknown(const toml::table& table, const std::string& prefix, const std::set<std::string>& used,
                      std::vector<std::string>& unknown) {

@@ -102,6 +102,9 @@ class CaseFile {
 
   CaseTable root() const;
   const std::filesystem::path& path() const { return path_; }
+  /// The case as TOML text (every key, comments dropped): what a derived case starts from when the
+  /// case came from text rather than a file (workbench/case_edit.h edits it).
+  std::string text() const;
   /// Throws for the first key (in file order) that no getter has read.
   void reject_unknown_keys() const;
   /// The dotted keys read so far as paths (CaseTable::path) that the file gives, e.g. "mesh.file".

@@ -6,7 +6,6 @@
 #include "front_files.h"
 #include "report.h"
 
-#include <compare/derived_case.h>
 #include <fem_reference/mpi.h>
 #include <schema/front_options.h>
 #include <workbench/case_edit.h>
@@ -71,14 +70,14 @@ std::string millimetres(double metres) {
 }
 
 /// The agent study at `factor` times the case's size under `rules`: the case's own study at its
-/// own size and rule set, else the case with those two settings changed, meshed anew.
+/// own size and rule set, else the case with those two keys changed (workbench/case_edit.h, on its
+/// text: a case may come from Python, not a file), meshed anew.
 agent_study::AgentStudy agent_study_at(const FrontContext& c, double factor, agent::RuleSet rules) {
   if (factor == 1 && rules == c.in.study.rules) return c.in.study;
-  const std::string text = derive_case(
-      c.file.path(), c.file.path(),
-      {"mesh.parameters." + c.options.size_parameter + "=" + workbench::toml_number(factor * c.size),
-       std::string("agent.rule_set=") + agent::rule_set_name(rules)});
-  workbench::CaseFile derived(text, c.file.path());
+  std::string text = workbench::set_case_keys(c.file.text(), "mesh.parameters",
+                                              {{c.options.size_parameter, workbench::toml_number(factor * c.size)}});
+  text = workbench::set_case_keys(text, "agent", {{"rule_set", workbench::toml_string(agent::rule_set_name(rules))}});
+  workbench::CaseFile derived(text, c.file.path());  // relative paths as the case's own
   return agent_study::load_agent_study(derived);
 }
 

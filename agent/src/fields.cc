@@ -9,6 +9,22 @@
 
 namespace agent {
 
+namespace {
+/// Calls f(cell, side) for every rigid boundary face, in Grid::boundary_faces' order. Only the
+/// agents with a rigid bit are looked at: listing every boundary face to keep the rigid ones cost
+/// a fifth of the patent rule set's whole solve.
+template <class F>
+void for_each_rigid_face(const Grid& grid, F&& f) {
+  constexpr std::uint8_t kRigidBits = (1 << 6) - 1;
+  for (std::size_t cell = 0; cell < grid.count(); ++cell) {
+    const std::uint8_t flags = grid.flags[cell];
+    if ((flags & Grid::kAirBit) || !(flags & kRigidBits)) continue;
+    for (int side = 0; side < 2 * grid.dim; ++side)
+      if ((flags >> side) & 1 && !grid.has_neighbour(cell, side)) f(cell, side);
+  }
+}
+}  // namespace
+
 std::vector<double> agent_stresses(const Grid& grid, const std::vector<double>& face_forces) {
   const int dim = grid.dim, nd = 2 * dim;
   std::vector<double> sigma(grid.count() * dim);
@@ -61,18 +77,17 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
   // The lowest rigid face looking down each axis (or, failing that, the highest looking up).
   std::array<double, 3> low{}, high{};
   std::array<bool, 3> has_low{}, has_high{};
-  for (const auto& f : grid.boundary_faces()) {
-    if (grid.boundary(f.side, f.cell) != Boundary::Rigid) continue;
-    const int a = axis_of(f.side);
-    const double at = grid.coords(f.cell)[a] + (is_positive(f.side) ? 1.0 : 0.0);
-    if (!is_positive(f.side)) {
+  for_each_rigid_face(grid, [&](std::size_t cell, int side) {
+    const int a = axis_of(side);
+    const double at = grid.coords(cell)[a] + (is_positive(side) ? 1.0 : 0.0);
+    if (!is_positive(side)) {
       low[a] = has_low[a] ? std::min(low[a], at) : at;
       has_low[a] = true;
     } else {
       high[a] = has_high[a] ? std::max(high[a], at) : at;
       has_high[a] = true;
     }
-  }
+  });
   for (int a = 0; a < grid.dim; ++a) {
     if (has_low[a])
       datums[a] = low[a];
@@ -275,11 +290,10 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
 
 void hold_rigid_faces(const Grid& grid, std::vector<double>& u) {
   const int dim = grid.dim;
-  for (const auto& f : grid.boundary_faces()) {
-    if (grid.boundary(f.side, f.cell) != Boundary::Rigid) continue;
-    const int a = axis_of(f.side), l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;
-    auto c = grid.coords(f.cell);
-    c[a] += is_positive(f.side) ? 1 : 0;
+  for_each_rigid_face(grid, [&](std::size_t cell, int side) {
+    const int a = axis_of(side), l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1;
+    auto c = grid.coords(cell);
+    c[a] += is_positive(side) ? 1 : 0;
     for (int d1 = 0; d1 < (dim == 3 ? 2 : 1); ++d1)
       for (int d0 = 0; d0 < 2; ++d0) {
         std::array<int, 3> p = c;
@@ -289,7 +303,7 @@ void hold_rigid_faces(const Grid& grid, std::vector<double>& u) {
         if (n == Grid::npos) continue;
         for (int x = 0; x < dim; ++x) u[n * dim + x] = 0.0;
       }
-  }
+  });
 }
 
 }  // namespace agent

@@ -45,12 +45,13 @@ class SlopeFit {
       return;
     }
     const bool kept = count > 2 * reach_;
-    std::vector<double> c;
+    const std::vector<std::vector<double>>* line = kept ? nullptr : &short_line(count);
     for (int j = 0; j < count; ++j) {
       int first = 0;
-      const std::vector<double>* use = &c;
+      const std::vector<double>* use = nullptr;
       if (!kept) {
-        weights(j, count, c, first);
+        use = &(*line)[std::size_t(j)];
+        first = std::max(0, j - reach_);
       } else if (j < reach_) {
         use = &low_[j];
       } else if (j + reach_ >= count) {
@@ -67,6 +68,20 @@ class SlopeFit {
   }
 
  private:
+  /// Every entry's weights on a line of `count` <= 2 reach entries (no interior entry): the same
+  /// for every line of that length, so computed on the first (a box's lines all have one length;
+  /// per entry they cost a 3 x 3 LU, two thirds of a 3D solve).
+  const std::vector<std::vector<double>>& short_line(int count) const {
+    if (short_.size() <= std::size_t(count)) short_.resize(std::size_t(count) + 1);
+    auto& line = short_[std::size_t(count)];
+    if (line.empty()) {
+      line.resize(std::size_t(count));
+      int first = 0;
+      for (int j = 0; j < count; ++j) weights(j, count, line[std::size_t(j)], first);
+    }
+    return line;
+  }
+
   /// Entry j's weights on a line of `count` entries, for the entries from `first` on.
   void weights(int j, int count, std::vector<double>& c, int& first) const {
     first = std::max(0, j - reach_);
@@ -96,6 +111,7 @@ class SlopeFit {
   int reach_;
   std::vector<double> inner_;
   std::vector<std::vector<double>> low_, high_;  // by distance to the line's lower / upper end
+  mutable std::vector<std::vector<std::vector<double>>> short_;  // short_line's, by count
 };
 
 }  // namespace

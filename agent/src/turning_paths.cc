@@ -9,6 +9,8 @@
 // a row's exit faces (or lands on air) leaves the load; the rest goes on.
 #include "directional_march.h"
 
+#include <agent/normal_cdf.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -41,13 +43,11 @@ struct AxisPaths {
   int from = 0, to = -1;            // the agents they cover
 };
 
-double cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
-
 template <class Slots>
 class TurningPaths {
  public:
   TurningPaths(const Positions& positions, const Fan& fan, const DirectionalCoefficients& k, Sinks& out)
-      : pos_(positions), fan_(fan), k_(k), out_(out) {}
+      : pos_(positions), fan_(fan), k_(k), out_(out), cdf(NormalCdf::table()) {}
 
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
@@ -157,6 +157,10 @@ class TurningPaths {
     }
     p.force.assign(std::size_t(n_w), 0.0);
     p.shear.assign(std::size_t(n_w), 0.0);
+    if (dim == 2) {  // 1 where what an agent carries leaves the body (a factor: no branch per direction)
+      leaving_.resize(std::size_t(n_w));
+      for (int i = 0; i < n_w; ++i) leaving_[i] = leaves(f, here, past, i, 0, last_layer, goes_on) ? 1.0 : 0.0;
+    }
     p.from = n_w;
     p.to = -1;
     for (int dir = 0; dir < k_.directions; ++dir) {
@@ -179,13 +183,7 @@ class TurningPaths {
       const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
       const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
       const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
-      double exits = 0;
-      for (int i = from; i <= to; ++i) {
-        const double m = p.mass[dir] * shares_[i - from] / total;
-        p.force[i] += m;
-        p.shear[i] += m * slope;
-        if (dim == 2 && leaves(f, here, past, i, 0, last_layer, goes_on)) exits += m;
-      }
+      const double exits = deposit(p, p.mass[dir] / total, slope, from, to, dim == 2);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
       p.from = std::min(p.from, from);
       p.to = std::max(p.to, to);
@@ -193,38 +191,52 @@ class TurningPaths {
     return true;
   }
 
+  // Adds a direction's force (`scale` x shares_) and shear (x `slope`) to agents from..to of the
+  // row; with `exits`, returns what leaves through their exit faces (leaving_).
+  double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits) {
+    const double* share = shares_.data() - from;
+    double* force = p.force.data();
+    double* shear = p.shear.data();
+    double left = 0;
+    for (int i = from; i <= to; ++i) {
+      const double m = share[i] * scale;
+      force[i] += m;
+      shear[i] += m * slope;
+    }
+    if (exits)
+      for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
+    return left;
+  }
+
   // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and
   // returns their sum. Each agent's share: the Gaussian's mass over it plus its images' (mirrored at
   // the run's ends). A run is agents only, each one agent long (only air slots are wider), so agent
-  // i's upper edge is agent i + 1's lower one: the cdf is taken once per edge and image.
+  // i's upper edge is agent i + 1's lower one, (pos[from] + i + 1) agents up: the cdf is taken once
+  // per edge and image.
   double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
-    const double* pos = pos_.at[p.axis].data();
     const int count = to - from + 1;
-    shares_.assign(std::size_t(count), 0.0);
-    edge_cdf_.resize(std::size_t(count) + 1);
-    double* edge_cdf = edge_cdf_.data();
-    auto edge = [&](int j) { return j < count ? pos[from + j] * p.size : (pos[to] + 1) * p.size; };
-    const std::array<double, 3> centres{x, 2 * edge_lo - x, 2 * edge_hi - x};
-    for (int image = 0; image < 3; ++image) {
-      const double c = centres[image];
-      if (image == 0) {
-        for (int j = 0; j <= count; ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-      } else if (image == 1) {
-        // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
-        int j = 0;
-        for (; j <= count && (j == 0 || edge_cdf[j - 1] < 1.0); ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-        for (; j <= count; ++j) edge_cdf[j] = 1.0;
-      } else {
-        // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
-        // tail is by 1.
-        int j = count;
-        for (; j >= 0 && (j == count || edge_cdf[j + 1] >= kNegligibleCdf); --j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-        for (; j >= 0; --j) edge_cdf[j] = 0.0;
-      }
-      for (int i = 0; i < count; ++i) shares_[i] += edge_cdf[i + 1] - edge_cdf[i];
-    }
+    for (auto* v : {&main_, &low_, &high_}) v->resize(std::size_t(count) + 1);
+    shares_.resize(std::size_t(count));
+    const double first = pos_.at[p.axis][from], size = p.size, per_spread = 1 / spread;
+    auto z = [&](int j, double centre) { return ((first + j) * size - centre) * per_spread; };
+    for (int j = 0; j <= count; ++j) main_[j] = cdf(z(j, x));
+    // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
+    const double below = 2 * edge_lo - x, above = 2 * edge_hi - x;
+    int j = 0;
+    for (; j <= count && (j == 0 || low_[j - 1] < 1.0); ++j) low_[j] = cdf(z(j, below));
+    std::fill(low_.begin() + j, low_.end(), 1.0);
+    // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
+    // tail is by 1.
+    for (j = count; j >= 0 && (j == count || high_[j + 1] >= kNegligibleCdf); --j) high_[j] = cdf(z(j, above));
+    std::fill(high_.begin(), high_.begin() + (j + 1), 0.0);
     double total = 0;
-    for (int i = 0; i < count; ++i) total += shares_[i];
+    for (int i = 0; i < count; ++i) {
+      double share = main_[i + 1] - main_[i];
+      share += low_[i + 1] - low_[i];
+      share += high_[i + 1] - high_[i];
+      shares_[i] = share;
+      total += share;
+    }
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
@@ -283,7 +295,10 @@ class TurningPaths {
   const DirectionalCoefficients& k_;
   Sinks& out_;
   std::vector<double> row_force_;
-  std::vector<double> shares_, edge_cdf_;  // per agent of a direction's window; per edge
+  std::vector<double> shares_;  // per agent of a direction's window
+  std::vector<double> main_, low_, high_;  // per edge of the window: the Gaussian's cdf, its images'
+  std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
+  const NormalCdf& cdf;  // Phi, the deposit's Gaussian's distribution function
 };
 
 }  // namespace

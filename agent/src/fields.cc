@@ -99,7 +99,56 @@ Datums choose_datums(const Grid& grid, const std::vector<EntryLoad>& loads) {
   return datums;
 }
 
+namespace {
+
+/// node_displacements on a dense grid: one block, so a column's line is its strain integrated
+/// along the whole axis and every node of the column gets it. The same sums in the same order as
+/// the general walk (bit for bit), with strides in place of the block lookups, which cost nine
+/// tenths of it.
+std::vector<double> dense_node_displacements(const Grid& grid, const std::vector<double>& strains,
+                                             const Datums& datums) {
+  const int dim = grid.dim;
+  const auto nodes = grid.node_counts();
+  const std::array<std::size_t, 3> node_stride{1, std::size_t(nodes[0]), std::size_t(nodes[0]) * nodes[1]};
+  std::vector<double> u(grid.node_count() * dim, 0.0);
+  std::vector<double> line;
+  for (int a = 0; a < dim; ++a) {
+    const int l0 = lateral_axes(a).l0, l1 = lateral_axes(a).l1, n = grid.cells[a];
+    const double position = std::min(std::max(datums[a], 0.0), double(n));
+    const int datum_cell = std::min(int(position), n - 1);
+    const double frac = position - datum_cell, h = grid.size[a];
+    const std::size_t step = grid.stride(a), node_step = node_stride[a];
+    line.assign(std::size_t(n) + 1, 0.0);
+    for (int v = 0; v < grid.cells[l1]; ++v)
+      for (int w = 0; w < grid.cells[l0]; ++w) {
+        const std::size_t first = grid.stride(l0) * w + grid.stride(l1) * v;
+        double carried = 0.0;
+        for (int r = 0; r < n; ++r) line[r + 1] = carried = carried + strains[3 * (first + r * step) + a] * h;
+        const double below = line[datum_cell], above = line[datum_cell + 1];
+        const double shift = below + frac * (above - below);
+        for (int dv = 0; dv < (dim == 3 ? 2 : 1); ++dv)
+          for (int dw = 0; dw < 2; ++dw) {
+            double* at = u.data() + (node_stride[l0] * (w + dw) + node_stride[l1] * (v + dv)) * dim + a;
+            for (int i = 0; i <= n; ++i) at[i * node_step * dim] += line[i] - shift;
+          }
+      }
+    // Every node: the columns beside it.
+    auto beside = [](int i, int cells) { return double(std::min(i, cells - 1) - std::max(i - 1, 0) + 1); };
+    for (int k = 0; k < nodes[2]; ++k)
+      for (int j = 0; j < nodes[1]; ++j)
+        for (int i = 0; i < nodes[0]; ++i) {
+          const std::array<int, 3> p{i, j, k};
+          u[(i + node_stride[1] * j + node_stride[2] * k) * dim + a] /=
+              beside(p[l0], grid.cells[l0]) * (dim == 3 ? beside(p[l1], grid.cells[l1]) : 1.0);
+        }
+  }
+  return u;
+}
+
+}  // namespace
+
 std::vector<double> node_displacements(const Grid& grid, const std::vector<double>& strains, const Datums& datums) {
+  if (!grid.tiled()) return dense_node_displacements(grid, strains, datums);
   // Column by column along each axis: a column's line (its strain integrated from the box's lower
   // side, then shifted to zero at the datum) is added to the nodes of its cells, and each node is
   // divided by the number of columns beside it. Only stored slots are walked (agent/slots.h,

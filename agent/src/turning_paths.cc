@@ -217,17 +217,18 @@ class TurningPaths {
     const int count = to - from + 1;
     for (auto* v : {&main_, &low_, &high_}) v->resize(std::size_t(count) + 1);
     shares_.resize(std::size_t(count));
-    const double first = pos_.at[p.axis][from], size = p.size, per_spread = 1 / spread;
-    auto z = [&](int j, double centre) { return ((first + j) * size - centre) * per_spread; };
-    for (int j = 0; j <= count; ++j) main_[j] = cdf(z(j, x));
+    // Edge j at z = z0 + j step, z0 the first edge's (in spreads from the Gaussian's centre)
+    const double step = p.size / spread, first = pos_.at[p.axis][from] * step;
+    const double z_main = first - x / spread, z_low = first - (2 * edge_lo - x) / spread,
+                 z_high = first - (2 * edge_hi - x) / spread;
+    for (int j = 0; j <= count; ++j) main_[j] = cdf(z_main + j * step);
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
-    const double below = 2 * edge_lo - x, above = 2 * edge_hi - x;
     int j = 0;
-    for (; j <= count && (j == 0 || low_[j - 1] < 1.0); ++j) low_[j] = cdf(z(j, below));
+    for (; j <= count && (j == 0 || low_[j - 1] < 1.0); ++j) low_[j] = cdf(z_low + j * step);
     std::fill(low_.begin() + j, low_.end(), 1.0);
     // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
     // tail is by 1.
-    for (j = count; j >= 0 && (j == count || high_[j + 1] >= kNegligibleCdf); --j) high_[j] = cdf(z(j, above));
+    for (j = count; j >= 0 && (j == count || high_[j + 1] >= kNegligibleCdf); --j) high_[j] = cdf(z_high + j * step);
     std::fill(high_.begin(), high_.begin() + (j + 1), 0.0);
     double total = 0;
     for (int i = 0; i < count; ++i) {

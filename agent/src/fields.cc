@@ -273,38 +273,38 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
     const int o_sides = dim == 3 ? 2 : 1;  // the node lines along o beside a column
     const int component = dim == 3 ? shear_pair(a, l) : 0;
     const double h_l = grid.size[l];
-    // (i along l, k counted from the rigid face along a, j along o)
+    // (i along l, k counted from the rigid face along a, j along o; a dense box: by strides)
+    const std::array<std::size_t, 3> node_stride{1, std::size_t(nodes[0]), std::size_t(nodes[0]) * nodes[1]};
     auto agent = [&](int i, int k, int j) {
-      std::array<int, 3> c{0, 0, 0};
-      c[l] = i;
-      c[a] = base_low ? k : n_a - 1 - k;
-      c[o] = j;
-      return grid.index(c[0], c[1], c[2]);
+      return grid.stride(l) * i + grid.stride(a) * (base_low ? k : n_a - 1 - k) + grid.stride(o) * j;
     };
     auto node = [&](int i, int k, int j) {
-      std::array<int, 3> c{0, 0, 0};
-      c[l] = i;
-      c[a] = base_low ? k : n_a - k;
-      c[o] = j;
-      return grid.node_index(c[0], c[1], c[2]);
+      return node_stride[l] * i + node_stride[a] * (base_low ? k : n_a - k) + node_stride[o] * j;
     };
     // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at the nodes of
     // its edges along a; a node takes the mean of the columns beside it.
     std::vector<double> march(std::size_t(n_l + 1) * (n_a + 1) * o_nodes, 0.0), line(march.size(), 0.0);
     auto at = [&](int i, int k, int j) { return std::size_t(i) + std::size_t(n_l + 1) * (k + std::size_t(n_a + 1) * j); };
     auto share = [](int index, int count) { return index == 0 || index == count ? 1.0 : 0.5; };  // of a node
-    for (int j = 0; j < n_o; ++j)
+    // u_a on the face across l at column i at mid-height of agent k (the mean of its nodes), per k:
+    // a column's upper face is the next one's lower face, so each face is taken once.
+    std::vector<double> mid_low(n_a, 0.0), mid_high(n_a, 0.0);
+    auto mids = [&](int column, int j, std::vector<double>& out) {
+      for (int k = 0; k < n_a; ++k) {
+        double sum = 0;
+        for (int dj = 0; dj < o_sides; ++dj)
+          sum += u[node(column, k, j + dj) * dim + a] + u[node(column, k + 1, j + dj) * dim + a];
+        out[k] = sum / (2.0 * (o_sides));
+      }
+    };
+    for (int j = 0; j < n_o; ++j) {
+      mids(0, j, mid_high);
       for (int i = 0; i < n_l; ++i) {
+        std::swap(mid_low, mid_high);
+        mids(i + 1, j, mid_high);
         double carried = 0;
         for (int k = 0; k < n_a; ++k) {
-          // u_a on the column's face across l at mid-height of agent k (the mean of its nodes)
-          auto mid = [&](int column) {
-            double sum = 0;
-            for (int dj = 0; dj < o_sides; ++dj)
-              sum += u[node(column, k, j + dj) * dim + a] + u[node(column, k + 1, j + dj) * dim + a];
-            return sum / (2.0 * (o_sides));
-          };
-          const double dua_dl = (mid(i + 1) - mid(i)) / h_l;
+          const double dua_dl = (mid_high[k] - mid_low[k]) / h_l;
           carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
           for (int dj = 0; dj < o_sides; ++dj) {
             const double w_o = share(j + dj, n_o);  // 1 in 2D: a single line
@@ -313,6 +313,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
           }
         }
       }
+    }
     // eps_l integrated along each line of nodes along l (a node line's strain: the mean of the agent
     // lines beside it), the line's constant the mean over it of the marches.
     for (int j = 0; j < o_nodes; ++j)

@@ -157,9 +157,13 @@ class TurningPaths {
     }
     p.force.assign(std::size_t(n_w), 0.0);
     p.shear.assign(std::size_t(n_w), 0.0);
+    any_leaving_ = false;
     if (dim == 2) {  // 1 where what an agent carries leaves the body (a factor: no branch per direction)
       leaving_.resize(std::size_t(n_w));
-      for (int i = 0; i < n_w; ++i) leaving_[i] = leaves(f, here, past, i, 0, last_layer, goes_on) ? 1.0 : 0.0;
+      for (int i = 0; i < n_w; ++i) {
+        leaving_[i] = leaves(f, here, past, i, 0, last_layer, goes_on) ? 1.0 : 0.0;
+        any_leaving_ = any_leaving_ || leaving_[i] != 0;
+      }
     }
     p.from = n_w;
     p.to = -1;
@@ -203,7 +207,7 @@ class TurningPaths {
       force[i] += m;
       shear[i] += m * slope;
     }
-    if (exits)
+    if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
     return left;
   }
@@ -215,29 +219,34 @@ class TurningPaths {
   // per edge and image.
   double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
     const int count = to - from + 1;
-    for (auto* v : {&main_, &low_, &high_}) v->resize(std::size_t(count) + 1);
+    main_.resize(std::size_t(count) + 1);
     shares_.resize(std::size_t(count));
     // Edge j at z = z0 + j step, z0 the first edge's (in spreads from the Gaussian's centre)
     const double step = p.size / spread, first = pos_.at[p.axis][from] * step;
     const double z_main = first - x / spread, z_low = first - (2 * edge_lo - x) / spread,
                  z_high = first - (2 * edge_hi - x) / spread;
     for (int j = 0; j <= count; ++j) main_[j] = cdf(z_main + j * step);
-    // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
-    int j = 0;
-    for (; j <= count && (j == 0 || low_[j - 1] < 1.0); ++j) low_[j] = cdf(z_low + j * step);
-    std::fill(low_.begin() + j, low_.end(), 1.0);
-    // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
-    // tail is by 1.
-    for (j = count; j >= 0 && (j == count || high_[j + 1] >= kNegligibleCdf); --j) high_[j] = cdf(z_high + j * step);
-    std::fill(high_.begin(), high_.begin() + (j + 1), 0.0);
-    double total = 0;
-    for (int i = 0; i < count; ++i) {
-      double share = main_[i + 1] - main_[i];
-      share += low_[i + 1] - low_[i];
-      share += high_[i + 1] - high_[i];
-      shares_[i] = share;
-      total += share;
+    for (int i = 0; i < count; ++i) shares_[i] = main_[i + 1] - main_[i];
+    // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
+    // the agents from there on are skipped.
+    double below = cdf(z_low);
+    for (int j = 1; j <= count && below < 1.0; ++j) {
+      const double next = cdf(z_low + j * step);
+      shares_[j - 1] += next - below;
+      below = next;
     }
+    // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
+    // lower image's tail is by 1; below it every edge's is 0 and adds 0.
+    double above = cdf(z_high + count * step);
+    int j = count - 1;
+    for (; j >= 0 && above >= kNegligibleCdf; --j) {
+      const double next = cdf(z_high + j * step);
+      shares_[j] += above - next;
+      above = next;
+    }
+    if (j >= 0) shares_[j] += above;
+    double total = 0;
+    for (int i = 0; i < count; ++i) total += shares_[i];
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
@@ -297,8 +306,9 @@ class TurningPaths {
   Sinks& out_;
   std::vector<double> row_force_;
   std::vector<double> shares_;  // per agent of a direction's window
-  std::vector<double> main_, low_, high_;  // per edge of the window: the Gaussian's cdf, its images'
+  std::vector<double> main_;  // per edge of the window: the Gaussian's cdf
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
+  bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const NormalCdf& cdf;  // Phi, the deposit's Gaussian's distribution function
 };
 

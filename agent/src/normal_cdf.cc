@@ -1,6 +1,6 @@
 // The table of agent::NormalCdf: per interval the Chebyshev interpolant of Phi at kDegree + 1
-// points, in powers of the interval's coordinate u in [-1, 1], computed in long double so that
-// the doubles kept are Phi's to their last bits.
+// points, in powers of the interval's coordinate v in [-1/2, 1/2], computed in long double so
+// that the doubles kept are Phi's to their last bits.
 #include <agent/normal_cdf.h>
 
 #include <cmath>
@@ -27,7 +27,8 @@ struct ChebyshevPoints {
   }
 };
 
-/// Monomial coefficients of the interpolant of Phi on [a, b] at the Chebyshev points.
+/// Monomial coefficients of the interpolant of Phi on [a, b] at the Chebyshev points, in powers of
+/// v = u / 2 (u in [-1, 1] across the interval).
 void fit_interval(const ChebyshevPoints& cheb, Real a, Real b, double* out) {
   constexpr int n = kPoints;
   Real values[n];
@@ -49,15 +50,16 @@ void fit_interval(const ChebyshevPoints& cheb, Real a, Real b, double* out) {
       t_this[i] = t_next[i];
     }
   }
-  for (int i = 0; i < n; ++i) out[i] = double(mono[i]);
+  Real scale = 1;  // u^i = 2^i v^i
+  for (int i = 0; i < n; ++i, scale *= 2) out[i] = double(mono[i] * scale);
 }
 
 }  // namespace
 
 NormalCdf::NormalCdf() {
   const ChebyshevPoints cheb;
-  for (int i = 0; i < kIntervals; ++i)
-    fit_interval(cheb, -kReach + Real(i) / kPerUnit, -kReach + Real(i + 1) / kPerUnit, coefficients_[i]);
+  for (int i = 0; i < kIntervals; ++i)  // interval i centred at -kReach + i / kPerUnit
+    fit_interval(cheb, -kReach + (i - 0.5L) / kPerUnit, -kReach + (i + 0.5L) / kPerUnit, coefficients_[i]);
 }
 
 const NormalCdf& NormalCdf::table() {

@@ -245,8 +245,12 @@ class TurningPaths {
       above = next;
     }
     if (j >= 0) shares_[j] += above;
-    double total = 0;
-    for (int i = 0; i < count; ++i) total += shares_[i];
+    double partial[4] = {0, 0, 0, 0};  // four sums, so that the adds do not wait on each other
+    int i = 0;
+    for (; i + 4 <= count; i += 4)
+      for (int k = 0; k < 4; ++k) partial[k] += shares_[i + k];
+    for (; i < count; ++i) partial[0] += shares_[i];
+    double total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;

@@ -43,11 +43,12 @@ struct AxisPaths {
   int from = 0, to = -1;            // the agents they cover
 };
 
-template <class Slots>
+/// `Cdf`: NormalCdf, or ExactNormalCdf under ExactFunctions.
+template <class Slots, class Cdf>
 class TurningPaths {
  public:
   TurningPaths(const Positions& positions, const Fan& fan, const DirectionalCoefficients& k, Sinks& out)
-      : pos_(positions), fan_(fan), k_(k), out_(out), cdf(NormalCdf::table()) {}
+      : pos_(positions), fan_(fan), k_(k), out_(out), cdf(Cdf::table()) {}
 
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
@@ -313,14 +314,22 @@ class TurningPaths {
   std::vector<double> main_;  // per edge of the window: the Gaussian's cdf
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
-  const NormalCdf& cdf;  // Phi, the deposit's Gaussian's distribution function
+  const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function
 };
+
+template <class Slots>
+using TablePaths = TurningPaths<Slots, NormalCdf>;
+template <class Slots>
+using ExactPaths = TurningPaths<Slots, ExactNormalCdf>;
 
 }  // namespace
 
 void march_turning(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                    const std::vector<EntryLoad>& loads, Sinks& out) {
-  march_loads<TurningPaths>(grid, k, gamma, loads, out);
+  if (ExactFunctions::active())
+    march_loads<ExactPaths>(grid, k, gamma, loads, out);
+  else
+    march_loads<TablePaths>(grid, k, gamma, loads, out);
 }
 
 }  // namespace directional

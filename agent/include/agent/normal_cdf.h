@@ -23,16 +23,17 @@ class NormalCdf {
   static const NormalCdf& table();
 
   double operator()(double z) const {
-    const double t = -std::abs(z);  // the lower half; the upper by symmetry, rounded at 1
-    double s = (t + kReach) * kPerUnit;
-    s = s > 0 ? s : 0.0;  // below -10 (or NaN): -10
-    // s rounded to the nearest whole number i, in the low bits of s + 1.5 2^52 (no conversion to
-    // int and back; needs IEEE doubles rounding to nearest, as C++ does without -ffast-math)
-    constexpr double kRound = 6755399441055744.0;
-    const double r = s + kRound;
+    double t = -std::abs(z);           // the lower half; the upper by symmetry, rounded at 1
+    t = t > -kReach ? t : -kReach;     // below -10 (or NaN): -10
+    const double ts = t * kPerUnit;    // exact (a power of 2), in [-160, 0]
+    // ts rounded to the nearest whole number m: 160 + m is interval i, in the low bits of
+    // ts + 160 + 1.5 2^52 (no conversion to int and back; needs IEEE doubles rounding to
+    // nearest, as C++ has them without -ffast-math). v = ts - m exactly: t's every bit counts.
+    constexpr double kRound = 6755399441055744.0 + kReach * kPerUnit;
+    const double r = ts + kRound;
     std::uint64_t bits;
     std::memcpy(&bits, &r, sizeof bits);
-    const double v = s - (r - kRound);  // in [-1/2, 1/2] across interval i
+    const double v = ts - (r - kRound);  // in [-1/2, 1/2] across interval i
     const double* c = coefficients_[bits & 0xffff];
     // Estrin's scheme: short chains, so that the edges' evaluations overlap
     const double v2 = v * v, v4 = v2 * v2;
@@ -47,5 +48,29 @@ class NormalCdf {
 
 /// Phi(z) (NormalCdf::table()); loops take the table once and call it.
 inline double normal_cdf(double z) { return NormalCdf::table()(z); }
+
+/// Phi(z) = 0.5 std::erfc(-z / sqrt 2): what NormalCdf stands for, called where ExactFunctions
+/// asks for it. The same interface as NormalCdf.
+struct ExactNormalCdf {
+  static const ExactNormalCdf& table();
+  double operator()(double z) const { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+};
+
+/// While one lives on a thread, the agent model there takes the library's functions (std::erfc,
+/// ExactNormalCdf) in place of its tables: the reference the tests bound the tables against
+/// (tests/agent/test_normal_cdf.cc), and a way to check any result. Slower; the fields differ by
+/// round-off (docs/performance.md, "Issue 38").
+class ExactFunctions {
+ public:
+  ExactFunctions();
+  ~ExactFunctions();
+  ExactFunctions(const ExactFunctions&) = delete;
+  ExactFunctions& operator=(const ExactFunctions&) = delete;
+  /// Whether one lives on this thread.
+  static bool active();
+
+ private:
+  bool outer_;  ///< active() before this one
+};
 
 }  // namespace agent

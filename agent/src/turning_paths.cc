@@ -226,7 +226,14 @@ class TurningPaths {
     const double step = p.size / spread, first = pos_.at[p.axis][from] * step;
     const double z_main = first - x / spread, z_low = first - (2 * edge_lo - x) / spread,
                  z_high = first - (2 * edge_hi - x) / spread;
-    for (int j = 0; j <= count; ++j) main_[j] = cdf(z_main + j * step);
+    // (within 6 spreads and an agent, at most 3.4 spreads, of the centre: inside the table)
+    int j = 0;
+    for (; j <= count; ++j) {
+      const double z = z_main + j * step;
+      if (z > 0) break;
+      main_[j] = cdf.lower(z);
+    }
+    for (; j <= count; ++j) main_[j] = 1 - cdf.lower(-(z_main + j * step));
     for (int i = 0; i < count; ++i) shares_[i] = main_[i + 1] - main_[i];
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
     // the agents from there on are skipped.
@@ -239,7 +246,7 @@ class TurningPaths {
     // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
     // lower image's tail is by 1; below it every edge's is 0 and adds 0.
     double above = cdf(z_high + count * step);
-    int j = count - 1;
+    j = count - 1;
     for (; j >= 0 && above >= kNegligibleCdf; --j) {
       const double next = cdf(z_high + j * step);
       shares_[j] += above - next;

@@ -23,9 +23,16 @@ class NormalCdf {
   static const NormalCdf& table();
 
   double operator()(double z) const {
-    double t = -std::abs(z);           // the lower half; the upper by symmetry, rounded at 1
-    t = t > -kReach ? t : -kReach;     // below -10 (or NaN): -10
-    const double ts = t * kPerUnit;    // exact (a power of 2), in [-160, 0]
+    double t = -std::abs(z);        // the lower half; the upper by symmetry, rounded at 1
+    t = t > -kReach ? t : -kReach;  // below -10 (or NaN): -10
+    const double p = lower(t);
+    return z > 0 ? 1 - p : p;
+  }
+
+  /// Phi(t) for t in [-kReach, 0] (not checked): what operator() takes, for loops that know the
+  /// sign of their z and their range (no test, no choice per call).
+  double lower(double t) const {
+    const double ts = t * kPerUnit;  // exact (a power of 2), in [-160, 0]
     // ts rounded to the nearest whole number m: 160 + m is interval i, in the low bits of
     // ts + 160 + 1.5 2^52 (no conversion to int and back; needs IEEE doubles rounding to
     // nearest, as C++ has them without -ffast-math). v = ts - m exactly: t's every bit counts.
@@ -37,8 +44,7 @@ class NormalCdf {
     const double* c = coefficients_[bits & 0xffff];
     // Estrin's scheme: short chains, so that the edges' evaluations overlap
     const double v2 = v * v, v4 = v2 * v2;
-    const double p = ((c[0] + c[1] * v) + v2 * (c[2] + c[3] * v)) + v4 * ((c[4] + c[5] * v) + v2 * (c[6] + c[7] * v));
-    return z > 0 ? 1 - p : p;
+    return ((c[0] + c[1] * v) + v2 * (c[2] + c[3] * v)) + v4 * ((c[4] + c[5] * v) + v2 * (c[6] + c[7] * v));
   }
 
  private:
@@ -54,6 +60,7 @@ inline double normal_cdf(double z) { return NormalCdf::table()(z); }
 struct ExactNormalCdf {
   static const ExactNormalCdf& table();
   double operator()(double z) const { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+  double lower(double t) const { return (*this)(t); }
 };
 
 /// While one lives on a thread, the agent model there takes the library's functions (std::erfc,

@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace agent {
@@ -45,12 +47,13 @@ class SlopeFit {
       return;
     }
     const bool kept = count > 2 * reach_;
-    std::vector<double> c;
+    const std::vector<std::vector<double>>* line = kept ? nullptr : &short_line(count);
     for (int j = 0; j < count; ++j) {
       int first = 0;
-      const std::vector<double>* use = &c;
+      const std::vector<double>* use = nullptr;
       if (!kept) {
-        weights(j, count, c, first);
+        use = &(*line)[std::size_t(j)];
+        first = std::max(0, j - reach_);
       } else if (j < reach_) {
         use = &low_[j];
       } else if (j + reach_ >= count) {
@@ -67,6 +70,20 @@ class SlopeFit {
   }
 
  private:
+  /// Every entry's weights on a line of `count` <= 2 reach entries (no interior entry): the same
+  /// for every line of that length, so computed on the first (a box's lines all have one length;
+  /// per entry they cost a 3 x 3 LU, two thirds of a 3D solve).
+  const std::vector<std::vector<double>>& short_line(int count) const {
+    if (short_.size() <= std::size_t(count)) short_.resize(std::size_t(count) + 1);
+    auto& line = short_[std::size_t(count)];
+    if (line.empty()) {
+      line.resize(std::size_t(count));
+      int first = 0;
+      for (int j = 0; j < count; ++j) weights(j, count, line[std::size_t(j)], first);
+    }
+    return line;
+  }
+
   /// Entry j's weights on a line of `count` entries, for the entries from `first` on.
   void weights(int j, int count, std::vector<double>& c, int& first) const {
     first = std::max(0, j - reach_);
@@ -96,6 +113,7 @@ class SlopeFit {
   int reach_;
   std::vector<double> inner_;
   std::vector<std::vector<double>> low_, high_;  // by distance to the line's lower / upper end
+  mutable std::vector<std::vector<std::vector<double>>> short_;  // short_line's, by count
 };
 
 }  // namespace
@@ -135,11 +153,65 @@ void runs_along(const Grid& g, int b, F&& f) {
     }
 }
 
-/// An agent's lower side along axis `a`, in agents from the box's lower side (the transfer's
-/// lateral positions: collapsed air planes keep their true distance).
-double position(const Grid& g, std::size_t cell, int a) {
-  return std::round((g.centre(cell)[a] - g.origin[a]) / g.size[a] - 0.5);
-}
+/// A run of agents along an axis: its slot ids in order (a view into Lines).
+struct Run {
+  const std::size_t* first_id;
+  std::size_t count;
+  std::size_t size() const { return count; }
+  std::size_t operator[](std::size_t i) const { return first_id[i]; }
+  std::size_t front() const { return first_id[0]; }
+  std::size_t back() const { return first_id[count - 1]; }
+  const std::size_t* begin() const { return first_id; }
+  const std::size_t* end() const { return first_id + count; }
+};
+
+/// What every step of one directional_stress_components call walks, taken once: the runs of
+/// agents along each axis (runs_along's, in its order) with their first agent's box coordinates,
+/// each slot's position along each axis, and a slope fit per window. Walked afresh per step,
+/// the runs and positions were a fifth of a 3D solve.
+class Lines {
+ public:
+  explicit Lines(const Grid& grid) : g(grid) {
+    for (int b = 0; b < g.dim; ++b) {
+      start_[b].push_back(0);
+      runs_along(g, b, [&](const std::vector<std::size_t>& run) {
+        cells_[b].insert(cells_[b].end(), run.begin(), run.end());
+        start_[b].push_back(cells_[b].size());
+        first_[b].push_back(g.coords(run.front()));
+      });
+      for (int i = 0; i < g.cells[b]; ++i) position_[b].push_back(std::round((centre_along(b, i) - g.origin[b]) / g.size[b] - 0.5));
+    }
+  }
+  const Grid& g;
+
+  /// Calls f(run, k) for each run k of agents along axis b, in runs_along's order.
+  template <class F>
+  void along(int b, F&& f) const {
+    for (std::size_t k = 0; k + 1 < start_[b].size(); ++k) f(Run{cells_[b].data() + start_[b][k], start_[b][k + 1] - start_[b][k]}, k);
+  }
+  /// Box coordinates of the first agent of run k along b.
+  const std::array<int, 3>& first(int b, std::size_t k) const { return first_[b][k]; }
+  /// An agent's lower side along axis a, in agents from the box's lower side (the transfer's
+  /// lateral positions: collapsed air planes keep their true distance), for coordinate i along a.
+  double position(int a, int i) const { return position_[a][std::size_t(i)]; }
+  /// The slope fit of `window` entries (made on first use).
+  const SlopeFit& fit(double window) const {
+    for (const auto& f : fits_)
+      if (f.first == window) return *f.second;
+    fits_.emplace_back(window, std::make_unique<SlopeFit>(window));
+    return *fits_.back().second;
+  }
+
+ private:
+  /// Grid::centre's coordinate along a of the slots with coordinate i along a.
+  double centre_along(int a, int i) const {
+    return g.planes[a].empty() ? g.origin[a] + (i + 0.5) * g.size[a] : 0.5 * (g.plane(a, i) + g.plane(a, i + 1));
+  }
+  std::array<std::vector<std::size_t>, 3> cells_, start_;
+  std::array<std::vector<std::array<int, 3>>, 3> first_;
+  std::array<std::vector<double>, 3> position_;
+  mutable std::vector<std::pair<double, std::unique_ptr<SlopeFit>>> fits_;
+};
 
 /// Per-agent scratch fields of one directional_stress_components call, reused by every step (a step's
 /// are dead when the next starts): at a million agents fresh pages cost about as much as the
@@ -150,12 +222,13 @@ struct Scratch {
 
 /// d/d(position along a) [per m] of a per-agent field (stride `stride`, offset `at`), fitted along
 /// each run of agents along a, into `out` (0 on air).
-void derivative_along(const Grid& g, int a, const std::vector<double>& field, int stride, int at, double window,
+void derivative_along(const Lines& lines, int a, const std::vector<double>& field, int stride, int at, double window,
                       std::vector<double>& out) {
+  const Grid& g = lines.g;
   out.assign(g.count(), 0.0);
   std::vector<double> values, slopes;
-  const SlopeFit fit(window);
-  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+  const SlopeFit& fit = lines.fit(window);
+  lines.along(a, [&](const Run& run, std::size_t) {
     const int count = int(run.size());
     values.resize(run.size());
     slopes.resize(run.size());
@@ -175,8 +248,9 @@ void derivative_along(const Grid& g, int a, const std::vector<double>& field, in
 /// the run's width W (zero at the free ends), mode m (wave number k = m pi / W) reaching height y
 /// above the face as (1 - k y / 2) exp(-k y): Airy's phi = B y exp(-k y) sin(k x), which leaves the
 /// face's normal stress alone (docs/agent-model.md, "The bonded base layer"). No coefficient.
-void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double nu,
+void half_plane_layer(const Lines& lines, int a, int l, int exit_side, const std::vector<double>& normal, double nu,
                       std::vector<double>& layer, std::vector<double>& column_of_end) {
+  const Grid& g = lines.g;
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
@@ -184,11 +258,11 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
   // The columns along a that end on a rigid exit face, their agents from the face on, by end agent.
   std::vector<std::vector<std::size_t>> columns;
   column_of_end.assign(g.count(), -1.0);  // -1: not the end of such a column (a scratch field of doubles)
-  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+  lines.along(a, [&](const Run& run, std::size_t) {
     const std::size_t end = up ? run.back() : run.front();
     if (g.boundary(exit_side, end) != Boundary::Rigid) return;
     column_of_end[end] = double(columns.size());
-    columns.emplace_back(run);
+    columns.emplace_back(run.begin(), run.end());
     if (up) std::reverse(columns.back().begin(), columns.back().end());
   });
   if (columns.empty()) return;
@@ -252,7 +326,7 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
         layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), n);
     }
   };
-  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+  lines.along(l, [&](const Run& run, std::size_t) {
     base.clear();
     for (std::size_t c : run) {
       if (column_of_end[c] >= 0) {
@@ -270,8 +344,9 @@ void half_plane_layer(const Grid& g, int a, int l, int exit_side, const std::vec
 /// height above the face, d_side the distance to the line's nearer end along l, ell = `ell_share`
 /// x the width of the pressure on the face (sqrt(12 variance) of its agents' |sigma_a|, at most
 /// their extent). Into `layer` (zeroed).
-void local_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
+void local_layer(const Lines& lines, int a, int l, int exit_side, const std::vector<double>& normal, double ell_share,
                  double nu, std::vector<double>& layer, std::vector<double>& height) {
+  const Grid& g = lines.g;
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
@@ -279,7 +354,7 @@ void local_layer(const Grid& g, int a, int l, int exit_side, const std::vector<d
   // Per agent: its height above a rigid exit face at the end of its run along a (-1: none).
   height.assign(g.count(), -1.0);
   double weight = 0, mean = 0, square = 0, lo = 1e300, hi = -1e300;
-  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+  lines.along(a, [&](const Run& run, std::size_t) {
     const std::size_t count = run.size(), end = up ? run.back() : run.front();
     if (g.boundary(exit_side, end) != Boundary::Rigid) return;
     for (std::size_t j = 0; j < count; ++j) height[run[j]] = double(up ? count - 1 - j : j) * h_a + 0.5 * h_a;
@@ -296,7 +371,7 @@ void local_layer(const Grid& g, int a, int l, int exit_side, const std::vector<d
   const double variance = std::max(0.0, square / weight - mean * mean);
   const double ell = ell_share * std::min(std::sqrt(12 * variance), hi - lo);
   if (!(ell > 0)) return;
-  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+  lines.along(l, [&](const Run& run, std::size_t) {
     const int count = int(run.size());
     for (int i = 0; i < count; ++i) {
       const double y = height[run[i]];
@@ -310,14 +385,15 @@ void local_layer(const Grid& g, int a, int l, int exit_side, const std::vector<d
 /// Adds a layer across l to sigma_l and its shear (stride, component) by horizontal equilibrium:
 /// d tau / d(along a) = -d layer / d(along l), tau = 0 at each run's end away from the face
 /// (`exit_side`). `gradient` is scratch.
-void add_layer(const Grid& g, int a, int l, int exit_side, const std::vector<double>& layer,
+void add_layer(const Lines& lines, int a, int l, int exit_side, const std::vector<double>& layer,
                std::vector<double>& gradient, std::vector<double>& sigma, std::vector<double>& shear, int stride,
                int component) {
+  const Grid& g = lines.g;
   const int dim = g.dim;
   const double h_a = g.size[a], h_l = g.size[l];
   const bool up = is_positive(exit_side);
   gradient.assign(g.count(), 0.0);
-  runs_along(g, l, [&](const std::vector<std::size_t>& run) {  // d layer / d(position along l)
+  lines.along(l, [&](const Run& run, std::size_t) {  // d layer / d(position along l)
     const int count = int(run.size());
     for (int i = 0; i < count; ++i) {
       const int p = std::max(0, i - 1), q = std::min(count - 1, i + 1);
@@ -325,7 +401,7 @@ void add_layer(const Grid& g, int a, int l, int exit_side, const std::vector<dou
     }
   });
   for (std::size_t c = 0; c < layer.size(); ++c) sigma[c * dim + l] += layer[c];
-  runs_along(g, a, [&](const std::vector<std::size_t>& run) {
+  lines.along(a, [&](const Run& run, std::size_t) {
     const int count = int(run.size());
     double sum = 0;
     for (int n = 0; n < count; ++n) {
@@ -363,41 +439,44 @@ struct AxisPair {
 /// The balance's shear along (a, l), subtracted from out.shear: tau = -d Q / d(along a), Q its
 /// sigma_a integrated along l; its force at an agent is slope x (position - the layer's mean
 /// position), in agents (as the transfer). Leaves the derivative in scratch.second.
-void add_balance_shear(const Grid& g, const AxisPair& p, const double* slopes, double window, StressComponents& out,
-                       Scratch& scratch) {
+void add_balance_shear(const Lines& lines, const AxisPair& p, const double* slopes, double window,
+                       StressComponents& out, Scratch& scratch) {
+  const Grid& g = lines.g;
   const std::size_t n = g.count();
   const int shears = shear_count(g.dim), a = p.a, l = p.l;
   const double area = g.face_area(a), h_l = g.size[l];
   std::vector<double>& field = scratch.first;
   std::vector<double>& derivative = scratch.second;
   std::vector<double> sum_layer(std::size_t(g.cells[a]), 0.0), count_layer(std::size_t(g.cells[a]), 0.0);
-  for (std::size_t c = 0; c < n; ++c)
-    if (!g.is_air(c)) {
-      const int j = g.coords(c)[a];
-      sum_layer[j] += position(g, c, l);
-      count_layer[j] += 1;
-    }
+  // (whole numbers of agents: their sums do not depend on the order they are taken in)
+  lines.along(l, [&](const Run& run, std::size_t k) {
+    const auto& first = lines.first(l, k);
+    for (std::size_t i = 0; i < run.size(); ++i) sum_layer[first[a]] += lines.position(l, first[l] + int(i));
+    count_layer[first[a]] += double(run.size());
+  });
   field.assign(n, 0.0);
-  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
-    const int j = g.coords(run.front())[a];
+  lines.along(l, [&](const Run& run, std::size_t k) {
+    const auto& first = lines.first(l, k);
+    const int j = first[a];
     const double slope = slopes[2 * j + p.which];
     if (slope == 0) return;
     double q = 0;
-    for (std::size_t c : run) {
-      const double s = -slope * (position(g, c, l) - sum_layer[j] / count_layer[j]) / area * h_l;
-      field[c] = q + 0.5 * s;
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      const double s = -slope * (lines.position(l, first[l] + int(i)) - sum_layer[j] / count_layer[j]) / area * h_l;
+      field[run[i]] = q + 0.5 * s;
       q += s;
     }
   });
-  derivative_along(g, a, field, 1, 0, window, derivative);  // the balance's shear
+  derivative_along(lines, a, field, 1, 0, window, derivative);  // the balance's shear
   for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + p.component] -= derivative[c];
 }
 
 /// The turning paths' components along (a, l) after the balance's shear (stress_components.h):
 /// in 2D each hole's shear, then the tie (horizontal equilibrium scanned along each run of l) and
 /// the bonded rigid face's layer.
-void add_tie_and_layer(const Grid& g, const AxisPair& p, const std::vector<double>& normal,
+void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<double>& normal,
                        const DirectionalCoefficients& k, double nu_layer, StressComponents& out, Scratch& scratch) {
+  const Grid& g = lines.g;
   const std::size_t n = g.count();
   const int dim = g.dim, shears = shear_count(dim), a = p.a, l = p.l;
   const LateralAxes lat = lateral_axes(a);
@@ -409,16 +488,16 @@ void add_tie_and_layer(const Grid& g, const AxisPair& p, const std::vector<doubl
   }
   // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
   // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
-  derivative_along(g, a, out.shear, shears, p.component, k.window_length / g.size[a], derivative);
+  derivative_along(lines, a, out.shear, shears, p.component, k.window_length / g.size[a], derivative);
   if (dim == 3) {  // and -d tau_lo / d(along o), o the other lateral axis (the packets' tau_xz)
     const int o = l == lat.l0 ? lat.l1 : lat.l0;
     std::vector<double> across;
-    derivative_along(g, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
+    derivative_along(lines, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
     for (std::size_t c = 0; c < n; ++c) derivative[c] += across[c];
   }
   const std::vector<double>& dtau = derivative;
   std::vector<double> faces;
-  runs_along(g, l, [&](const std::vector<std::size_t>& run) {
+  lines.along(l, [&](const Run& run, std::size_t) {
     const std::size_t count = run.size();
     faces.assign(count + 1, 0.0);
     for (std::size_t i = 0; i < count; ++i) faces[i + 1] = faces[i] - h_l * dtau[run[i]];
@@ -427,18 +506,18 @@ void add_tie_and_layer(const Grid& g, const AxisPair& p, const std::vector<doubl
     for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
   });
   if (dim == 2) {
-    half_plane_layer(g, a, l, p.exit_side, normal, nu_layer, scratch.second, scratch.first);
+    half_plane_layer(lines, a, l, p.exit_side, normal, nu_layer, scratch.second, scratch.first);
   } else {
-    local_layer(g, a, l, p.exit_side, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
+    local_layer(lines, a, l, p.exit_side, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
   }
-  add_layer(g, a, l, p.exit_side, scratch.second, scratch.third, out.sigma, out.shear, shears, p.component);
+  add_layer(lines, a, l, p.exit_side, scratch.second, scratch.third, out.sigma, out.shear, shears, p.component);
 }
 
 /// What a path type adds along (a, l) after the balance's shear, per Paths value (kPathNames'
 /// order): the turning paths the tie and the layer; the mirror paths nothing.
-using PathStresses = void (*)(const Grid&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
+using PathStresses = void (*)(const Lines&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
                               double, StressComponents&, Scratch&);
-void mirror_path_stresses(const Grid&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
+void mirror_path_stresses(const Lines&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
                           double, StressComponents&, Scratch&) {}
 constexpr PathStresses kPathStresses[] = {add_tie_and_layer, mirror_path_stresses};
 static_assert(std::size(kPathStresses) == std::size(kPathNames), "a stress step per path type");
@@ -474,6 +553,7 @@ StressComponents directional_stress_components(const Grid& g, const std::vector<
   const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
   const PathStresses path_stresses = kPathStresses[int(k.paths)];
   Scratch scratch;
+  const Lines lines(g);
   for (int a = 0; a < dim; ++a) {
     const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
     if (load == loads.end()) continue;  // no load marches along a: nothing written for it
@@ -482,8 +562,8 @@ StressComponents directional_stress_components(const Grid& g, const std::vector<
     for (int which = 0; which < dim - 1; ++which) {
       const int l = which == 0 ? lat.l0 : lat.l1;
       const AxisPair pair{a, l, which, dim == 3 ? shear_pair(a, l) : 0, load->dir};
-      add_balance_shear(g, pair, slopes, k.window_length / g.size[a], out, scratch);
-      path_stresses(g, pair, normal, k, nu_layer, out, scratch);
+      add_balance_shear(lines, pair, slopes, k.window_length / g.size[a], out, scratch);
+      path_stresses(lines, pair, normal, k, nu_layer, out, scratch);
     }
   }
   fill_von_mises(g, out);

@@ -9,6 +9,8 @@
 // a row's exit faces (or lands on air) leaves the load; the rest goes on.
 #include "directional_march.h"
 
+#include <agent/normal_cdf.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -41,13 +43,12 @@ struct AxisPaths {
   int from = 0, to = -1;            // the agents they cover
 };
 
-double cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
-
-template <class Slots>
+/// `Cdf`: NormalCdf, or ExactNormalCdf under ExactFunctions.
+template <class Slots, class Cdf>
 class TurningPaths {
  public:
   TurningPaths(const Positions& positions, const Fan& fan, const DirectionalCoefficients& k, Sinks& out)
-      : pos_(positions), fan_(fan), k_(k), out_(out) {}
+      : pos_(positions), fan_(fan), k_(k), out_(out), cdf(Cdf::table()) {}
 
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
@@ -157,6 +158,14 @@ class TurningPaths {
     }
     p.force.assign(std::size_t(n_w), 0.0);
     p.shear.assign(std::size_t(n_w), 0.0);
+    any_leaving_ = false;
+    if (dim == 2) {  // 1 where what an agent carries leaves the body (a factor: no branch per direction)
+      leaving_.resize(std::size_t(n_w));
+      for (int i = 0; i < n_w; ++i) {
+        leaving_[i] = leaves(f, here, past, i, 0, last_layer, goes_on) ? 1.0 : 0.0;
+        any_leaving_ = any_leaving_ || leaving_[i] != 0;
+      }
+    }
     p.from = n_w;
     p.to = -1;
     for (int dir = 0; dir < k_.directions; ++dir) {
@@ -179,13 +188,7 @@ class TurningPaths {
       const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
       const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
       const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
-      double exits = 0;
-      for (int i = from; i <= to; ++i) {
-        const double m = p.mass[dir] * shares_[i - from] / total;
-        p.force[i] += m;
-        p.shear[i] += m * slope;
-        if (dim == 2 && leaves(f, here, past, i, 0, last_layer, goes_on)) exits += m;
-      }
+      const double exits = deposit(p, p.mass[dir] / total, slope, from, to, dim == 2);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
       p.from = std::min(p.from, from);
       p.to = std::max(p.to, to);
@@ -193,38 +196,69 @@ class TurningPaths {
     return true;
   }
 
+  // Adds a direction's force (`scale` x shares_) and shear (x `slope`) to agents from..to of the
+  // row; with `exits`, returns what leaves through their exit faces (leaving_).
+  double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits) {
+    const double* share = shares_.data() - from;
+    double* force = p.force.data();
+    double* shear = p.shear.data();
+    double left = 0;
+    for (int i = from; i <= to; ++i) {
+      const double m = share[i] * scale;
+      force[i] += m;
+      shear[i] += m * slope;
+    }
+    if (exits && any_leaving_)  // (else every term is 0)
+      for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
+    return left;
+  }
+
   // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and
   // returns their sum. Each agent's share: the Gaussian's mass over it plus its images' (mirrored at
   // the run's ends). A run is agents only, each one agent long (only air slots are wider), so agent
-  // i's upper edge is agent i + 1's lower one: the cdf is taken once per edge and image.
+  // i's upper edge is agent i + 1's lower one, (pos[from] + i + 1) agents up: the cdf is taken once
+  // per edge and image.
   double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
-    const double* pos = pos_.at[p.axis].data();
     const int count = to - from + 1;
-    shares_.assign(std::size_t(count), 0.0);
-    edge_cdf_.resize(std::size_t(count) + 1);
-    double* edge_cdf = edge_cdf_.data();
-    auto edge = [&](int j) { return j < count ? pos[from + j] * p.size : (pos[to] + 1) * p.size; };
-    const std::array<double, 3> centres{x, 2 * edge_lo - x, 2 * edge_hi - x};
-    for (int image = 0; image < 3; ++image) {
-      const double c = centres[image];
-      if (image == 0) {
-        for (int j = 0; j <= count; ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-      } else if (image == 1) {
-        // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 (adds 0).
-        int j = 0;
-        for (; j <= count && (j == 0 || edge_cdf[j - 1] < 1.0); ++j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-        for (; j <= count; ++j) edge_cdf[j] = 1.0;
-      } else {
-        // The upper image lies above every edge: a negligible cdf is dropped, as the lower image's
-        // tail is by 1.
-        int j = count;
-        for (; j >= 0 && (j == count || edge_cdf[j + 1] >= kNegligibleCdf); --j) edge_cdf[j] = cdf((edge(j) - c) / spread);
-        for (; j >= 0; --j) edge_cdf[j] = 0.0;
-      }
-      for (int i = 0; i < count; ++i) shares_[i] += edge_cdf[i + 1] - edge_cdf[i];
+    main_.resize(std::size_t(count) + 1);
+    shares_.resize(std::size_t(count));
+    // Edge j at z = z0 + j step, z0 the first edge's (in spreads from the Gaussian's centre)
+    const double step = p.size / spread, first = pos_.at[p.axis][from] * step;
+    const double z_main = first - x / spread, z_low = first - (2 * edge_lo - x) / spread,
+                 z_high = first - (2 * edge_hi - x) / spread;
+    // (within 6 spreads and an agent, at most 3.4 spreads, of the centre: inside the table)
+    int j = 0;
+    for (; j <= count; ++j) {
+      const double z = z_main + j * step;
+      if (z > 0) break;
+      main_[j] = cdf.lower(z);
     }
-    double total = 0;
-    for (int i = 0; i < count; ++i) total += shares_[i];
+    for (; j <= count; ++j) main_[j] = 1 - cdf.lower(-(z_main + j * step));
+    for (int i = 0; i < count; ++i) shares_[i] = main_[i + 1] - main_[i];
+    // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
+    // the agents from there on are skipped.
+    double below = cdf(z_low);
+    for (int j = 1; j <= count && below < 1.0; ++j) {
+      const double next = cdf(z_low + j * step);
+      shares_[j - 1] += next - below;
+      below = next;
+    }
+    // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
+    // lower image's tail is by 1; below it every edge's is 0 and adds 0.
+    double above = cdf(z_high + count * step);
+    j = count - 1;
+    for (; j >= 0 && above >= kNegligibleCdf; --j) {
+      const double next = cdf(z_high + j * step);
+      shares_[j] += above - next;
+      above = next;
+    }
+    if (j >= 0) shares_[j] += above;
+    double partial[4] = {0, 0, 0, 0};  // four sums, so that the adds do not wait on each other
+    int i = 0;
+    for (; i + 4 <= count; i += 4)
+      for (int k = 0; k < 4; ++k) partial[k] += shares_[i + k];
+    for (; i < count; ++i) partial[0] += shares_[i];
+    double total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
@@ -283,14 +317,26 @@ class TurningPaths {
   const DirectionalCoefficients& k_;
   Sinks& out_;
   std::vector<double> row_force_;
-  std::vector<double> shares_, edge_cdf_;  // per agent of a direction's window; per edge
+  std::vector<double> shares_;  // per agent of a direction's window
+  std::vector<double> main_;  // per edge of the window: the Gaussian's cdf
+  std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
+  bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
+  const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function
 };
+
+template <class Slots>
+using TablePaths = TurningPaths<Slots, NormalCdf>;
+template <class Slots>
+using ExactPaths = TurningPaths<Slots, ExactNormalCdf>;
 
 }  // namespace
 
 void march_turning(const Grid& grid, const DirectionalCoefficients& k, double gamma,
                    const std::vector<EntryLoad>& loads, Sinks& out) {
-  march_loads<TurningPaths>(grid, k, gamma, loads, out);
+  if (ExactFunctions::active())
+    march_loads<ExactPaths>(grid, k, gamma, loads, out);
+  else
+    march_loads<TablePaths>(grid, k, gamma, loads, out);
 }
 
 }  // namespace directional

@@ -12,6 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <list>
+#include <map>
+#include <mutex>
 #include <ostream>
 #include <sstream>
 
@@ -22,6 +25,76 @@ using workbench::Error;
 using workbench::Range;
 
 namespace {
+
+/// The meshes this process imported, by file (its path and bytes) and parameters: a study opened
+/// again on the same mesh (a Python call with other loads or coefficients, a front's or a
+/// calibration's case read again) copies its grid from here instead of meshing again, a tenth of
+/// a 2 mm seed plate's call. A file that may read others (a .geo's Merge, Include, ...) is
+/// imported every time: its own bytes do not say what it reads. The last kMeshCacheSize imports
+/// are kept, none larger than kMeshCacheBytes.
+class MeshCache {
+ public:
+  agent::ImportedMesh get(const fs::path& file, const std::map<std::string, double>& parameters) {
+    std::string bytes = read_bytes(file);
+    const bool keep = !reads_other_files(bytes);
+    if (keep) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      for (auto it = entries_.begin(); it != entries_.end(); ++it)
+        if (it->file == file && it->parameters == parameters && it->bytes == bytes) {
+          entries_.splice(entries_.begin(), entries_, it);  // most recent first
+          return it->mesh;
+        }
+    }
+    auto mesh = agent::import_mesh(file, parameters);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++imports_;
+    if (!keep || bytes_of(mesh) + bytes.size() > kMeshCacheBytes) return mesh;
+    entries_.push_front({file, parameters, std::move(bytes), mesh});
+    if (entries_.size() > kMeshCacheSize) entries_.pop_back();
+    return mesh;
+  }
+  std::size_t imports() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return imports_;
+  }
+
+ private:
+  static constexpr std::size_t kMeshCacheSize = 4;
+  static constexpr std::size_t kMeshCacheBytes = std::size_t(64) << 20;
+  struct Entry {
+    fs::path file;
+    std::map<std::string, double> parameters;
+    std::string bytes;
+    agent::ImportedMesh mesh;
+  };
+  static std::string read_bytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // gmsh's commands that read another file (a .geo's; a .msh names none of them)
+  static bool reads_other_files(const std::string& bytes) {
+    for (const char* command : {"Merge", "Include", "ShapeFromFile", "Import"})
+      if (bytes.find(command) != std::string::npos) return true;
+    return false;
+  }
+  static std::size_t bytes_of(const agent::ImportedMesh& m) {
+    std::size_t faces = 0;
+    for (const auto& [name, group] : m.face_groups) faces += group.size();
+    return m.grid.flags.size() + m.grid.tiles.memory_bytes() + sizeof(std::size_t) * m.cell_of_element.size() +
+           sizeof(agent::BoundaryFace) * faces;
+  }
+  std::mutex mutex_;
+  std::list<Entry> entries_;
+  std::size_t imports_ = 0;
+};
+
+MeshCache& mesh_cache() {
+  static MeshCache cache;
+  return cache;
+}
+
 /// Keys whose unit changed: refused with the new key, so that an old case is not read in the wrong unit.
 void refuse_renamed_keys(const workbench::CaseTable& t) {
   t.refuse_renamed("diffusion", "diffusion_length", "in metres: diffusion [mm] / 1000");
@@ -128,7 +201,7 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
   read_agent_section(root, study.coefficients, study.rules);
   study.readings = read_readings(root.table("agent"), study.rules);
   try {
-    study.mesh = agent::import_mesh(study.setup.mesh_file, study.setup.mesh_parameters);
+    study.mesh = mesh_cache().get(study.setup.mesh_file, study.setup.mesh_parameters);
   } catch (const std::runtime_error& e) {
     throw Error(e.what());
   }
@@ -191,6 +264,8 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
   }
   return study;
 }
+
+std::size_t mesh_imports() { return mesh_cache().imports(); }
 
 double entering_load(const AgentStudy& study, double factor) {
   double sum = 0;

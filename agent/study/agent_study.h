@@ -53,8 +53,14 @@ agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rule
 void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTable& t);
 
 /// Reads the common setup and [agent], builds the mesh and the entry loads. Does not reject
-/// unknown keys: the caller does, once every module has read its sections.
+/// unknown keys: the caller does, once every module has read its sections. A mesh this process
+/// imported before from the same file (the same bytes) and parameters is copied, not meshed
+/// again (load steps, calibration trial points and Python calls that change only loads or
+/// coefficients reuse the grid); a .geo that reads other files is meshed every time.
 AgentStudy load_agent_study(const workbench::CaseFile& file);
+
+/// The meshes this process has imported (meshed or read, not copied from an earlier import).
+std::size_t mesh_imports();
 
 /// Everything the agent model gives for one load state (agent/state.h).
 using AgentState = agent::AgentState;

@@ -63,6 +63,44 @@ TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
   EXPECT_GT(max_uy, -1e-7);
 }
 
+TEST(AgentStudy, ImportsAMeshOnceWhateverTheLoadsAndCoefficients) {
+  auto load = [](const std::string& text) {
+    workbench::CaseFile file(write_file("cached.toml", text));
+    return agent_study::load_agent_study(file);
+  };
+  auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+  };
+  const std::size_t before = agent_study::mesh_imports();
+  const auto first = load(plate_case());
+  const std::size_t after_first = agent_study::mesh_imports();
+  EXPECT_LE(after_first, before + 1);  // (an earlier test of this process may have imported it)
+  // Other loads, coefficients, rule set: the same grid, copied.
+  const auto other = load(replaced(replaced(plate_case(), "force = 2.0", "force = 5.0"), "gamma = 1e-6",
+                                   "gamma = 1e-3"));
+  EXPECT_EQ(agent_study::mesh_imports(), after_first);
+  EXPECT_EQ(other.mesh.grid.flags, first.mesh.grid.flags);
+  EXPECT_EQ(other.mesh.cell_of_element, first.mesh.cell_of_element);
+  EXPECT_DOUBLE_EQ(other.loads.front().force, 2.5);
+  // Other mesh parameters: meshed again.
+  load(replaced(plate_case(), "h = 0.01", "h = 0.005"));
+  EXPECT_EQ(agent_study::mesh_imports(), after_first + 1);
+  // The same name with other bytes: meshed again; a .geo that may read other files: every time.
+  const std::string geo = test_support::read_file(kMeshes + "plate2d.geo");
+  const std::string own = replaced(plate_case(), kMeshes + "plate2d.geo", (test_support::scratch_folder() / "own.geo").string());
+  write_file("own.geo", geo);
+  load(own);
+  load(own);
+  EXPECT_EQ(agent_study::mesh_imports(), after_first + 2);
+  write_file("own.geo", geo + "// edited\n");
+  load(own);
+  EXPECT_EQ(agent_study::mesh_imports(), after_first + 3);
+  write_file("own.geo", geo + "// Merge nothing\n");
+  load(own);
+  load(own);
+  EXPECT_EQ(agent_study::mesh_imports(), after_first + 5);
+}
+
 TEST(AgentStudy, WritesEveryStepAndTheTables) {
   workbench::CaseFile file(write_file("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);

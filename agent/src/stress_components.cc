@@ -268,41 +268,36 @@ void half_plane_layer(const Lines& lines, int a, int l, int exit_side, const std
   if (columns.empty()) return;
   constexpr double kReach = 40;  // k y beyond which a mode adds less than 1e-16 of its amplitude
   std::vector<std::size_t> base, first;
-  std::vector<double> sine, amplitude, reach;
+  std::vector<double> sine, amplitude, reach, modes_at;
   auto layer_of = [&]() {  // one base run
     const int count = int(base.size());
     // Mode m at agent n: sin(pi m (2 n + 1) / (2 count)) = sine[m (2 n + 1) mod 4 count]; the
-    // sums over m step through the table by 2 n + 1 (a subtraction, not a division per term).
+    // modes of agent n step through the table by 2 n + 1 (a subtraction, not a division per term),
+    // into modes_at once per agent.
     const std::size_t period = 4 * std::size_t(count);
     sine.resize(period);
+    modes_at.resize(std::size_t(count));
     for (std::size_t q = 0; q < period; ++q) sine[q] = std::sin(kPi * double(q) / (2.0 * count));
-    // sum_{m = 1}^{modes} weight[m - 1] sin(m theta_n), in four partial sums (modes m, m + 4, ...)
-    // so that the adds do not wait on each other
-    auto sum_modes = [&](const double* weight, int modes, int n) {
+    auto take_modes = [&](int n) {
       const std::size_t step = 2 * std::size_t(n) + 1;
-      const std::size_t step4 = (4 * step) % period;
-      std::size_t q[4] = {step % period, 2 * step % period, 3 * step % period, 4 * step % period};
+      for (std::size_t m = 0, q = step; m < std::size_t(count); ++m, q = q + step >= period ? q + step - period : q + step)
+        modes_at[m] = sine[q];
+    };
+    // sum_{m = 1}^{modes} weight[m - 1] sin(m theta_n) (sin(m theta_n) in at[m - 1]), in four
+    // partial sums (modes m, m + 4, ...) so that the adds do not wait on each other
+    auto sum_modes = [&](const double* weight, int modes, const double* at) {
       double sum[4] = {0, 0, 0, 0};
       int m = 0;
       for (; m + 4 <= modes; m += 4)
-        for (int j = 0; j < 4; ++j) {
-          sum[j] += weight[m + j] * sine[q[j]];
-          q[j] += step4;
-          q[j] = q[j] >= period ? q[j] - period : q[j];
-        }
-      for (int j = 0; m < modes; ++m, ++j) sum[j] += weight[m] * sine[q[j]];
+        for (int j = 0; j < 4; ++j) sum[j] += weight[m + j] * at[m + j];
+      for (int j = 0; m < modes; ++m, ++j) sum[j] += weight[m] * at[m];
       return (sum[0] + sum[1]) + (sum[2] + sum[3]);
     };
     amplitude.assign(std::size_t(count), 0.0);  // S's sine amplitude per mode m = 1..count
     for (int n = 0; n < count; ++n) {
       const double s_n = nu * normal[base[n] * dim + a];
-      const std::size_t step = 2 * std::size_t(n) + 1;
-      std::size_t q = step;
-      for (int m = 0; m < count; ++m) {
-        amplitude[m] += s_n * sine[q];
-        q += step;
-        q = q >= period ? q - period : q;
-      }
+      take_modes(n);
+      for (int m = 0; m < count; ++m) amplitude[m] += s_n * modes_at[m];
     }
     for (int m = 0; m < count; ++m) amplitude[m] *= (m == count - 1 ? 1.0 : 2.0) / count;
     // Per height r above the face, each mode's amplitude there: rows [first[r], first[r + 1]).
@@ -321,9 +316,10 @@ void half_plane_layer(const Lines& lines, int a, int l, int exit_side, const std
       first[r + 1] = reach.size();
     }
     for (int n = 0; n < count; ++n) {
+      take_modes(n);  // for the whole column
       const std::vector<std::size_t>& column = columns[std::size_t(column_of_end[base[n]])];
       for (std::size_t r = 0; r < column.size(); ++r)
-        layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), n);
+        layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), modes_at.data());
     }
   };
   lines.along(l, [&](const Run& run, std::size_t) {

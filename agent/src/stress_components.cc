@@ -153,16 +153,15 @@ void runs_along(const Grid& g, int b, F&& f) {
     }
 }
 
-/// A run of agents along an axis: its slot ids in order (a view into Lines).
+/// A run of agents along an axis: its slot ids in order, first + i stride on a dense grid, else
+/// stored in Lines.
 struct Run {
-  const std::size_t* first_id;
-  std::size_t count;
+  const std::size_t* ids;  ///< nullptr on a dense grid
+  std::size_t first, stride, count;
   std::size_t size() const { return count; }
-  std::size_t operator[](std::size_t i) const { return first_id[i]; }
-  std::size_t front() const { return first_id[0]; }
-  std::size_t back() const { return first_id[count - 1]; }
-  const std::size_t* begin() const { return first_id; }
-  const std::size_t* end() const { return first_id + count; }
+  std::size_t operator[](std::size_t i) const { return ids ? ids[i] : first + i * stride; }
+  std::size_t front() const { return (*this)[0]; }
+  std::size_t back() const { return (*this)[count - 1]; }
 };
 
 /// What every step of one directional_stress_components call walks, taken once: the runs of
@@ -173,9 +172,12 @@ class Lines {
  public:
   explicit Lines(const Grid& grid) : g(grid) {
     for (int b = 0; b < g.dim; ++b) {
+      const std::size_t stride = g.tiled() ? 0 : g.stride(b);
       start_[b].push_back(0);
       runs_along(g, b, [&](const std::vector<std::size_t>& run) {
-        cells_[b].insert(cells_[b].end(), run.begin(), run.end());
+        // (a dense grid's ids follow from the first: only a tiled grid's are kept)
+        if (g.tiled()) cells_[b].insert(cells_[b].end(), run.begin(), run.end());
+        runs_[b].push_back(Run{nullptr, run.front(), stride, run.size()});
         start_[b].push_back(cells_[b].size());
         first_[b].push_back(g.coords(run.front()));
       });
@@ -187,7 +189,11 @@ class Lines {
   /// Calls f(run, k) for each run k of agents along axis b, in runs_along's order.
   template <class F>
   void along(int b, F&& f) const {
-    for (std::size_t k = 0; k + 1 < start_[b].size(); ++k) f(Run{cells_[b].data() + start_[b][k], start_[b][k + 1] - start_[b][k]}, k);
+    for (std::size_t k = 0; k < runs_[b].size(); ++k) {
+      Run run = runs_[b][k];
+      if (g.tiled()) run.ids = cells_[b].data() + start_[b][k];
+      f(run, k);
+    }
   }
   /// Box coordinates of the first agent of run k along b.
   const std::array<int, 3>& first(int b, std::size_t k) const { return first_[b][k]; }
@@ -207,7 +213,8 @@ class Lines {
   double centre_along(int a, int i) const {
     return g.planes[a].empty() ? g.origin[a] + (i + 0.5) * g.size[a] : 0.5 * (g.plane(a, i) + g.plane(a, i + 1));
   }
-  std::array<std::vector<std::size_t>, 3> cells_, start_;
+  std::array<std::vector<Run>, 3> runs_;
+  std::array<std::vector<std::size_t>, 3> cells_, start_;  // a tiled grid's ids, each run's first
   std::array<std::vector<std::array<int, 3>>, 3> first_;
   std::array<std::vector<double>, 3> position_;
   mutable std::vector<std::pair<double, std::unique_ptr<SlopeFit>>> fits_;
@@ -262,47 +269,43 @@ void half_plane_layer(const Lines& lines, int a, int l, int exit_side, const std
     const std::size_t end = up ? run.back() : run.front();
     if (g.boundary(exit_side, end) != Boundary::Rigid) return;
     column_of_end[end] = double(columns.size());
-    columns.emplace_back(run.begin(), run.end());
+    columns.emplace_back(run.size());
+    for (std::size_t i = 0; i < run.size(); ++i) columns.back()[i] = run[i];
     if (up) std::reverse(columns.back().begin(), columns.back().end());
   });
   if (columns.empty()) return;
   constexpr double kReach = 40;  // k y beyond which a mode adds less than 1e-16 of its amplitude
   std::vector<std::size_t> base, first;
-  std::vector<double> sine, amplitude, reach;
+  std::vector<double> sine, amplitude, reach, modes_at;
   auto layer_of = [&]() {  // one base run
     const int count = int(base.size());
     // Mode m at agent n: sin(pi m (2 n + 1) / (2 count)) = sine[m (2 n + 1) mod 4 count]; the
-    // sums over m step through the table by 2 n + 1 (a subtraction, not a division per term).
+    // modes of agent n step through the table by 2 n + 1 (a subtraction, not a division per term),
+    // into modes_at once per agent.
     const std::size_t period = 4 * std::size_t(count);
     sine.resize(period);
+    modes_at.resize(std::size_t(count));
     for (std::size_t q = 0; q < period; ++q) sine[q] = std::sin(kPi * double(q) / (2.0 * count));
-    // sum_{m = 1}^{modes} weight[m - 1] sin(m theta_n), in four partial sums (modes m, m + 4, ...)
-    // so that the adds do not wait on each other
-    auto sum_modes = [&](const double* weight, int modes, int n) {
+    auto take_modes = [&](int n) {
       const std::size_t step = 2 * std::size_t(n) + 1;
-      const std::size_t step4 = (4 * step) % period;
-      std::size_t q[4] = {step % period, 2 * step % period, 3 * step % period, 4 * step % period};
+      for (std::size_t m = 0, q = step; m < std::size_t(count); ++m, q = q + step >= period ? q + step - period : q + step)
+        modes_at[m] = sine[q];
+    };
+    // sum_{m = 1}^{modes} weight[m - 1] sin(m theta_n) (sin(m theta_n) in at[m - 1]), in four
+    // partial sums (modes m, m + 4, ...) so that the adds do not wait on each other
+    auto sum_modes = [&](const double* weight, int modes, const double* at) {
       double sum[4] = {0, 0, 0, 0};
       int m = 0;
       for (; m + 4 <= modes; m += 4)
-        for (int j = 0; j < 4; ++j) {
-          sum[j] += weight[m + j] * sine[q[j]];
-          q[j] += step4;
-          q[j] = q[j] >= period ? q[j] - period : q[j];
-        }
-      for (int j = 0; m < modes; ++m, ++j) sum[j] += weight[m] * sine[q[j]];
+        for (int j = 0; j < 4; ++j) sum[j] += weight[m + j] * at[m + j];
+      for (int j = 0; m < modes; ++m, ++j) sum[j] += weight[m] * at[m];
       return (sum[0] + sum[1]) + (sum[2] + sum[3]);
     };
     amplitude.assign(std::size_t(count), 0.0);  // S's sine amplitude per mode m = 1..count
     for (int n = 0; n < count; ++n) {
       const double s_n = nu * normal[base[n] * dim + a];
-      const std::size_t step = 2 * std::size_t(n) + 1;
-      std::size_t q = step;
-      for (int m = 0; m < count; ++m) {
-        amplitude[m] += s_n * sine[q];
-        q += step;
-        q = q >= period ? q - period : q;
-      }
+      take_modes(n);
+      for (int m = 0; m < count; ++m) amplitude[m] += s_n * modes_at[m];
     }
     for (int m = 0; m < count; ++m) amplitude[m] *= (m == count - 1 ? 1.0 : 2.0) / count;
     // Per height r above the face, each mode's amplitude there: rows [first[r], first[r + 1]).
@@ -321,14 +324,16 @@ void half_plane_layer(const Lines& lines, int a, int l, int exit_side, const std
       first[r + 1] = reach.size();
     }
     for (int n = 0; n < count; ++n) {
+      take_modes(n);  // for the whole column
       const std::vector<std::size_t>& column = columns[std::size_t(column_of_end[base[n]])];
       for (std::size_t r = 0; r < column.size(); ++r)
-        layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), n);
+        layer[column[r]] = sum_modes(reach.data() + first[r], int(first[r + 1] - first[r]), modes_at.data());
     }
   };
   lines.along(l, [&](const Run& run, std::size_t) {
     base.clear();
-    for (std::size_t c : run) {
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      const std::size_t c = run[i];
       if (column_of_end[c] >= 0) {
         base.push_back(c);
         continue;

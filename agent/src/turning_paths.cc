@@ -220,21 +220,27 @@ class TurningPaths {
   // per edge and image.
   double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
     const int count = to - from + 1;
-    main_.resize(std::size_t(count) + 1);
     shares_.resize(std::size_t(count));
     // Edge j at z = z0 + j step, z0 the first edge's (in spreads from the Gaussian's centre)
     const double step = p.size / spread, first = pos_.at[p.axis][from] * step;
     const double z_main = first - x / spread, z_low = first - (2 * edge_lo - x) / spread,
                  z_high = first - (2 * edge_hi - x) / spread;
-    // (within 6 spreads and an agent, at most 3.4 spreads, of the centre: inside the table)
-    int j = 0;
+    // Agent j - 1's share: the cdf at its upper edge j less the last (edges within 6 spreads and
+    // an agent, at most 3.4 spreads, of the centre: inside the table), below the centre and above.
+    double last = cdf(z_main);
+    int j = 1;
     for (; j <= count; ++j) {
       const double z = z_main + j * step;
       if (z > 0) break;
-      main_[j] = cdf.lower(z);
+      const double at = cdf.lower(z);
+      shares_[j - 1] = at - last;
+      last = at;
     }
-    for (; j <= count; ++j) main_[j] = 1 - cdf.lower(-(z_main + j * step));
-    for (int i = 0; i < count; ++i) shares_[i] = main_[i + 1] - main_[i];
+    for (; j <= count; ++j) {
+      const double at = 1 - cdf.lower(-(z_main + j * step));
+      shares_[j - 1] = at - last;
+      last = at;
+    }
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
     // the agents from there on are skipped.
     double below = cdf(z_low);
@@ -318,7 +324,6 @@ class TurningPaths {
   Sinks& out_;
   std::vector<double> row_force_;
   std::vector<double> shares_;  // per agent of a direction's window
-  std::vector<double> main_;  // per edge of the window: the Gaussian's cdf
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

@@ -1,9 +1,16 @@
 // The agent model's whole solve from an imported mesh (issue 38): set-up of the transfer model,
 // the transfer, every stress component, the strains and the node displacements at the full load,
 // i.e. agent_study::transfer_model(study) + agent_study::evaluate(study, model, 1.0). The mesh is
-// imported once, outside the timing. Results in docs/performance.md ("Issue 38").
+// imported once, outside the timing, and solved once as a warm-up (tables built, code paged in).
+// Results in docs/performance.md ("Issue 38").
 //
-//   taskset -c 1 build/bench/solve_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//   taskset -c 1 build/bench/solve_bench --benchmark_filter='^SeedPlateDirectional$' \
+//     --benchmark_repetitions=3 --benchmark_min_time=0.2
+//
+// One case per process: which cases ran before moves glibc's thresholds for giving freed memory
+// back, and on this project's virtual machines a fresh page costs 14-80 us. Run also with
+// GLIBC_TUNABLES=glibc.malloc.trim_threshold=4000000000:glibc.malloc.mmap_threshold=4000000000
+// (freed memory kept: the computation without the page faults).
 //
 // Cases (cases/): SeedPlateDirectional (2D, 2 mm, 10,000 agents), Block3dDirectional (block3d.toml
 // with rule_set = "directional" at its defaults, 2 mm cubes, 8,000 agents), and the seed's rule

@@ -1,6 +1,7 @@
 // The table the turning paths' deposit takes Phi from (agent/normal_cdf.h) against the library's
 // erfc, and whole solves with the table against the same solves with std::erfc (ExactFunctions):
 // the bounds docs/performance.md ("Issue 38") states.
+#include <agent/exact_functions.h>
 #include <agent/normal_cdf.h>
 #include <agent_study.h>
 

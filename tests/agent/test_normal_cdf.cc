@@ -147,7 +147,7 @@ void expect_fields_within(const agent_study::AgentStudy& study, double bound) {
 
 // The seed plate (2 mm, 10,000 agents), a plate with a hole, and the 40 mm block (2 mm cubes,
 // 8,000): the table moves no field by more than 2e-14 of its largest value (measured: 2e-16 on
-// the seed plate and the block, 2.2e-15 with the hole).
+// the seed plate and the block, 1.6e-15 with the hole).
 TEST(NormalCdf, WholeSolvesMatchTheExactFunctionsToRoundOff) {
   expect_fields_within(directional_study("seed_plate_directional.toml"), 2e-14);
   expect_fields_within(directional_study("plate_hole.toml"), 2e-14);

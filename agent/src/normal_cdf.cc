@@ -72,12 +72,4 @@ const ExactNormalCdf& ExactNormalCdf::table() {
   return cdf;
 }
 
-namespace {
-thread_local bool exact_functions = false;
-}  // namespace
-
-ExactFunctions::ExactFunctions() : outer_(exact_functions) { exact_functions = true; }
-ExactFunctions::~ExactFunctions() { exact_functions = outer_; }
-bool ExactFunctions::active() { return exact_functions; }
-
 }  // namespace agent

@@ -9,6 +9,7 @@
 // a row's exit faces (or lands on air) leaves the load; the rest goes on.
 #include "directional_march.h"
 
+#include <agent/exact_functions.h>
 #include <agent/normal_cdf.h>
 
 #include <algorithm>

@@ -56,28 +56,11 @@ class NormalCdf {
 inline double normal_cdf(double z) { return NormalCdf::table()(z); }
 
 /// Phi(z) = 0.5 std::erfc(-z / sqrt 2): what NormalCdf stands for, called where ExactFunctions
-/// asks for it. The same interface as NormalCdf.
+/// (agent/exact_functions.h) asks for it. The same interface as NormalCdf.
 struct ExactNormalCdf {
   static const ExactNormalCdf& table();
   double operator()(double z) const { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
   double lower(double t) const { return (*this)(t); }
-};
-
-/// While one lives on a thread, the agent model there takes the library's functions (std::erfc,
-/// ExactNormalCdf) in place of its tables: the reference the tests bound the tables against
-/// (tests/agent/test_normal_cdf.cc), and a way to check any result. Slower; the fields differ by
-/// round-off (docs/performance.md, "Issue 38").
-class ExactFunctions {
- public:
-  ExactFunctions();
-  ~ExactFunctions();
-  ExactFunctions(const ExactFunctions&) = delete;
-  ExactFunctions& operator=(const ExactFunctions&) = delete;
-  /// Whether one lives on this thread.
-  static bool active();
-
- private:
-  bool outer_;  ///< active() before this one
 };
 
 }  // namespace agent

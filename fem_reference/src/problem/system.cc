@@ -3,6 +3,7 @@
 // system and its assembly (or, for the multigrid, the right-hand side alone), and the solvers.
 #include "problem/elastic_problem.h"
 
+#include "direct/direct_solver.h"
 #include "elasticity.h"
 #include "mg/mg_solver.h"
 
@@ -22,7 +23,6 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <Eigen/Eigenvalues>
@@ -165,12 +165,13 @@ void ElasticProblem<dim>::setup_system() {
   phase(nullptr);
 
   const auto& o = problem_.options;
-  // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
-  // else multigrid on refined meshes (its coarse level by KLU or, when large, one ML cycle: in 3D
-  // 4x faster than ML on the whole problem, the solver sweep) and on unrefined Q2 meshes (a single
-  // level, the p-multigrid to Q1 under it: no Q2 matrix for ML), else ML (Q1 unrefined).
+  // auto: direct where the factorisation is cheap (direct_is_fast); else multigrid on refined
+  // meshes (its coarse level factorised or, when large, one ML cycle: in 3D 4x faster than ML on
+  // the whole problem, the solver sweep) and on unrefined Q2 meshes (a single level, the p-multigrid
+  // to Q1 under it: no Q2 matrix for ML), else ML (Q1 unrefined).
   direct_ = o.solver == SolverKind::Direct ||
-            (o.solver == SolverKind::Auto && direct_is_fast(double(dof_handler_.n_dofs()), dim, o.direct_limit));
+            (o.solver == SolverKind::Auto &&
+             direct_is_fast(double(dof_handler_.n_dofs()), slenderness(mesh_), o.direct_limit));
   use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
                              (o.solver == SolverKind::Auto && !direct_ && (o.refine > 0 || degree_ == 2)));
   rhs_.reinit(owned_, comm_);
@@ -426,11 +427,12 @@ void ElasticProblem<dim>::solve() {
     }
     return;
   } else if (direct_) {
-    SolverControl control(1, 0);
-    TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
-    TrilinosWrappers::SolverDirect solver(control, data);
-    solver.solve(matrix_, solution_, rhs_);
-    result_.solver = "direct (Amesos_Klu)";
+    phase("factorisation");
+    const DirectSolver direct(matrix_);
+    phase("direct solve");
+    direct.solve(solution_, rhs_);
+    phase(nullptr);
+    result_.solver = "direct (" + direct.name() + ")";
     result_.iterations = 0;
   } else {
     // ML smoothed aggregation with the rigid body modes as near-null space.

@@ -6,9 +6,11 @@
 // The 1 vs 2 MPI ranks comparison is bench/fem/mpi_ranks.sh.
 // Sweep (--sweep=dim,degree,cells,refine,solver): one solver on a unit square/cube, the solver sweep
 // of bench/fem/solver_sweep.py (is `auto` within 2x of the best solver everywhere?).
-// Small (--small=case,degree,n,solver,runs): the seed plate (case 0) or block3d (1) at mesh size
-// h = 8 mm / n, min and median of `runs` warm solve_fem calls without the mesh
-// (bench/fem/dolfinx_small.py).
+// BM_Small/case/degree/n/solver/runs, the ladder of issue 38 (Small/... with --small=case,degree,
+// n,solver,runs): the seed plate (case 0) or block3d (1) at mesh size h = 8 mm / n, or the sweep's
+// unit square (2) or cube (3) of n cells per side; min and median of `runs` warm solve_fem calls
+// without the mesh (bench/fem/dolfinx_small.py runs DOLFINx beside it):
+//   taskset -c 1 build/bench/fem/fem_bench --benchmark_filter=BM_Small
 #include <fem_reference/fem.h>
 #include <fem_reference/fem_case.h>
 
@@ -169,6 +171,8 @@ BENCHMARK(BM_PlateQ1)->DenseRange(0, 4)->Unit(benchmark::kSecond)->Iterations(1)
 BENCHMARK(BM_PlateQ2)->DenseRange(0, 3)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_PlateQ1Mg)->DenseRange(0, 4)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_PlateQ2Mg)->DenseRange(0, 3)->Unit(benchmark::kSecond)->Iterations(1);
+// The issue-38 ladder: both cases, Q1 and Q2, h = 8, 4, 2 mm, auto, 5 warm runs each.
+BENCHMARK(BM_Small)->ArgsProduct({{0, 1}, {1, 2}, {1, 2, 4}, {0}, {5}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 /// Standard Google Benchmark main, plus `--sweep=dim,degree,cells,refine,solver` (repeatable):
 /// registers Sweep/<those five> (bench/fem/solver_sweep.py runs one per process), and

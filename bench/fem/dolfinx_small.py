@@ -11,13 +11,16 @@ min and median of N runs after one warm-up.
              MUMPS Cholesky (SPD) and CG + GAMG (rigid body modes, 1e-10 as the workbench), and
              its best of the two counts.
 
-Prints per size both times, their ratio (DOLFINx best / workbench: above 1 the workbench is
-faster) and the largest |u| at the mesh vertices of each (they must agree).
+Prints per size both times (wall min / median and CPU min: on a shared machine the CPU time is the
+steadier measure), their ratio (DOLFINx best / workbench: above 1 the workbench is faster) and the
+largest |u| at the mesh vertices of each (they must agree). Beyond 50 000 DoFs 3 runs; MUMPS not
+beyond 60 000 DoFs in 3D (minutes).
 
   taskset -c 1 /usr/bin/python3 bench/fem/dolfinx_small.py [build-dir] [--runs N] [--only plate|block]
 
---crossover: the workbench alone, each solver (direct, amg; mg on Q2) at more sizes between
-(n = 1 to 6), wall and CPU min: where `auto` should switch from the direct solver.
+--crossover: the workbench alone, each solver (direct, amg; mg on Q2) at more sizes, on the two
+cases and on the solver sweep's unit square and cube (n cells per side), wall min / median and CPU
+min: where `auto` should switch from the direct solver (fem.direct_limit).
 """
 import argparse
 import json
@@ -43,9 +46,16 @@ PROBLEMS = {
     "plate": (0, (0.2, 0.2), 0.002, {1: (1, 2, 4, 8), 2: (1, 2, 4)}),
     "block": (1, (0.04, 0.04, 0.04), None, {1: (1, 2, 4, 8), 2: (1, 2, 4)}),
 }
-CROSSOVER = {"plate": {1: (1, 2, 3, 4, 5, 6), 2: (1, 2, 3)}, "block": {1: (1, 2, 3), 2: (1, 2)}}
+# name: (case index of fem_bench --small, n per degree)
+CROSSOVER = {
+    "plate": (0, {1: (1, 2, 3, 4, 5, 6), 2: (1, 2, 3)}),
+    "block": (1, {1: (1, 2, 3), 2: (1, 2)}),
+    "square": (2, {1: (25, 30, 35, 40, 45, 50), 2: (15, 20, 25, 30)}),
+    "cube": (3, {1: (5, 6, 7, 8, 9, 10), 2: (3, 4, 5)}),
+}
 SOLVERS = {"auto": 0, "direct": 1, "amg": 2, "mg": 3}  # fem_bench --small's solver index
 MUMPS_LIMIT_3D = 60000  # DoFs: beyond, MUMPS on a 3D mesh takes minutes (GAMG alone is timed)
+LARGE = 50000  # DoFs: beyond, 3 runs (each takes seconds) instead of --runs
 
 
 def make_mesh(size, n):
@@ -149,7 +159,7 @@ def workbench_times(build, case, degree, n, runs, solver="auto"):
     """fem_bench --small: wall min, median and CPU min seconds, largest |u|, DoFs, the solver's name."""
     out = subprocess.run([str(build / "bench" / "fem" / "fem_bench"),
                           f"--small={case},{degree},{n},{SOLVERS[solver]},{runs}",
-                          "--benchmark_filter=Small", "--benchmark_format=json"],
+                          "--benchmark_filter=^Small/", "--benchmark_format=json"],
                          capture_output=True, text=True, check=True)
     b = json.loads(out.stdout)["benchmarks"][0]
     return b["min_s"], b["median_s"], b["cpu_min_s"], b["u_max"], int(b["dofs"]), b["label"]
@@ -170,11 +180,13 @@ def peer(build, runs, only):
             continue
         for degree, ns in ladder.items():
             for n in ns:
-                ours = workbench_times(build, case, degree, n, runs)
-                dofs = ours[4]
-                mumps = (dolfinx_times(size, thickness, degree, n, "mumps", runs)
+                dofs = len(size) * (round(size[0] / LW * n) * degree + 1) ** len(size)
+                m = runs if dofs <= LARGE else 3
+                ours = workbench_times(build, case, degree, n, m)
+                assert ours[4] == dofs
+                mumps = (dolfinx_times(size, thickness, degree, n, "mumps", m)
                          if len(size) == 2 or dofs <= MUMPS_LIMIT_3D else None)
-                gamg = dolfinx_times(size, thickness, degree, n, "gamg", runs)
+                gamg = dolfinx_times(size, thickness, degree, n, "gamg", m)
                 best = min(t for t in (mumps, gamg) if t)
                 best_cpu = min(t[2] for t in (mumps, gamg) if t)
                 print(f"| {name} | {degree} | {8 / n:g} | {dofs} | {ms(ours)} | {ours[5]} | {ms(mumps)} | {ms(gamg)} "
@@ -183,17 +195,18 @@ def peer(build, runs, only):
 
 
 def crossover(build, runs, only):
-    print("| problem | Q | h [mm] | DoFs | direct min / median (CPU min) [ms] | amg | mg | auto picks |")
+    print("| problem | Q | mesh | DoFs | direct min / median (CPU min) [ms] | amg | mg | auto picks |")
     print("|---|---|---|---|---|---|---|---|")
-    for name, ladder in CROSSOVER.items():
+    for name, (case, ladder) in CROSSOVER.items():
         if only and name != only:
             continue
         for degree, ns in ladder.items():
             for n in ns:
-                t = {s: workbench_times(build, PROBLEMS[name][0], degree, n, runs, s)
+                t = {s: workbench_times(build, case, degree, n, runs, s)
                      for s in (["direct", "amg", "mg"] if degree == 2 else ["direct", "amg"])}
-                auto = workbench_times(build, PROBLEMS[name][0], degree, n, 1)
-                print(f"| {name} | {degree} | {8 / n:.3g} | {t['direct'][4]} | {ms(t['direct'])} | {ms(t['amg'])} "
+                auto = workbench_times(build, case, degree, n, 1)
+                mesh = f"h = {8 / n:.3g} mm" if case < 2 else f"{n}^{case} cells"
+                print(f"| {name} | {degree} | {mesh} | {t['direct'][4]} | {ms(t['direct'])} | {ms(t['amg'])} "
                       f"| {ms(t.get('mg'))} | {auto[5]} |", flush=True)
 
 
@@ -201,7 +214,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("build", nargs="?", default=str(ROOT / "build"))
     parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--only", choices=list(PROBLEMS))
+    parser.add_argument("--only", choices=list(CROSSOVER))
     parser.add_argument("--crossover", action="store_true")
     args = parser.parse_args()
     (crossover if args.crossover else peer)(Path(args.build), args.runs, args.only)

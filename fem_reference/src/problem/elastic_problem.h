@@ -98,6 +98,8 @@ class ElasticProblem {
  private:
   // system.cc
   void make_grid();
+  void choose_solver();  ///< direct_ and use_mg_ (the DoFs distributed)
+  void sort_dofs_by_position();
   void setup_system();
   void check_rigid_motion() const;
   void assemble_system();

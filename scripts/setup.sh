@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build ccache pkg-config
-  libeigen3-dev libgmsh-dev gmsh libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
+  libeigen3-dev libsuitesparse-dev libgmsh-dev gmsh libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libvtk9-dev libdeal.ii-dev openmpi-bin libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-pybind11 python3-dev python3-scipy python3-vtk9

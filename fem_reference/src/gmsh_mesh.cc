@@ -9,6 +9,8 @@
 #include <gmsh_session.h>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <cmath>
 #include <unordered_map>
 
@@ -172,6 +174,19 @@ PlainMesh box_mesh(const Box& box) {
         }
     }
   return mesh;
+}
+
+double slenderness(const PlainMesh& mesh) {
+  std::array<double, 3> lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
+  for (std::size_t i = 0; i < mesh.node_count(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], mesh.nodes[3 * i + a]);
+      hi[a] = std::max(hi[a], mesh.nodes[3 * i + a]);
+    }
+  std::array<double, 3> side{};
+  for (int a = 0; a < mesh.dim; ++a) side[a] = hi[a] - lo[a];
+  std::sort(side.begin(), side.end(), std::greater<>());
+  return side[1] > 0 ? side[0] / side[1] : 1.0;
 }
 
 int normal_axis(const PlainMesh& mesh, const std::string& group) {

@@ -32,6 +32,10 @@ PlainMesh box_mesh(const Box& box);
 /// The axis a group's faces are perpendicular to (all must lie in planes x_a = const); -1 if none.
 int normal_axis(const PlainMesh& mesh, const std::string& group);
 
+/// The largest side of the mesh's bounding box over the second largest (1 for a square or cube, 250
+/// for a 500 x 2 mm strip).
+double slenderness(const PlainMesh& mesh);
+
 /// Solves on a plain mesh (problem/elastic_problem.cc).
 FemResult solve_on_mesh(const FemProblem& problem, const PlainMesh& mesh, const std::filesystem::path& output_dir,
                         std::ostream* log, double mesh_seconds);

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include <time.h>
+
 namespace fem_reference {
 
 namespace fs = std::filesystem;
@@ -118,6 +120,14 @@ void check_memory(const FemProblem& p, const PlainMesh& mesh) {
   throw CollectiveError(s.str());  // every rank finds the same
 }
 
+/// CPU seconds of this process so far (all its threads; CLOCK_PROCESS_CPUTIME_ID: exact, unlike
+/// getrusage's tick-based accounting).
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
 /// Area-weighted centre of a group's faces.
 std::array<double, 3> group_centre(const PlainMesh& mesh, const std::string& group) {
   std::array<double, 3> c{};
@@ -161,7 +171,10 @@ FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::
   if (log && mpi_rank() == 0)
     *log << "fem: mesh " << mesh.source << ": " << mesh.cell_count() << " cells, " << mesh.node_count() << " nodes ("
          << mesh_seconds << " s)\n";
-  return solve_on_mesh(p, mesh, output_dir, log, mesh_seconds);
+  const double cpu_start = process_cpu_seconds();
+  FemResult result = solve_on_mesh(p, mesh, output_dir, log, mesh_seconds);
+  result.cpu_seconds = process_cpu_seconds() - cpu_start;
+  return result;
 }
 
 }  // namespace fem_reference

@@ -41,9 +41,11 @@ struct FemOptions {
   int degree = 1;                       ///< polynomial degree 1 or 2
   Model model = Model::PlaneStress;
   SolverKind solver = SolverKind::Auto;
-  long direct_limit = 20000;            ///< Auto: direct solver up to this many DoFs in 2D (in 3D up to
-                                        ///< direct_limit^(3/4): the same factorisation work), else CG +
-                                        ///< multigrid (geometric on refined quads/hexes, else ML AMG)
+  long direct_limit = 2000;             ///< Auto: direct solver up to this many DoFs times the body's
+                                        ///< slenderness (2D and 3D), else CG + multigrid (geometric on
+                                        ///< refined quads/hexes and Q2, else ML AMG); a multigrid coarse
+                                        ///< level is factorised up to 10 x this in 2D, up to this in 3D
+                                        ///< (src/elasticity.h)
   double tolerance = 1e-10;             ///< CG: stop at ||K u - f|| <= tolerance * ||f||
   int max_iterations = 2000;
   int refine = 0;                       ///< global refinements of the gmsh mesh

@@ -48,6 +48,9 @@ struct FemResult {
   double l2_error = std::numeric_limits<double>::quiet_NaN();  ///< ||u - u_exact||_L2
   double h1_error = std::numeric_limits<double>::quiet_NaN();  ///< |u - u_exact|_H1 (seminorm)
   double mesh_seconds = 0, setup_seconds = 0, assemble_seconds = 0, solve_seconds = 0, output_seconds = 0;
+  /// CPU seconds of this process from the mesh on (set-up, assembly, solve, output): on a shared
+  /// machine the fair measure of the work beside the wall times above.
+  double cpu_seconds = 0;
   double peak_memory_bytes = 0;          ///< this process's peak resident size after solving
 
   /// The solution at FemProblem::probe_points, in their order (serial runs; under MPI a point on a

@@ -6,6 +6,7 @@
 #include "mg/cell_matrix_operator.h"
 
 #include "amg/amg.h"
+#include "direct/direct_solver.h"
 #include "elasticity.h"
 
 #include <deal.II/base/index_set.h>
@@ -52,7 +53,7 @@ using namespace dealii;
 namespace {
 
 /// (lambda div u div v + mu (grad u + grad u^T) : grad v), matrix-free (deal.II's sum
-/// factorisation): here only to compute the coarse level's matrix for KLU or ML.
+/// factorisation): here only to compute the coarse level's matrix for the direct solver or ML.
 template <int dim, int degree, typename number>
 class ElasticOperator : public MatrixFreeOperators::Base<dim, LinearAlgebra::distributed::Vector<number>> {
  public:
@@ -117,13 +118,13 @@ class CoarseLevel : public MGCoarseGridBase<LinearAlgebra::distributed::Vector<f
   virtual std::pair<int, double> solve(Vector& x, const Vector& b, double tolerance, int max_iterations) const = 0;
 };
 
-/// Level 0 assembled: KLU on its matrix (or one ML cycle when it is large).
+/// Level 0 assembled: the direct solver on its matrix (or one ML cycle when it is large).
 template <int dim, int degree>
 class CoarseSolver : public CoarseLevel {
  public:
   CoarseSolver(const Mapping<dim>& mapping, const DoFHandler<dim>& dof, const MGConstrainedDoFs& mg_constrained,
                const MgSettings& s, std::string& name)
-      : control_(1, 0) {
+  {
     const MPI_Comm comm = dof.get_communicator();
     IndexSet relevant;
     DoFTools::extract_locally_relevant_level_dofs(dof, 0, relevant);
@@ -153,11 +154,9 @@ class CoarseSolver : public CoarseLevel {
     mf->initialize_dof_vector(b_);
     x_.reinit(b_);
 
-    if (direct_is_fast(double(dof.n_dofs(0)), dim, s.direct_limit)) {
-      direct_ = std::make_unique<TrilinosWrappers::SolverDirect>(
-          control_, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-      direct_->initialize(matrix_);
-      name = "KLU";
+    if (coarse_direct_is_fast(double(dof.n_dofs(0)), dim, s.direct_limit)) {
+      direct_ = std::make_unique<DirectSolver>(matrix_);
+      name = direct_->name();
     } else {
       // ML with the rigid body modes of the coarse mesh as near-null space (as the "amg" solver).
       modes_ = rigid_body_modes<dim>(
@@ -174,7 +173,7 @@ class CoarseSolver : public CoarseLevel {
     }
   }
 
-  /// KLU, or CG with the ML preconditioner.
+  /// The direct solver, or CG with the ML preconditioner.
   std::pair<int, double> solve(Vector& x, const Vector& b, double tolerance, int max_iterations) const override {
     for (unsigned i = 0; i < b_.locally_owned_size(); ++i) b_.local_element(i) = b.local_element(i);
     for (auto i : boundary_)
@@ -211,7 +210,7 @@ class CoarseSolver : public CoarseLevel {
     for (unsigned i = 0; i < x_.locally_owned_size(); ++i) dst.local_element(i) = float(x_.local_element(i));
   }
 
-  /// x = one KLU solve or one ML cycle of b (b's boundary entries set to zero here, x's zero).
+  /// x = one direct solve or one ML cycle of b (b's boundary entries set to zero here, x's zero).
   void apply(Vector& x, Vector& b) const {
     for (auto i : boundary_)
       if (b.in_local_range(i)) b(i) = 0;
@@ -227,9 +226,8 @@ class CoarseSolver : public CoarseLevel {
   void initialize_vector(Vector& v) const { v.reinit(b_); }
 
  private:
-  SolverControl control_;
   TrilinosWrappers::SparseMatrix matrix_;
-  std::unique_ptr<TrilinosWrappers::SolverDirect> direct_;
+  std::unique_ptr<DirectSolver> direct_;
   std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_;
   IndexSet boundary_;
   std::vector<double> modes_;  // ML keeps a pointer
@@ -238,7 +236,7 @@ class CoarseSolver : public CoarseLevel {
 
 /// Level 0 of degree 2 without its matrix: a two-level p-multigrid under it. The level's operator
 /// from stored element matrices (double), Chebyshev-Jacobi smoothing on it, and the same mesh in
-/// Q1 (CoarseSolver<dim, 1>: KLU or one ML cycle on its assembled matrix) for the rest, reached by
+/// Q1 (CoarseSolver<dim, 1>: the direct solver or one ML cycle on its assembled matrix) for the rest, reached by
 /// interpolation (Q1 lies in Q2: P's column j is the Q1 shape function j at the Q2 nodes).
 /// Inside the V-cycle one p-cycle; on its own CG preconditioned by it. ML on the assembled Q2 level
 /// cost more than the solves it served (block3d: 11.7 s of set-up for 206,763 DoFs, 375 entries
@@ -476,7 +474,8 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   profile("coarse solver");
   std::string coarse_name;
   std::unique_ptr<CoarseLevel> coarse_level;
-  if (degree == 2 && !direct_is_fast(double(dof.n_dofs(0)), dim, s.direct_limit))
+  // A Q2 level is factorised where a whole problem on a square would be, else p-coarsened.
+  if (degree == 2 && !direct_is_fast(double(dof.n_dofs(0)), 1.0, s.direct_limit))
     coarse_level = std::make_unique<PCoarsenedSolver<dim>>(mapping, dof, mg_constrained, boundaries, s, coarse_name);
   else
     coarse_level = std::make_unique<CoarseSolver<dim, degree>>(mapping, dof, mg_constrained, s, coarse_name);
@@ -529,6 +528,7 @@ MgOutcome solve_mg_degree(const Mapping<dim>& mapping, DoFHandler<dim>& dof, con
   solution.compress(VectorOperation::insert);
   out.solver = "cg+gmg (matrix-free, " + std::to_string(n_levels) + " levels, Chebyshev " +
                std::to_string(s.smoother_degree) + ", coarse " + coarse_name + ")";
+  out.coarse_solver = coarse_name;
   return out;
 }
 

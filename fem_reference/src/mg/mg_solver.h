@@ -3,8 +3,9 @@
 // unrefined Q2 ones): CG on the elasticity operator applied cell by cell from shared element
 // matrices (double; cell_matrix_operator.h), preconditioned by a V-cycle over the global refinement
 // levels (Chebyshev-Jacobi smoothing on the same operator in single precision, step-37 style) with
-// the coarse mesh solved by KLU when direct_is_fast for it (elasticity.h), else by one ML AMG cycle
-// (amg/amg.h) in Q1 and by one cycle of a p-multigrid to Q1 on the same mesh in Q2. No global
+// the coarse mesh solved directly (direct/direct_solver.h) when cheap (elasticity.h), else by one
+// ML AMG cycle (amg/amg.h) in Q1 and by one cycle of a p-multigrid to Q1 on the same mesh in Q2.
+// No global
 // matrix or sparsity pattern is built: about a third of the memory of CG + ML.
 #pragma once
 
@@ -31,7 +32,7 @@ struct MgSettings {
   double lambda = 0, mu = 0;  ///< Lame coefficients of the bilinear form (lambda* in plane stress)
   double tolerance = 1e-10;   ///< relative to ||rhs||
   int max_iterations = 2000;
-  long direct_limit = FemOptions{}.direct_limit;  ///< coarse level: KLU when direct_is_fast, else one ML cycle
+  long direct_limit = FemOptions{}.direct_limit;  ///< coarse level: elasticity.h's rules
   int smoother_degree = 4;    ///< Chebyshev degree of pre- and post-smoothing
   ModeFrame mode_frame;       ///< of the rigid body modes of the coarse ML cycle
   /// With a `coarser` vector (two levels, homogeneous constraints): the CG on the finest level also
@@ -45,8 +46,9 @@ struct MgOutcome {
   int iterations = 0;
   double residual = 0;  ///< ||K u - f|| / ||f|| of the condensed system
   std::string solver;
+  std::string coarse_solver;  ///< of level 0: "CHOLMOD", "KLU", "ML AMG cycle" or the p-multigrid
   std::vector<std::size_t> matrices_per_level;  ///< element matrices stored per level (the profile)
-  /// With a `coarser` vector: the coarse level's own CG (0 for KLU), its residual ||K0 u0 - R f|| /
+  /// With a `coarser` vector: the coarse level's own CG (0 when direct), its residual ||K0 u0 - R f|| /
   /// ||R f|| and DoFs, and ||K P u0 - f|| / ||f|| on the finest level, where the fine CG starts.
   int coarser_iterations = 0;
   double coarser_residual = 0, coarser_start_residual = 0;

@@ -531,8 +531,8 @@ std::shared_ptr<FemResult> ElasticProblem<dim>::coarser_result() {
   result_.ranks = fine.ranks;
   result_.n_dofs = coarser_outcome_.coarser_dofs;
   result_.n_active_cells = tria_->n_global_coarse_cells();
-  result_.solver = coarser_outcome_.coarser_iterations > 0 ? "cg+amg (ML), the multigrid's coarse level"
-                                                           : "direct (Amesos_Klu), the multigrid's coarse level";
+  result_.solver = (coarser_outcome_.coarser_iterations > 0 ? "cg with " : "direct: ") + coarser_outcome_.coarse_solver +
+                   ", the multigrid's coarse level";
   result_.iterations = coarser_outcome_.coarser_iterations;
   result_.residual = coarser_outcome_.coarser_residual;
   ghosted_ = coarser_;

@@ -12,7 +12,7 @@
 // Meshes with quadrilaterals/hexahedra live on a parallel::distributed::Triangulation (p4est; a
 // serial Triangulation on one rank), triangles/tetrahedra on a serial Triangulation with
 // FE_SimplexP. Linear algebra: Trilinos (Epetra) matrices; CG with ML smoothed-aggregation AMG
-// (amg/amg.h), or Amesos KLU as the direct solver. On quadrilaterals/hexahedra, fem.solver = "mg"
+// (amg/amg.h), or the direct solver (direct/direct_solver.h: CHOLMOD, KLU under MPI). On quadrilaterals/hexahedra, fem.solver = "mg"
 // (and "auto" on refined meshes beyond a cheap direct solve) is CG with matrix-free geometric
 // multigrid (mg/mg_solver.h): no global matrix is assembled.
 //
@@ -98,6 +98,8 @@ class ElasticProblem {
  private:
   // system.cc
   void make_grid();
+  void choose_solver();  ///< direct_ and use_mg_ (the DoFs distributed)
+  void sort_dofs_by_position();
   void setup_system();
   void check_rigid_motion() const;
   void assemble_system();

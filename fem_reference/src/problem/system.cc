@@ -3,6 +3,7 @@
 // system and its assembly (or, for the multigrid, the right-hand side alone), and the solvers.
 #include "problem/elastic_problem.h"
 
+#include "direct/direct_solver.h"
 #include "elasticity.h"
 #include "mg/mg_solver.h"
 
@@ -10,6 +11,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
@@ -22,7 +24,6 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <Eigen/Eigenvalues>
@@ -137,10 +138,44 @@ std::vector<int> ElasticProblem<dim>::constrained_components(const Support& s) c
 }
 
 template <int dim>
+void ElasticProblem<dim>::choose_solver() {
+  const auto& o = problem_.options;
+  // auto: direct where the factorisation is cheap (direct_is_fast); else multigrid on refined
+  // meshes (its coarse level factorised or, when large, one ML cycle: in 3D 4x faster than ML on
+  // the whole problem, the solver sweep) and on unrefined Q2 meshes (a single level, the p-multigrid
+  // to Q1 under it: no Q2 matrix for ML), else ML (Q1 unrefined).
+  direct_ = o.solver == SolverKind::Direct ||
+            (o.solver == SolverKind::Auto &&
+             direct_is_fast(double(dof_handler_.n_dofs()), slenderness(mesh_), o.direct_limit));
+  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
+                             (o.solver == SolverKind::Auto && !direct_ && (o.refine > 0 || degree_ == 2)));
+}
+
+/// Numbers the DoFs cell by cell, the cells in the order of their centres (z, then y, then x):
+/// in 3D the ML hierarchy depends on the DoF order, and block3d.geo's gmsh order (3 x 3 patches
+/// extruded) made CG + ML 14 % slower than this one (docs/performance.md, issue 38). One rank only.
+template <int dim>
+void ElasticProblem<dim>::sort_dofs_by_position() {
+  using Cell = typename DoFHandler<dim>::active_cell_iterator;
+  std::vector<std::pair<double, Cell>> keyed;
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    double key = 0;  // frame coordinates in [-0.5, 0.5]: 1e4 apart resolves 1e4 cells per side
+    for (int a = dim - 1; a >= 0; --a) key = 1e4 * key + (cell->center()[a] - mode_frame_.centre[a]) / mode_frame_.size;
+    keyed.emplace_back(key, cell);
+  }
+  std::sort(keyed.begin(), keyed.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  std::vector<Cell> order;
+  for (const auto& [key, cell] : keyed) order.push_back(cell);
+  DoFRenumbering::cell_wise(dof_handler_, order);
+}
+
+template <int dim>
 void ElasticProblem<dim>::setup_system() {
   phase("distribute dofs");
   dof_handler_.reinit(*tria_);
   dof_handler_.distribute_dofs(*fe_);
+  choose_solver();
+  if (dim == 3 && !direct_ && !use_mg_ && Utilities::MPI::n_mpi_processes(comm_) == 1) sort_dofs_by_position();
   owned_ = dof_handler_.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler_, relevant_);
   phase("constraints");
@@ -164,15 +199,6 @@ void ElasticProblem<dim>::setup_system() {
   constraints_.close();
   phase(nullptr);
 
-  const auto& o = problem_.options;
-  // auto: direct where the factorisation is cheap (direct_is_fast: 2D and 3D fill differently);
-  // else multigrid on refined meshes (its coarse level by KLU or, when large, one ML cycle: in 3D
-  // 4x faster than ML on the whole problem, the solver sweep) and on unrefined Q2 meshes (a single
-  // level, the p-multigrid to Q1 under it: no Q2 matrix for ML), else ML (Q1 unrefined).
-  direct_ = o.solver == SolverKind::Direct ||
-            (o.solver == SolverKind::Auto && direct_is_fast(double(dof_handler_.n_dofs()), dim, o.direct_limit));
-  use_mg_ = may_use_mg() && (o.solver == SolverKind::Mg ||
-                             (o.solver == SolverKind::Auto && !direct_ && (o.refine > 0 || degree_ == 2)));
   rhs_.reinit(owned_, comm_);
   solution_.reinit(owned_, comm_);
   ghosted_.reinit(owned_, relevant_, comm_);
@@ -426,11 +452,12 @@ void ElasticProblem<dim>::solve() {
     }
     return;
   } else if (direct_) {
-    SolverControl control(1, 0);
-    TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
-    TrilinosWrappers::SolverDirect solver(control, data);
-    solver.solve(matrix_, solution_, rhs_);
-    result_.solver = "direct (Amesos_Klu)";
+    phase("factorisation");
+    const DirectSolver direct(matrix_);
+    phase("direct solve");
+    direct.solve(solution_, rhs_);
+    phase(nullptr);
+    result_.solver = "direct (" + direct.name() + ")";
     result_.iterations = 0;
   } else {
     // ML smoothed aggregation with the rigid body modes as near-null space.
@@ -470,6 +497,10 @@ void ElasticProblem<dim>::solve() {
 // The members defined here, for both dimensions (elastic_problem.cc instantiates the class).
 template void ElasticProblem<2>::make_grid();
 template void ElasticProblem<3>::make_grid();
+template void ElasticProblem<2>::choose_solver();
+template void ElasticProblem<3>::choose_solver();
+template void ElasticProblem<2>::sort_dofs_by_position();
+template void ElasticProblem<3>::sort_dofs_by_position();
 template void ElasticProblem<2>::setup_system();
 template void ElasticProblem<3>::setup_system();
 template void ElasticProblem<2>::check_rigid_motion() const;

@@ -16,6 +16,16 @@ void read_gate(const workbench::CaseTable& t, FrontGate& gate) {
   gate.on_front = t.texts("on_front", std::vector<std::string>{});
 }
 
+/// A list of whole numbers >= 1 (empty when the key is absent).
+std::vector<int> counts(const workbench::CaseTable& t, const char* key) {
+  std::vector<int> out;
+  for (double v : t.numbers(key, std::vector<double>{}, workbench::Range::closed(1, 1e7))) {
+    if (v != std::floor(v)) t.fail(key, "a count is a whole number");
+    out.push_back(int(v));
+  }
+  return out;
+}
+
 }  // namespace
 
 FrontOptions read_front_options(const workbench::CaseTable& root) {
@@ -38,6 +48,9 @@ FrontOptions read_front_options(const workbench::CaseTable& root) {
     if (!agent::rule_set_named(r))
       t.fail("rule_sets", "unknown rule set \"" + r + "\"");
   o.runs = t.integer("runs", o.runs, 1, 100);
+  o.pbd_substeps = counts(t, "pbd_substeps");
+  o.pbd_iterations = counts(t, "pbd_iterations");
+  o.cells_parameter = t.text("cells_parameter", o.cells_parameter);
   read_gate(t.table("gate"), o.gate);
   return o;
 }

@@ -24,7 +24,7 @@ done
 check compare_exit $? "$(tail -3 "$work/compare.log")"
 
 /usr/bin/python3 - "$work/front/front.json" "$work/compare/summary.json" <<'PY'
-import json, math, sys
+import json, sys
 front, summary = (json.load(open(p)) for p in sys.argv[1:])
 bad = []
 points = {p["label"]: p for p in front["points"]}
@@ -51,39 +51,14 @@ if points["fem Q1 5 mm"]["work"]["dofs"] != 2 * 41 * 41 or points["fem Q1 1.25 m
 for p in front["points"]:
     if not 0 < p["seconds"]["min"] <= p["seconds"]["median"]:
         bad.append(f"{p['label']}: times {p['seconds']}")
-# Every speed-up is the FEM front's time at the agent's error, log-log, over the agent's time; outside
-# the FEM's errors a bound: its cheapest point's time (at most) or its most accurate one's (at least).
-def fem_front(metric):
-    floor = front["reference"]["errors"][metric]
-    fem = [(p["errors"][metric], p["seconds"]["min"]) for p in front["points"] if p["model"] == "fem"
-           and p["errors"][metric] > floor]
-    return sorted(a for a in fem if not any(b != a and b[1] <= a[1] and b[0] <= a[0] for b in fem))[::-1]
-def by_hand(metric, e):
-    fem = fem_front(metric)
-    if e > fem[0][0]:
-        return "speedup_at_most", fem[0][1]
-    if e < fem[-1][0]:
-        return "speedup_at_least", fem[-1][1]
-    for (e0, t0), (e1, t1) in zip(fem, fem[1:]):
-        if e1 <= e <= e0:
-            return "speedup", t0 * (t1 / t0) ** (math.log(e / e0) / math.log(e1 / e0))
-checked = 0
-for v in front["verdicts"]:
-    p = points[v["point"]]
-    if p["model"] != "agent" or v["below_floor"]:
-        continue
-    kind, t = by_hand(v["metric"], p["errors"][v["metric"]])
-    checked += 1
-    if v[kind] is None or not math.isclose(v[kind], t / p["seconds"]["min"], rel_tol=1e-9):
-        bad.append(f"{v['point']} {v['metric']}: {kind} {v[kind]}, by hand {t / p['seconds']['min']}")
-if checked < 10:
-    bad.append(f"only {checked} speed-ups checked")
 if front["gate"] != {"checked": 1, "failed": 0, "failures": []}:
     bad.append(f"gate {front['gate']}")
 print("\n".join(bad))
 sys.exit(1 if bad else 0)
 PY
 check front_numbers $? "see above"
+/usr/bin/python3 "$src/tests/common/front_by_hand.py" "$work/front/front.json" 10
+check front_speedups $? "see above"
 /usr/bin/python3 "$src/tests/common/check_report.py" "$work/front" >"$work/check.log" 2>&1
 check report_values $? "$(tail -3 "$work/check.log")"
 

@@ -167,7 +167,7 @@ def required(data):
         keys += ["/gate/checked", "/case_point", "/reference/dofs"]
         for i, p in enumerate(data["points"]):
             keys += [f"/points/{i}/label", f"/points/{i}/seconds/min", f"/points/{i}/seconds/median"]
-            keys += [f"/points/{i}/errors/{m}" for m in ("far.sigma_y.rel_l2", "far.von_mises.rel_l2")]
+            keys += [f"/points/{i}/errors/{m}" for m in data["headline"]]
         keys += [f"/reference/errors/{v['metric']}" for v in data["verdicts"] if v["point"] == data["case_point"]]
         keys += [f"/skipped/{i}" for i in range(len(data["skipped"]))]
         return keys

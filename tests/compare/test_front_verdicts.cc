@@ -86,7 +86,29 @@ TEST(FrontVerdicts, CrossoverWhereTheFemBecomesCheaper) {
   EXPECT_EQ(c[0].rule_set, "directional");
   // The first of the 200 log-spaced samples past e = 0.005 = 10^-2.301: 10^(-3 + 2 * 70 / 200).
   EXPECT_NEAR(*c[0].fem_cheaper_below, std::pow(10.0, -2.3), 1e-12);
-  EXPECT_EQ(c[0].note, "the FEM is cheaper below this error, the agents above it");
+  EXPECT_EQ(c[0].note, "the FEM is cheaper below this error, the fast model above it");
+}
+
+TEST(FrontVerdicts, EveryFastFamilyIsJudgedAgainstTheFem) {
+  // The agents and the PBD (model "pbd", no rule set) beside the FEM's t = 0.1 / e: each gets its
+  // speed-up (the FEM at e = 10^-1.5 costs 10^0.5 s) and its own crossover.
+  std::vector<FrontPoint> points{point("fem", "fem 1", 1.0, 0.1), point("fem", "fem 2", 10.0, 0.01),
+                                 point("agent", "a 1", 0.01, std::pow(10.0, -1.5)),
+                                 point("pbd", "pbd 100 x 4", 0.1, std::pow(10.0, -1.5))};
+  const auto all = front_verdicts(points, {kMetric}, {});
+  EXPECT_NEAR(*verdict(all, "a 1").speedup, std::pow(10.0, 2.5), 1e-9);
+  EXPECT_NEAR(*verdict(all, "pbd 100 x 4").speedup, std::pow(10.0, 1.5), 1e-9);
+  EXPECT_EQ(*verdict(all, "pbd 100 x 4").dominated_by, "a 1");
+  EXPECT_FALSE(verdict(all, "fem 1").speedup);
+  const auto c = front_crossovers(points, {kMetric}, {});
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].model, "agent");
+  EXPECT_EQ(c[0].rule_set, "directional");
+  EXPECT_EQ(c[1].model, "pbd");
+  EXPECT_EQ(c[1].rule_set, "");
+  // One PBD point, cheaper than the FEM at its own error: the FEM alone reaches below it.
+  EXPECT_DOUBLE_EQ(*c[1].fem_cheaper_below, std::pow(10.0, -1.5));
+  EXPECT_EQ(c[1].note, "the fast model is cheaper at every error both reach; the FEM alone reaches below this");
 }
 
 TEST(FrontVerdicts, CrossoverSaysWhenTheFrontsShareNoErrors) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace compare {
 
@@ -35,7 +36,7 @@ const FrontPoint* cheapest_dominating(const std::vector<FrontPoint>& points, con
   return best;
 }
 
-/// The speed-up (or its bound) of agent point `p` against the FEM front.
+/// The speed-up (or its bound) of the fast model's point `p` against the FEM front.
 void set_speedup(FrontVerdict& v, const FrontPoint& p, const std::vector<const FrontPoint*>& fem,
                  const std::string& metric) {
   if (fem.empty()) return;
@@ -49,23 +50,26 @@ void set_speedup(FrontVerdict& v, const FrontPoint& p, const std::vector<const F
   }
 }
 
-std::vector<std::string> rule_sets_of(const std::vector<FrontPoint>& points) {
-  std::vector<std::string> out;
-  for (const auto& p : points)
-    if (p.model == "agent" && std::find(out.begin(), out.end(), p.rule_set) == out.end()) out.push_back(p.rule_set);
+/// The fast model's families, in order of appearance: (model, rule set) of every point not the FEM's.
+std::vector<std::pair<std::string, std::string>> fast_families(const std::vector<FrontPoint>& points) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& p : points) {
+    const std::pair<std::string, std::string> family{p.model, p.rule_set};
+    if (p.model != "fem" && std::find(out.begin(), out.end(), family) == out.end()) out.push_back(family);
+  }
   return out;
 }
 
 /// The crossover of two fronts: sampled at log-spaced errors over the range both reach.
-FrontCrossover crossover(const std::vector<const FrontPoint*>& agents, const std::vector<const FrontPoint*>& fem,
+FrontCrossover crossover(const std::vector<const FrontPoint*>& fast, const std::vector<const FrontPoint*>& fem,
                          const std::string& metric) {
   FrontCrossover c;
-  if (agents.empty() || fem.empty()) {
+  if (fast.empty() || fem.empty()) {
     c.note = "no front to compare: one model has no error above the reference's floor";
     return c;
   }
-  const double lo = std::max(error_of(*agents.back(), metric), error_of(*fem.back(), metric));
-  const double hi = std::min(error_of(*agents.front(), metric), error_of(*fem.front(), metric));
+  const double lo = std::max(error_of(*fast.back(), metric), error_of(*fem.back(), metric));
+  const double hi = std::min(error_of(*fast.front(), metric), error_of(*fem.front(), metric));
   if (!(lo <= hi)) {
     c.note = "the two fronts share no range of errors";
     return c;
@@ -73,11 +77,11 @@ FrontCrossover crossover(const std::vector<const FrontPoint*>& agents, const std
   constexpr int kSamples = 200;
   for (int i = 0; i <= kSamples; ++i) {  // from the smallest shared error up
     const double e = lo * std::pow(hi / lo, double(i) / kSamples);
-    const auto ta = time_at_error(agents, metric, e), tf = time_at_error(fem, metric, e);
+    const auto ta = time_at_error(fast, metric, e), tf = time_at_error(fem, metric, e);
     if (ta && tf && *ta < *tf) {
       c.fem_cheaper_below = e;
-      c.note = i == 0 ? "the agents are cheaper at every error both reach; the FEM alone reaches below this"
-                      : "the FEM is cheaper below this error, the agents above it";
+      c.note = i == 0 ? "the fast model is cheaper at every error both reach; the FEM alone reaches below this"
+                      : "the FEM is cheaper below this error, the fast model above it";
       return c;
     }
   }
@@ -131,11 +135,13 @@ std::vector<FrontVerdict> front_verdicts(const std::vector<FrontPoint>& points, 
     for (const auto& p : points) {
       const double e = error_of(p, metric);
       if (!std::isfinite(e)) continue;
-      FrontVerdict v{p.label, metric};
+      FrontVerdict v;
+      v.point = p.label;
+      v.metric = metric;
       v.below_floor = e <= floor;
       if (!v.below_floor) {
         if (const FrontPoint* q = cheapest_dominating(points, p, metric)) v.dominated_by = q->label;
-        if (p.model == "agent") set_speedup(v, p, fem, metric);
+        if (p.model != "fem") set_speedup(v, p, fem, metric);
       }
       out.push_back(std::move(v));
     }
@@ -150,9 +156,10 @@ std::vector<FrontCrossover> front_crossovers(const std::vector<FrontPoint>& poin
   for (const auto& metric : metrics) {
     const double floor = floor_of(floors, metric);
     const auto fem = family_front(points, metric, "fem", "", floor);
-    for (const auto& rules : rule_sets_of(points)) {
-      auto c = crossover(family_front(points, metric, "agent", rules, floor), fem, metric);
+    for (const auto& [model, rules] : fast_families(points)) {
+      auto c = crossover(family_front(points, metric, model, rules, floor), fem, metric);
       c.metric = metric;
+      c.model = model;
       c.rule_set = rules;
       out.push_back(std::move(c));
     }

@@ -4,6 +4,7 @@
 
 #include "agent_compare.h"
 #include "front_files.h"
+#include "front_ladder.h"
 #include "report.h"
 
 #include <fem_reference/mpi.h>
@@ -25,6 +26,9 @@ using workbench::Error;
 
 namespace {
 
+/// The metric the log shows for every point as it runs.
+const std::string kHeadline = "far.sigma_y.rel_l2";
+
 /// What every point of the front is scored against.
 struct FrontContext {
   const workbench::CaseFile& file;
@@ -35,22 +39,6 @@ struct FrontContext {
   double size = 0;  ///< the case's own agent size [m] (its size parameter)
   std::ostream& log;
 };
-
-/// `runs` timed calls of `work` after one warm-up (the warm-up's result is the caller's): each
-/// call returns the seconds of it that are not the model's work (meshing); min and median kept.
-template <class Work>
-void time_runs(int runs, FrontPoint& p, Work work) {
-  std::vector<double> seconds;
-  for (int r = 0; r < runs; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const double not_counted = work();
-    seconds.push_back(report::seconds_since(t0) - not_counted);
-  }
-  std::sort(seconds.begin(), seconds.end());
-  p.seconds_min = seconds.front();
-  const std::size_t n = seconds.size();
-  p.seconds_median = n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
-}
 
 /// The point's error metrics against the reference (the same code as `workbench compare`'s), and
 /// the reference's own error per metric into `floors`.
@@ -148,20 +136,6 @@ FrontPoint fem_point(const FrontContext& c, double factor, int degree) {
   return p;
 }
 
-/// Runs one ladder point, or says on the log and in `skipped` why it was left out.
-template <class Run>
-void add_point(FrontOutcome& out, std::ostream& log, const std::string& what, Run run) {
-  try {
-    out.points.push_back(run());
-    const auto& p = out.points.back();
-    log << "front: " << p.label << ": min " << 1e3 * p.seconds_min << " ms, median " << 1e3 * p.seconds_median
-        << " ms, far.sigma_y.rel_l2 " << p.errors.at("far.sigma_y.rel_l2") << "\n" << std::flush;
-  } catch (const std::exception& e) {  // a rung the geometry does not allow (a mesh that fails, a patch too small)
-    out.skipped.push_back(what + ": " + e.what());
-    log << "front: left out " << out.skipped.back() << "\n" << std::flush;
-  }
-}
-
 std::vector<agent::RuleSet> rule_sets(const FrontContext& c) {
   std::vector<agent::RuleSet> out{c.in.study.rules};
   for (const auto& name : c.options.rule_sets)
@@ -174,7 +148,7 @@ void run_ladders(const FrontContext& c, FrontOutcome& out) {
   for (const auto rules : rule_sets(c))
     for (double f : c.options.agent_sizes)
       add_point(out, c.log, "agent " + std::string(agent::rule_set_name(rules)) + " at " + millimetres(f * c.size),
-                [&] { return agent_point(c, f, rules); });
+                kHeadline, [&] { return agent_point(c, f, rules); });
   for (int degree : c.options.fem_degrees)
     for (double f : c.options.fem_sizes) {
       const std::string what = "fem Q" + std::to_string(degree) + " at " + millimetres(f * c.size);
@@ -183,7 +157,7 @@ void run_ladders(const FrontContext& c, FrontOutcome& out) {
                               " DoFs, over front.fem_max_dofs");
         continue;
       }
-      add_point(out, c.log, what, [&] { return fem_point(c, f, degree); });
+      add_point(out, c.log, what, kHeadline, [&] { return fem_point(c, f, degree); });
     }
 }
 
@@ -223,8 +197,7 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   // 1. Read and check everything before running anything.
   const auto options = schema::read_front_options(file.root());
   const auto compare_options = read_compare_options(file.root());
-  if (compare_options.model != "agent")
-    file.root().table("compare").fail("model", "workbench front runs the agent model's front; the PBD front is not built");
+  if (compare_options.model == "pbd") return run_pbd_front(file, options, dir, log);
   const auto in = read_input(file, compare_options);
   const double size = case_size(file, in, options.size_parameter);
   front_files::check_gate_names(options.gate, front_metrics(in.study.mesh.grid.dim), file);
@@ -247,7 +220,11 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   out.verdicts = front_verdicts(out.points, metrics, out.reference_errors);
   out.crossovers = front_crossovers(out.points, metrics, out.reference_errors);
   front_files::apply_gate(options.gate, out);
-  front_files::write(dir, file, in, reference, options, out, log);
+  const front_files::FrontHeader header{
+      in.study.setup.title, metrics, {kHeadline, "far.von_mises.rel_l2", "body.displacement.rel_l2"},
+      {{"description", in.reference.describe()}, {"dofs", reference.fem.n_dofs},
+       {"estimate", reference.estimate.describe()}, {"estimate_dofs", reference.estimate_dofs}}};
+  front_files::write(dir, file, header, options, out, log);
   return out;
 }
 

@@ -75,18 +75,17 @@ nlohmann::json verdict_json(const FrontVerdict& v) {
           {"speedup_at_least", optional_json(v.speedup_at_least)}};
 }
 
-nlohmann::json front_json(const workbench::CaseFile& file, const agent_compare::AgentCompareInput& in,
-                          const Reference& reference, const schema::FrontOptions& options, const FrontOutcome& out) {
-  nlohmann::json j = {{"case", file.path().string()}, {"title", in.study.setup.title}, {"model", "front"},
+nlohmann::json front_json(const workbench::CaseFile& file, const FrontHeader& header,
+                          const schema::FrontOptions& options, const FrontOutcome& out) {
+  nlohmann::json j = {{"case", file.path().string()}, {"title", header.title}, {"model", "front"},
                       {"machine", machine_json()}, {"runs", options.runs}, {"case_point", out.case_point},
-                      {"metrics", front_metrics(in.study.mesh.grid.dim)}, {"skipped", out.skipped}};
-  j["reference"] = {{"description", in.reference.describe()}, {"dofs", reference.fem.n_dofs},
-                    {"estimate", reference.estimate.describe()}, {"estimate_dofs", reference.estimate_dofs},
-                    {"errors", out.reference_errors}};
+                      {"metrics", header.metrics}, {"headline", header.headline}, {"skipped", out.skipped}};
+  j["reference"] = header.reference;
+  j["reference"]["errors"] = out.reference_errors;
   for (const auto& p : out.points) j["points"].push_back(point_json(p));
   for (const auto& v : out.verdicts) j["verdicts"].push_back(verdict_json(v));
   for (const auto& c : out.crossovers)
-    j["crossovers"].push_back({{"metric", c.metric}, {"rule_set", c.rule_set},
+    j["crossovers"].push_back({{"metric", c.metric}, {"model", c.model}, {"rule_set", c.rule_set},
                                {"fem_cheaper_below", optional_json(c.fem_cheaper_below)}, {"note", c.note}});
   j["gate"] = {{"checked", out.gated}, {"failed", out.failures.size()}, {"failures", out.failures}};
   return j;
@@ -103,7 +102,8 @@ void check_finite(const FrontOutcome& out, const workbench::CaseFile& file) {
   }
 }
 
-const char* const kWork[] = {"mesh_seconds", "agents", "agent_updates", "packet_moves", "dofs", "cells", "iterations"};
+const char* const kWork[] = {"mesh_seconds", "agents", "agent_updates", "packet_moves", "nodes", "frames", "substeps",
+                             "iterations_per_substep", "projections", "dofs", "cells", "iterations"};
 
 void write_csv(const fs::path& file, const FrontOutcome& out) {
   auto csv = workbench::open_csv(file);
@@ -127,15 +127,16 @@ void write_csv(const fs::path& file, const FrontOutcome& out) {
 }
 
 /// The log's summary: every point's cost and headline errors, the case point's verdicts.
-void log_summary(const FrontOutcome& out, std::ostream& log) {
-  const char* headline[] = {"far.sigma_y.rel_l2", "far.von_mises.rel_l2", "body.displacement.rel_l2"};
-  log << "front: point, min ms, median ms, far sigma_y, far von Mises, body displacement\n";
+void log_summary(const FrontOutcome& out, const std::vector<std::string>& headline, std::ostream& log) {
+  log << "front: point, min ms, median ms";
+  for (const auto& m : headline) log << ", " << m;
+  log << "\n";
   for (const auto& p : out.points) {
     log << "  " << p.label << ", " << 1e3 * p.seconds_min << ", " << 1e3 * p.seconds_median;
-    for (const char* m : headline) log << ", " << p.errors.at(m);
+    for (const auto& m : headline) log << ", " << p.errors.at(m);
     log << "\n";
   }
-  for (const char* m : headline)
+  for (const auto& m : headline)
     if (const FrontVerdict* v = case_verdict(out, m)) {
       log << "front: " << out.case_point << " in " << m << ": "
           << (v->below_floor ? "below the reference's floor" : v->dominated_by ? "dominated by " + *v->dominated_by : "on the front");
@@ -177,13 +178,13 @@ void apply_gate(const schema::FrontGate& gate, FrontOutcome& out) {
   }
 }
 
-void write(const fs::path& dir, const workbench::CaseFile& file, const agent_compare::AgentCompareInput& in,
-           const Reference& reference, const schema::FrontOptions& options, const FrontOutcome& out, std::ostream& log) {
+void write(const fs::path& dir, const workbench::CaseFile& file, const FrontHeader& header,
+           const schema::FrontOptions& options, const FrontOutcome& out, std::ostream& log) {
   check_finite(out, file);
-  log_summary(out, log);
-  report::write_text(dir / "front.json", front_json(file, in, reference, options, out).dump(1) + "\n");
+  log_summary(out, header.headline, log);
+  report::write_text(dir / "front.json", front_json(file, header, options, out).dump(1) + "\n");
   write_csv(dir / "front.csv", out);
-  const std::string title = in.study.setup.title.empty() ? file.path().stem().string() : in.study.setup.title;
+  const std::string title = header.title.empty() ? file.path().stem().string() : header.title;
   report::run_figure_script("compare/front_figures.py", dir, title, {"png"}, log);
   report::render_html(dir, log);
 }

@@ -29,6 +29,12 @@ struct FrontOptions {
   /// Rule sets besides the case's own (agent::kRuleSets names).
   std::vector<std::string> rule_sets;
   int runs = 3;  ///< timed warm runs per point, after one warm-up run
+  /// PBD cases (compare.model = "pbd"): the PBD ladder, every substeps x iterations pair; empty:
+  /// the case's substeps times 1/8, 1/4, 1/2, 1, 2 and iterations 1, 2, 4, 8 with the case's own.
+  std::vector<int> pbd_substeps, pbd_iterations;
+  /// PBD cases: the FEM strip's mesh parameter counting its cells along the strip; the FEM rung at
+  /// fem_sizes factor f sets it to the case's value / f (rounded).
+  std::string cells_parameter = "nx";
   FrontGate gate;
 };
 

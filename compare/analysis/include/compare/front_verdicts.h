@@ -17,9 +17,9 @@ namespace compare {
 /// One model run on the front: what it is, what it cost (min and median of its warm runs) and its
 /// errors against the reference (metric name as in summary.json -> value).
 struct FrontPoint {
-  std::string model;     ///< "agent" or "fem"
-  std::string label;     ///< unique, e.g. "agent directional 2 mm", "fem Q1 4 mm"
-  double size = 0;       ///< agent edge or FEM mesh size [m]
+  std::string model;     ///< "agent", "pbd" (the fast models) or "fem"
+  std::string label;     ///< unique, e.g. "agent directional 2 mm", "pbd 1000 x 4", "fem Q1 4 mm"
+  double size = 0;       ///< agent edge or FEM mesh size [m] (PBD: its segment length)
   int degree = 0;        ///< FEM polynomial degree (0 for agents)
   std::string rule_set;  ///< agents' rule set (empty for FEM)
   std::map<std::string, double> work;  ///< machine-independent counts (agents, packet_moves, dofs, ...)
@@ -36,16 +36,16 @@ struct FrontVerdict {
   /// The cheapest point that is at least as fast and at least as accurate (and better in one), or
   /// none: the point is on the front.
   std::optional<std::string> dominated_by;
-  /// Agents only: the FEM's time at the agent's error (log-log between the two FEM points of the
-  /// FEM front around it) over the agent's time. None outside the FEM's range; then one bound:
+  /// The fast models only: the FEM's time at the point's error (log-log between the two FEM points of the
+  /// FEM front around it) over the point's time. None outside the FEM's range; then one bound:
   std::optional<double> speedup;
-  std::optional<double> speedup_at_most;   ///< the agent is less accurate than every FEM point
-  std::optional<double> speedup_at_least;  ///< the agent is more accurate than every FEM point
+  std::optional<double> speedup_at_most;   ///< the point is less accurate than every FEM point
+  std::optional<double> speedup_at_least;  ///< the point is more accurate than every FEM point
 };
 
-/// Where the FEM becomes the cheaper model for one rule set's agents in one metric.
+/// Where the FEM becomes the cheaper model for one family of the fast model in one metric.
 struct FrontCrossover {
-  std::string metric, rule_set;
+  std::string metric, model, rule_set;  ///< the family: model ("agent", "pbd") and rule set (agents)
   /// Below this error the FEM is the cheaper model (both fronts interpolated log-log); none when
   /// the two fronts share no range of errors.
   std::optional<double> fem_cheaper_below;
@@ -68,7 +68,7 @@ std::optional<double> time_at_error(const std::vector<const FrontPoint*>& front,
 std::vector<FrontVerdict> front_verdicts(const std::vector<FrontPoint>& points, const std::vector<std::string>& metrics,
                                          const std::map<std::string, double>& floors);
 
-/// The crossover of every agent rule set with the FEM in every metric of `metrics`.
+/// The crossover of every family of a fast model (each agent rule set, the PBD) with the FEM in every metric of `metrics`.
 std::vector<FrontCrossover> front_crossovers(const std::vector<FrontPoint>& points,
                                              const std::vector<std::string>& metrics,
                                              const std::map<std::string, double>& floors);

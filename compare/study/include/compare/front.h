@@ -1,6 +1,7 @@
 #pragma once
 // `workbench front`: is the fast model worth running? The agent model at a ladder of agent sizes
-// and the FEM at a ladder of mesh sizes and degrees, each timed (a warm-up, then the minimum and
+// (a PBD case: the PBD rod at a ladder of substeps x iterations) and the FEM at a ladder of mesh
+// sizes and degrees, each timed (a warm-up, then the minimum and
 // median of N runs from the imported mesh to all of its fields) and scored against the converged
 // reference of `workbench compare` on the case's own agent grid; then per field which point is
 // dominated and how much cheaper the agents are than the FEM of equal error (docs/front.md).
@@ -22,7 +23,7 @@ namespace compare {
 
 struct FrontOutcome {
   std::vector<FrontPoint> points;
-  std::string case_point;  ///< the label of the agent point at the case's own size and rule set
+  std::string case_point;  ///< the label of the case's own point (agents: its size and rule set; PBD: its steps)
   std::vector<FrontVerdict> verdicts;
   std::vector<FrontCrossover> crossovers;
   /// The reference's own error per metric (its estimate level against it): the floor of the verdicts.
@@ -42,8 +43,8 @@ void require_one_rank(const workbench::CaseFile& file);
 
 /// Runs the front of the case `file` ([front], docs/case-file.md) and writes front.json, front.csv,
 /// fem/ (the reference), figures/ (one work-precision figure per far-field metric) and report.html
-/// into `dir`. One rank (under mpirun with more, a workbench::Error); the agent model must be the
-/// case's fast model (compare.model = "agent").
+/// into `dir`. One rank (under mpirun with more, a workbench::Error). The fast model is the case's
+/// compare.model: "agent", or "pbd" (the rod against the FEM strip, docs/front.md "A PBD case").
 FrontOutcome run_front(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);
 
 }  // namespace compare

@@ -53,6 +53,38 @@ def rigid_body_modes(V, dim):
     return PETSc.NullSpace().create(vectors=modes)
 
 
+def patch_problem(msh, V, size, lw, thickness, force):
+    """The benchmark's problem on `msh` in space V: linear elasticity (plane stress per unit thickness
+    in 2D), clamped at y = 0, `force` N downwards on the centred lw-wide patch of the top face (lw x
+    lw in 3D). Returns the bilinear form, the linear form and the clamp."""
+    dim = len(size)
+    mu = E / (2 * (1 + NU))
+    lam = E * NU / ((1 + NU) * (1 - 2 * NU))
+    if dim == 2:
+        lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress, per unit thickness
+    fdim = dim - 1
+
+    def patch(x):
+        inside = np.isclose(x[1], size[1])
+        for a in ([0] if dim == 2 else [0, 2]):
+            inside &= np.abs(x[a] - 0.5 * size[a]) <= 0.5 * lw + 1e-12
+        return inside
+
+    facets = mesh.locate_entities_boundary(msh, fdim, patch)
+    tags = mesh.meshtags(msh, fdim, facets, np.full(len(facets), 1, dtype=np.int32))
+    traction = np.zeros(dim)
+    traction[1] = -force / (lw * (thickness if dim == 2 else lw))
+    u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
+    eps = lambda w: ufl.sym(ufl.grad(w))
+    sigma = lambda w: 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(dim)
+    a = fem.form(ufl.inner(sigma(u), eps(v)) * ufl.dx)
+    ds = ufl.Measure("ds", domain=msh, subdomain_data=tags)
+    L = fem.form(ufl.inner(fem.Constant(msh, traction), v) * ds(1))
+    clamped = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], 0.0))
+    bc = fem.dirichletbc(np.zeros(dim), fem.locate_dofs_topological(V, fdim, clamped), V)
+    return a, L, bc
+
+
 def dolfinx_solve(cells, size, lw, thickness, force):
     """Setup, assembly, solve and solve CPU seconds, iterations, largest |u| [m]."""
     dim = len(cells)
@@ -62,32 +94,7 @@ def dolfinx_solve(cells, size, lw, thickness, force):
     else:
         msh = mesh.create_box(MPI.COMM_WORLD, [[0, 0, 0], list(size)], list(cells), mesh.CellType.hexahedron)
     V = fem.VectorFunctionSpace(msh, ("Lagrange", 1))
-    mu = E / (2 * (1 + NU))
-    lam = E * NU / ((1 + NU) * (1 - 2 * NU))
-    if dim == 2:
-        lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress, per unit thickness
-    fdim = dim - 1
-    top, base = size[1], 0.0
-
-    def patch(x):
-        inside = np.isclose(x[1], top)
-        for a in ([0] if dim == 2 else [0, 2]):
-            inside &= np.abs(x[a] - 0.5 * size[a]) <= 0.5 * lw + 1e-12
-        return inside
-
-    facets = mesh.locate_entities_boundary(msh, fdim, patch)
-    tags = mesh.meshtags(msh, fdim, facets, np.full(len(facets), 1, dtype=np.int32))
-    area = lw * (thickness if dim == 2 else lw)
-    traction = np.zeros(dim)
-    traction[1] = -force / area
-    u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-    eps = lambda w: ufl.sym(ufl.grad(w))
-    sigma = lambda w: 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(dim)
-    a = fem.form(ufl.inner(sigma(u), eps(v)) * ufl.dx)
-    ds = ufl.Measure("ds", domain=msh, subdomain_data=tags)
-    L = fem.form(ufl.inner(fem.Constant(msh, traction), v) * ds(1))
-    clamped = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], base))
-    bc = fem.dirichletbc(np.zeros(dim), fem.locate_dofs_topological(V, fdim, clamped), V)
+    a, L, bc = patch_problem(msh, V, size, lw, thickness, force)
     setup = time.perf_counter() - t0
 
     t0 = time.perf_counter()

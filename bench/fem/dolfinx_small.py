@@ -36,7 +36,7 @@ from dolfinx.fem.petsc import apply_lifting, assemble_matrix, assemble_vector, s
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from dolfinx_peer import E, NU, rigid_body_modes
+from dolfinx_peer import patch_problem, rigid_body_modes
 
 ROOT = Path(__file__).resolve().parents[2]
 LW = 0.008  # load patch [m]
@@ -69,30 +69,7 @@ def solve(msh, size, thickness, degree, solver):
     """The whole solve from the mesh: returns the largest |u| at the vertices and the DoFs."""
     dim = len(size)
     V = fem.VectorFunctionSpace(msh, ("Lagrange", degree))
-    mu = E / (2 * (1 + NU))
-    lam = E * NU / ((1 + NU) * (1 - 2 * NU))
-    if dim == 2:
-        lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress, per unit thickness
-    fdim = dim - 1
-
-    def patch(x):
-        inside = np.isclose(x[1], size[1])
-        for a in ([0] if dim == 2 else [0, 2]):
-            inside &= np.abs(x[a] - 0.5 * size[a]) <= 0.5 * LW + 1e-12
-        return inside
-
-    facets = mesh.locate_entities_boundary(msh, fdim, patch)
-    tags = mesh.meshtags(msh, fdim, facets, np.full(len(facets), 1, dtype=np.int32))
-    traction = np.zeros(dim)
-    traction[1] = -FORCE / (LW * (thickness if dim == 2 else LW))
-    u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-    eps = lambda w: ufl.sym(ufl.grad(w))
-    sigma = lambda w: 2 * mu * eps(w) + lam * ufl.tr(eps(w)) * ufl.Identity(dim)
-    a = fem.form(ufl.inner(sigma(u), eps(v)) * ufl.dx)
-    ds = ufl.Measure("ds", domain=msh, subdomain_data=tags)
-    L = fem.form(ufl.inner(fem.Constant(msh, traction), v) * ds(1))
-    base = mesh.locate_entities_boundary(msh, fdim, lambda x: np.isclose(x[1], 0.0))
-    bc = fem.dirichletbc(np.zeros(dim), fem.locate_dofs_topological(V, fdim, base), V)
+    a, L, bc = patch_problem(msh, V, size, LW, thickness, FORCE)
 
     A = assemble_matrix(a, bcs=[bc])
     A.assemble()

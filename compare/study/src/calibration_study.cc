@@ -18,6 +18,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -167,14 +168,27 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
 
 namespace {
 
-/// The load cases in `files`, fitted or held out (`what`): the agent study, and the FEM reference
+using CaseFiles = std::vector<std::unique_ptr<workbench::CaseFile>>;
+
+/// Every case file of `files` read and its sections checked: a bad one is refused before any
+/// reference is solved.
+CaseFiles open_cases(const std::vector<fs::path>& files) {
+  CaseFiles out;
+  for (const auto& f : files) {
+    out.push_back(std::make_unique<workbench::CaseFile>(f));
+    schema::check_every_section(*out.back());
+  }
+  return out;
+}
+
+/// The load cases of `files`, fitted or held out (`what`): the agent study, and the FEM reference
 /// solved once; under MPI on every rank, the references across the ranks, bad input one line.
 std::vector<CalibrationCase> load_cases(const workbench::CaseFile& file, const CalibrationPlan& plan,
-                                        const std::vector<fs::path>& files, const char* what, std::ostream& log) {
+                                        const CaseFiles& files, const char* what, std::ostream& log) {
   std::vector<CalibrationCase> cases;
   const auto calibrate_table = file.root().table("calibrate");
   for (std::size_t i = 0; i < files.size(); ++i) {
-    workbench::CaseFile case_file(files[i]);
+    const workbench::CaseFile& case_file = *files[i];
     log << "calibrate: " << what << " " << i + 1 << "/" << files.size() << " ";
     CalibrationCase c;
     try {
@@ -468,8 +482,9 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   fem_reference::mpi_collective([&] {
     plan = read_calibration_plan(file);
     file.reject_unknown_keys();
-    cases = load_cases(file, plan, plan.case_files, "case", log);
-    held = load_cases(file, plan, plan.held_out_files, "held-out case", log);
+    const auto case_files = open_cases(plan.case_files), held_files = open_cases(plan.held_out_files);
+    cases = load_cases(file, plan, case_files, "case", log);
+    held = load_cases(file, plan, held_files, "held-out case", log);
   });
   for (std::size_t i = 0; i < cases.size(); ++i) cases[i].weight = plan.case_weights[i];
   start_from_first_case(plan, cases, file);

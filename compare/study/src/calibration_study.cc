@@ -29,6 +29,30 @@ namespace fs = std::filesystem;
 using workbench::Error;
 using workbench::Range;
 
+namespace {
+
+/// [[calibrate.case]] (file, weight) and [[calibrate.held_out]] (file). A case's name (its file's
+/// stem) names its calibrated/<name>.toml and its rows: one case per name.
+void read_case_lists(const workbench::CaseTable& t, CalibrationPlan& plan) {
+  const auto cases = t.tables("case");
+  if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
+  std::vector<std::string> names;
+  auto add_case = [&](const workbench::CaseTable& c, std::vector<fs::path>& files) {
+    files.push_back(c.path("file", std::nullopt));
+    const std::string name = files.back().stem().string();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      c.fail("file", "a case named \"" + name + "\" is listed already: each case's file name must differ (calibrated/" + name + ".toml)");
+    names.push_back(name);
+  };
+  for (const auto& c : cases) {
+    add_case(c, plan.case_files);
+    plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
+  }
+  for (const auto& c : t.tables("held_out")) add_case(c, plan.held_out_files);
+}
+
+}  // namespace
+
 CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   const auto root = file.root();
   root.text("title", "");
@@ -57,22 +81,7 @@ CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
   o.weights.keep_load = t.flag("keep_load", true);
 
-  const auto cases = t.tables("case");
-  if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
-  // Each case's name (its file's stem) names its calibrated/<name>.toml and its rows: one per case.
-  std::vector<std::string> names;
-  auto add_case = [&](const workbench::CaseTable& c, std::vector<fs::path>& files) {
-    files.push_back(c.path("file", std::nullopt));
-    const std::string name = files.back().stem().string();
-    if (std::find(names.begin(), names.end(), name) != names.end())
-      c.fail("file", "a case named \"" + name + "\" is listed already: each case's file name must differ (calibrated/" + name + ".toml)");
-    names.push_back(name);
-  };
-  for (const auto& c : cases) {
-    add_case(c, plan.case_files);
-    plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
-  }
-  for (const auto& c : t.tables("held_out")) add_case(c, plan.held_out_files);
+  read_case_lists(t, plan);
   // Per coefficient (agent::kCoefficients): the library's value as the start, the table's fit
   // bounds, its range for what a file gives. Free by default: what the rule set uses, but gamma.
   int n_free = 0;
@@ -270,7 +279,9 @@ std::vector<std::string> fit_warnings(const std::vector<CalibrationCase>& cases,
 /// coefficients, as a fitted case does); no load-balance ceiling: they are scored, not fitted.
 void score_held_out(const std::vector<CalibrationCase>& held, const CalibrationOptions& o, CalibrationResult& result) {
   if (held.empty()) return;
-  const CaseShare share{0, 1, o.threads > 0 ? o.threads : std::max(1, int(std::thread::hardware_concurrency()))};
+  // Every rank scores every held-out case (no collective): one thread each under MPI, as calibrate() runs.
+  const int threads = fem_reference::mpi_size() > 1 ? 1 : o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+  const CaseShare share{0, 1, std::max(1, threads)};
   std::vector<Score> before, after;
   objective(held, result.start, o.rules, o.weights, &before, share);
   objective(held, result.best, o.rules, o.weights, &after, share);
@@ -304,6 +315,20 @@ void field_row(std::ostream& r, std::size_t k, const std::string& name, int dim,
     << error(before) << std::setw(12) << error(after) << std::setw(8) << w.field[k] << "\n";
 }
 
+/// report.txt's errors per field (kFields) and case, fitted then held out, before and after the fit.
+void errors_table(std::ostream& r, const std::vector<CalibrationCase>& cases, const CalibrationResult& result,
+                  const ObjectiveWeights& w) {
+  r << std::left << std::setw(14) << "field" << std::setw(28) << "case" << std::right << std::setw(12) << "before"
+    << std::setw(12) << "after" << std::setw(8) << "weight" << "\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      field_row(r, k, cases[i].name, cases[i].study.mesh.grid.dim, result.before[i], result.after[i], w);
+  if (result.held_out.empty()) return;
+  r << "\nheld out (scored with the start and the fitted coefficients, never fitted):\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    for (const auto& h : result.held_out) field_row(r, k, h.name, h.dim, h.before, h.after, w);
+}
+
 /// report.txt: the objective, the fit, each field's error per case (fitted and held out) before and
 /// after, the load balance, the sensitivity and the cross-validation.
 std::string report_text(const workbench::CaseFile& file, const Found& found) {
@@ -321,17 +346,7 @@ std::string report_text(const workbench::CaseFile& file, const Found& found) {
     << "; the other fields are reported, not fitted\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
-  // Per field (kFields) and case: the error before and after the fit (0: not compared in the case's dimension).
-  r << std::left << std::setw(14) << "field" << std::setw(28) << "case" << std::right << std::setw(12) << "before"
-    << std::setw(12) << "after" << std::setw(8) << "weight" << "\n";
-  for (std::size_t k = 0; k < kFieldCount; ++k)
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      field_row(r, k, cases[i].name, cases[i].study.mesh.grid.dim, result.before[i], result.after[i], o.weights);
-  if (!result.held_out.empty()) {
-    r << "\nheld out (scored with the start and the fitted coefficients, never fitted):\n";
-    for (std::size_t k = 0; k < kFieldCount; ++k)
-      for (const auto& h : result.held_out) field_row(r, k, h.name, h.dim, h.before, h.after, o.weights);
-  }
+  errors_table(r, cases, result, o.weights);
   r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
     << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
     << "reach before" << std::setw(10) << "after" << "\n";
@@ -407,6 +422,25 @@ nlohmann::json threshold_json(const CalibrationCase& c, const CalibrationResult&
   return t;
 }
 
+/// report.json's lists of names: `coefficients_used`, the coefficients the rule set reads
+/// (agent::kCoefficients) that the calibration sets, fitted or held at a start (the rest, gamma when
+/// held, gamma_relative, directions, ..., are each case's own); `fields`, kFields compared in any
+/// case's dimension, in its order.
+void add_names(nlohmann::json& j, const Found& found) {
+  const auto& o = found.plan.options;
+  const auto gamma = std::size_t(agent::find_coefficient("gamma") - agent::kCoefficients.data());
+  j["coefficients_used"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < kCoefficientCount; ++i)
+    if (agent::kCoefficients[i].used_by(o.rules) && !(i == gamma && o.weights.held_from_case[i]))
+      j["coefficients_used"].push_back(agent::kCoefficients[i].name);
+  j["fields"] = nlohmann::json::array();
+  auto in_any = [](const FieldSpec& f, const std::vector<CalibrationCase>& list) {
+    return std::any_of(list.begin(), list.end(), [&](const CalibrationCase& c) { return f.in(c.study.mesh.grid.dim); });
+  };
+  for (const auto& f : kFields)
+    if (in_any(f, found.cases) || in_any(f, found.held)) j["fields"].push_back(f.name);
+}
+
 /// report.json: what report.txt says, as data.
 nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) {
   const auto& [plan, cases, held, result, folds, warnings, seconds] = found;
@@ -417,19 +451,7 @@ nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) 
   j["rule_set"] = agent::rule_set_name(o.rules);
   j["scope"] = o.weights.lines ? "lines" : o.weights.far ? "far" : "body";  // where the errors are measured
   if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
-  // The coefficients the rule set reads (agent::kCoefficients) that the calibration sets, fitted or
-  // held at a start; the rest (gamma when held, gamma_relative, directions, ...) are each case's own.
-  const auto gamma = std::size_t(agent::find_coefficient("gamma") - agent::kCoefficients.data());
-  j["coefficients_used"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < kCoefficientCount; ++i)
-    if (agent::kCoefficients[i].used_by(o.rules) && !(i == gamma && o.weights.held_from_case[i]))
-      j["coefficients_used"].push_back(agent::kCoefficients[i].name);
-  j["fields"] = nlohmann::json::array();  // kFields compared in any case's dimension, in its order
-  auto in_any = [](const FieldSpec& f, const std::vector<CalibrationCase>& list) {
-    return std::any_of(list.begin(), list.end(), [&](const CalibrationCase& c) { return f.in(c.study.mesh.grid.dim); });
-  };
-  for (const auto& f : kFields)
-    if (in_any(f, cases) || in_any(f, held)) j["fields"].push_back(f.name);
+  add_names(j, found);
   j["start"] = coefficients_json(result.start);
   j["fitted"] = coefficients_json(result.best);
   j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};

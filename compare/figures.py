@@ -184,15 +184,12 @@ def line_groups(meta):
 
 def line_data(lines, model, name):
     """One model's samples along one line, with a NaN row where the line crosses air (lines.csv has
-    only the samples inside the agents; the gap is wider than the sample spacing), so that the
-    plotted line stops at air instead of bridging it."""
+    only the samples inside the agents, its `segment` column one more after each stretch of air), so
+    that the plotted line stops at air instead of bridging it."""
     sel = (lines["model"] == model) & (lines["line"] == name)
-    d = {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line")}
-    step = np.diff(d["arc_length"])
-    if len(step) > 1:
-        gaps = np.nonzero(step > 1.5 * step.min())[0] + 1
-        d = {k: np.insert(v, gaps, np.nan) for k, v in d.items()}
-    return d
+    d = {k: num(v[sel]) for k, v in lines.items() if k not in ("model", "line", "segment")}
+    gaps = np.nonzero(np.diff(num(lines["segment"][sel])))[0] + 1
+    return {k: np.insert(v, gaps, np.nan) for k, v in d.items()}
 
 
 def in_slice(table, zc):

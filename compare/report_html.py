@@ -32,7 +32,6 @@ except ImportError as e:
 HERE = os.path.dirname(os.path.abspath(__file__))
 TEMPLATE = "report.html.j2"
 IMAGES = {".png": "image/png", ".gif": "image/gif"}  # embedded; other figure files (PDF) are linked
-FIELDS = ("sigma_x", "sigma_y", "displacement")  # the headline errors' rows, as the metric names spell them
 MANY = 12  # a folder with more files than this is listed folded
 
 
@@ -133,7 +132,7 @@ def render(out, page_template=None):
     kind = {"report.json": "calibration", "front.json": "front"}.get(os.path.basename(source), data.get("model", "agent"))
     try:
         html = page_template.render(
-            kind=kind, page=Page(data), d=data, source=os.path.basename(source), fields=FIELDS,
+            kind=kind, page=Page(data), d=data, source=os.path.basename(source),
             figures=figures(out), files=files(out), many=MANY)
     except (jinja2.TemplateError, KeyError, IndexError, TypeError, ValueError) as e:
         raise SystemExit(f"report_html.py: {source}: the page cannot be rendered ({type(e).__name__}: {e})")

@@ -332,6 +332,17 @@ py::dict run_calibrate(const Case& c, const fs::path& output_dir, const py::obje
     d["curvature"] = s.curvature;
     d["pinned"] = s.pinned;
   });
+  py::dict held_out;  // report.json's held_out: per case, each field's error before and after (None: not solved)
+  for (const auto& h : result.held_out) {
+    auto errors = [&](const compare::Score& s) {
+      py::dict e;
+      for (std::size_t k = 0; k < compare::kFieldCount; ++k)
+        if (compare::kFields[k].in(h.dim)) e[compare::kFields[k].name] = s.load_refused ? py::none() : py::cast(s.error[k]);
+      return e;
+    };
+    held_out[py::str(h.name)] = py::dict(py::arg("before") = errors(h.before), py::arg("after") = errors(h.after));
+  }
+  r["held_out"] = held_out;
   return r;
 }
 
@@ -461,22 +472,28 @@ void bind_objective(py::module_& m) {
              return new Objective(cases, rule_set, weights, progress);
            }),
            py::arg("cases"), py::arg("rule_set") = "conserving", py::arg("progress") = py::none(),
-           "weights per field as keywords (compare::kFields: sigma_x, sigma_y, displacement, tau_xy, von_mises, u_x, "
-           "...; default sigma_y = displacement = 1, the rest 0)")
+           "Arguments: cases (a list of workbench.Case, each a study case; its FEM reference is solved once, now); "
+           "rule_set (\"patent\", \"conserving\" or \"directional\"); progress (a callable given each progress line); "
+           "the weights per field as keywords (compare::kFields: sigma_x, sigma_y, displacement, tau_xy, von_mises, "
+           "u_x, ...; default sigma_y = displacement = 1, the rest 0).")
       .def(
           "__call__", [](const Objective& o, const std::array<double, 5>& v) { return o(Objective::seed_coefficients(v)); },
-          py::arg("coefficients"), "J at [alpha1, alpha2, alpha3, beta, gamma]")
+          py::arg("coefficients"), "Returns J (float) at [alpha1, alpha2, alpha3, beta, gamma]")
       .def(
           "__call__",
           [](const Objective& o, const std::map<std::string, double>& v) { return o(Objective::named_coefficients(v)); },
-          py::arg("coefficients"), "J at named coefficients, e.g. {\"fan_angle\": 60, \"diffusion_length\": 0.002}")
+          py::arg("coefficients"),
+          "Returns J (float) at named coefficients, e.g. {\"fan_angle\": 60, \"diffusion_length\": 0.002}; the rest "
+          "at the library's defaults")
       .def(
           "scores", [](const Objective& o, const std::array<double, 5>& v) { return o.scores(Objective::seed_coefficients(v)); },
-          py::arg("coefficients"), "Each case's relative errors")
+          py::arg("coefficients"),
+          "Returns a list, per case: a dict of `case` (its name) and each field's relative error (the fields "
+          "compared in its dimension), at [alpha1, alpha2, alpha3, beta, gamma]")
       .def(
           "scores",
           [](const Objective& o, const std::map<std::string, double>& v) { return o.scores(Objective::named_coefficients(v)); },
-          py::arg("coefficients"), "Each case's relative errors at named coefficients");
+          py::arg("coefficients"), "Returns each case's relative errors (as above) at named coefficients");
 }
 
 }  // namespace
@@ -484,6 +501,13 @@ void bind_objective(py::module_& m) {
 PYBIND11_MODULE(workbench, m) {
   m.doc() = "The deformation-model workbench from Python: agent model, FEM reference, comparison, calibration, "
             "PBD model (docs/python.md)";
+  // Every call returns numpy arrays: without numpy, say so now, before any study runs and writes.
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    throw py::import_error(std::string("workbench needs numpy, which this Python cannot import (") + e.what() +
+                           "): install Debian's python3-numpy, or use /usr/bin/python3 (docs/python.md)");
+  }
   py::register_exception<workbench::Error>(m, "Error", PyExc_RuntimeError);
   fem_reference::configure_singleton_mpi();  // as the command line does: the same start-up, a session folder of its own
 
@@ -544,21 +568,52 @@ PYBIND11_MODULE(workbench, m) {
   m.def("agent_fields", &workbench_python::state_fields_list,
         "The table of the agent model's fields (agent/state.h): name, unit, place, the columns per dimension, the "
         "VTU layout and the compared fields (compare::kFields) each gives.");
+  // Each call's docstring: its arguments, then every key of what it returns (docs/python.md has the table).
   m.def("run_agent", &run_agent, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("load_factor") = 1.0,
         py::arg("progress") = py::none(),
-        "The agent model at `load_factor` times the load: arrays in grid order (cell_of_element[e] is the agent of "
-        "mesh element e), diagnostics as a dict. With output_dir, also the files of `workbench agent`.");
+        "The agent model, as `workbench agent`.\n\n"
+        "Arguments: case (workbench.Case); output_dir (also write `workbench agent`'s files there, whole or not at "
+        "all); load_factor (the load times this); progress (a callable given each progress line).\n\n"
+        "Returns a dict: one array per row of agent_fields() (face_force [N], stress, shear, von_mises [Pa], strain, "
+        "generation, displacement [m]), cell_centres, node_points [m], cell_coords, node_coords (box i, j, k), "
+        "cell_of_element (the agent of mesh element e), dim, cells, tiled, diagnostics (dict, forces in N), "
+        "coefficients (every coefficient in effect, by name).");
   m.def("run_fem", &run_fem, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("progress") = py::none(),
-        "The FEM reference: per-cell stresses [Pa] in gmsh element order, nodal displacements [m]. With output_dir, "
-        "also the files of `workbench fem`.");
+        "The FEM reference, as `workbench fem`.\n\n"
+        "Arguments: case (workbench.Case); output_dir (also write `workbench fem`'s files there); progress (a "
+        "callable given each progress line).\n\n"
+        "Returns a dict: sigma_x, sigma_y, sigma_z, tau_xy, tau_yz, tau_xz, von_mises [Pa] per cell (gmsh element "
+        "order), node_displacement [m] (nodes x dim), node_points, cell_centres [m], reactions (per group: group, "
+        "kind, force_N), applied_N, solver, iterations, residual, backward_error, l2_error, h1_error, seconds "
+        "(mesh, setup, assemble, solve, output), dim, degree, model, cells, ranks, n_dofs, n_active_cells.");
   m.def("compare", &run_compare, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
-        "`workbench compare`: writes everything into output_dir, returns the metrics and the gate's verdict.");
+        "`workbench compare`: writes everything into output_dir (report.html included).\n\n"
+        "Arguments: case (workbench.Case); output_dir (the output folder); progress (a callable given each "
+        "progress line).\n\n"
+        "Returns a dict: metrics (name: value, summary.json's names), meanings (name: text), reference_errors (name: "
+        "the reference's own error), warnings (list), gate_failures (list of (metric, value, limit)), gated (how "
+        "many limits were checked), and fields: the compared fields as arrays in the CSV files' row order, "
+        "fields['cells'] (cells.csv: point, agent_sigma, fem_sigma, diff_sigma, ratio_sigma, masked, far, "
+        "generation, agent_<field>, fem_<field>), fields['nodes'] (nodes.csv: box_coords, point, agent_u, fem_u, "
+        "diff_u, far), fields['lines'][name] (lines.csv: segment (0, then one more after each stretch of air the "
+        "line crosses: break a plot where it changes), arc_length, point, agent_sigma, fem_sigma, agent_u, fem_u, "
+        "agent_<field>, fem_<field>); a PBD comparison has fields['lines']['centreline'] only.");
   m.def("front", &run_front, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
-        "`workbench front`: the cost-accuracy front; writes everything into output_dir and returns front.json as a "
-        "dict: points (model, label, size, work, seconds {min, median}, errors), verdicts (point, metric, "
-        "dominated_by, speedup), crossovers, reference {errors}, gate {checked, failed, failures}.");
+        "`workbench front`: the cost-accuracy front; writes everything into output_dir.\n\n"
+        "Arguments: case (workbench.Case, with [front]); output_dir; progress (a callable given each progress "
+        "line).\n\n"
+        "Returns front.json as a dict: points (model, label, size, work, seconds {min, median}, errors), verdicts "
+        "(point, metric, dominated_by, speedup, speedup_at_most, speedup_at_least, below_floor), crossovers, "
+        "reference {errors}, case_point, skipped, gate {checked, failed, failures}, machine.");
   m.def("calibrate", &run_calibrate, py::arg("calibration"), py::arg("output_dir"), py::arg("progress") = py::none(),
-        "`workbench calibrate` on a calibration file: the fitted coefficients and the objective.");
+        "`workbench calibrate` on a calibration file; writes report.txt, report.json, report.html and "
+        "calibrated/<case>.toml into output_dir.\n\n"
+        "Arguments: calibration (workbench.Case of a calibration file, docs/calibration.md); output_dir; progress "
+        "(a callable given each progress line).\n\n"
+        "Returns a dict: start, best (every coefficient by name), objective_start, objective_best, "
+        "start_objectives (the best objective from each start), evaluations, sensitivity (per free coefficient: "
+        "name, objective_minus, objective_plus, curvature, pinned), held_out (per [[calibrate.held_out]] case: "
+        "before, after: each field's error at the start and at the fit; None where the model cannot be solved).");
   m.def(
       "summarize",
       [](const std::vector<fs::path>& folders) {
@@ -571,11 +626,15 @@ PYBIND11_MODULE(workbench, m) {
                         py::arg("rows") = rows);
       },
       py::arg("folders"),
-      "`workbench summarize`: the summaries of compare and calibrate output folders as one table: `parameters` "
+      "`workbench summarize`: the summaries of compare and calibrate output folders as one table.\n\n"
+      "Arguments: folders (a list of output folders).\n\nReturns a dict: `parameters` "
       "(the case keys that differ between the folders), `metrics` (every name), `rows` (per folder: `folder`, "
       "`parameters`, `metrics`).");
   m.def("run_pbd", &run_pbd, py::arg("case"), py::arg("progress") = py::none(),
-        "The PBD model's frames: positions [m] per written frame (frames x nodes x 3), times [s], rest positions.");
+        "The PBD model, stepped as `workbench pbd` does; writes nothing.\n\n"
+        "Arguments: case (workbench.Case); progress (a callable given each progress line).\n\n"
+        "Returns a dict: positions [m] (written frames x nodes x 3), times [s] (per written frame), "
+        "rest_positions [m] (nodes x 3), pinned (node ids).");
 
   bind_objective(m);
 }

@@ -54,8 +54,10 @@ check compare_same_numbers_and_files $? "see above"
 test -f "$work/ranks/fem/fem_000.pvtu" && test -f "$work/ranks/fem/fem_000.1.vtu"
 check compare_fem_pieces $? "no fem_000.pvtu with a piece per rank"
 
-# 2. calibrate: two small cases (one with the load moved off centre), few evaluations.
+# 2. calibrate: two small cases (one with the load moved off centre), few evaluations, and a
+# third position held out (scored on every rank, written once).
 sed 's/^lw = 0.02/lw = 0.02\nxc = 0.05/' "$work/plate.toml" >"$work/offcentre.toml"
+sed 's/^lw = 0.02/lw = 0.02\nxc = 0.14/' "$work/plate.toml" >"$work/held.toml"
 cat >"$work/cal.toml" <<EOF
 title = "two plates"
 [calibrate]
@@ -71,6 +73,8 @@ displacement = 1.0
 file = "$work/plate.toml"
 [[calibrate.case]]
 file = "$work/offcentre.toml"
+[[calibrate.held_out]]
+file = "$work/held.toml"
 EOF
 "$bin" calibrate "$work/cal.toml" -o "$work/cal1" >/dev/null 2>"$work/cal1.log"
 check calibrate_serial $? "$(tail -2 "$work/cal1.log")"
@@ -87,6 +91,10 @@ for k, x in a["fitted"].items():
         bad.append(f"fitted {k}: serial {x!r}, 2 ranks {y!r}")
 if not math.isclose(a["objective"]["fitted"], b["objective"]["fitted"], rel_tol=1e-6):
     bad.append(f"objective: {a['objective']} against {b['objective']}")
+for when in ("before", "after"):
+    for f, x in a["held_out"]["held"][when].items():
+        if not math.isclose(x, b["held_out"]["held"][when][f], rel_tol=1e-6):
+            bad.append(f"held out {when} {f}: serial {x!r}, 2 ranks {b['held_out']['held'][when][f]!r}")
 files = lambda d: sorted(os.path.relpath(os.path.join(r, f), d) for r, _, fs in os.walk(d) for f in fs)
 if files(sys.argv[1]) != files(sys.argv[2]):
     bad.append(f"files differ: {files(sys.argv[1])} against {files(sys.argv[2])}")

@@ -26,15 +26,42 @@ check compare_pbd_gate_fails $(( $? != 1 )) "exit status not 1: $(tail -2 "$work
 grep -q 'Gate FAILED: <span data-key="/gate/failed" data-format="num">1</span>' "$work/tight/report.html" &&
   grep -q 'data-key="/metrics/centreline.deflection.rel_l2/passed" data-format="pass">EXCEEDED<' "$work/tight/report.html"
 check page_says_gate_failed $? "no 'Gate FAILED' with the exceeded metric on the page"
-# A calibration of two cases (so that it cross-validates), a few evaluations.
+# A calibration of two cases (so that it cross-validates), a few evaluations, and a case held out
+# (the load 40 mm off centre: scored, never fitted; check_report.py requires its every field).
 cp "$work/plate.toml" "$work/plate_b.toml"
+sed 's/^lw = 0.01$/lw = 0.01\nxc = 0.06/' "$work/plate.toml" >"$work/plate_off.toml"
 printf '%s\n' 'title = "Report test calibration"' '[calibrate]' 'starts = 1' 'max_evaluations = 8' \
-  '[[calibrate.case]]' 'file = "plate.toml"' '[[calibrate.case]]' 'file = "plate_b.toml"' >"$work/cal.toml"
+  '[[calibrate.case]]' 'file = "plate.toml"' '[[calibrate.case]]' 'file = "plate_b.toml"' \
+  '[[calibrate.held_out]]' 'file = "plate_off.toml"' >"$work/cal.toml"
 "$bin" calibrate "$work/cal.toml" -o "$work/cal" >"$work/cal.log" 2>&1
 check calibrate $? "$(tail -2 "$work/cal.log")"
+# The directional rule set, the plate's threshold the relative one (the case's own: gamma held).
+sed 's/^gamma = 1.0e-6$/gamma_relative = 1e-9/' "$work/plate.toml" >"$work/plate_rel.toml"
+printf '%s\n' '[calibrate]' 'rule_set = "directional"' 'starts = 1' 'max_evaluations = 4' 'cross_validate = false' \
+  '[[calibrate.case]]' 'file = "plate_rel.toml"' >"$work/cal_dir.toml"
+"$bin" calibrate "$work/cal_dir.toml" -o "$work/cal_dir" >"$work/cal_dir.log" 2>&1
+check calibrate_directional $? "$(tail -2 "$work/cal_dir.log")"
 
-$checker "$work/plate" "$work/strip" "$work/tight" "$work/cal"
+$checker "$work/plate" "$work/strip" "$work/tight" "$work/cal" "$work/cal_dir"
 check pages_in_chromium $? "see above"
+# Every compared field in the first table; each badge explained; which threshold acts.
+page="$work/plate/report.html"
+for f in tau_xy von_mises u_x u_y; do grep -q "data-key=\"/metrics/far.$f.rel_l2/value\"" "$page" || echo "no far.$f on the page"; done >"$work/fields.log"
+[ ! -s "$work/fields.log" ] && grep -q '<dt><span class="flag">resolved</span></dt>' "$page" &&
+  grep -q 'gamma_relative</span> <span data-key="/agent/coefficients/gamma_relative" data-format="num">1e-09</span> (not in effect' "$page" &&
+  grep -q '(the threshold in effect: gamma = <span data-key="/agent/threshold/gamma_in_effect" data-format="num">1e-06</span> N)' "$page"
+check page_fields_badges_threshold $? "$(cat "$work/fields.log")"
+# The held-out case on the page with its errors before and after; its calibrated case file.
+grep -q 'data-key="/held_out/plate_off/before/tau_xy"' "$work/cal/report.html" &&
+  grep -q 'data-key="/held_out/plate_off/after/sigma_y"' "$work/cal/report.html" && [ -f "$work/cal/calibrated/plate_off.toml" ]
+check page_held_out $? "no held-out case on the calibration page"
+# The directional fit shows its own coefficients, not the seed rule sets'; the case's relative threshold acts.
+page="$work/cal_dir/report.html"
+grep -q 'data-key="/fitted/fan_angle"' "$page" && ! grep -q 'data-key="/fitted/alpha' "$page" &&
+  ! grep -q 'data-key="/fitted/beta"' "$page" &&
+  grep -q 'data-key="/cases/plate_rel/threshold/coefficient" data-format="text">gamma_relative<' "$page" &&
+  grep -q 'data-key="/cases/plate_rel/threshold/fitted" data-format="num">2e-09<' "$page"
+check page_directional_coefficients $? "the directional calibration's page shows the patent coefficients or not its threshold"
 ls "$work/plate/figures/"*.png >/dev/null 2>&1 && [ "$(grep -c '<img src="data:image/png;base64,' "$work/plate/report.html")" -ge 5 ]
 check figures_embedded $? "fewer than five embedded PNG figures on the plate's page"
 

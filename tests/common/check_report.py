@@ -30,7 +30,6 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--remote-debugging-pipe", "--window-size=1100,1400", "--hide-scrollbars"]
 NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?(?![\w])")
-FIELDS = ("sigma_x", "sigma_y", "displacement")
 
 
 class Browser:
@@ -171,10 +170,14 @@ def required(data):
         keys += [f"/reference/errors/{v['metric']}" for v in data["verdicts"] if v["point"] == data["case_point"]]
         keys += [f"/skipped/{i}" for i in range(len(data["skipped"]))]
         return keys
-    if "metrics" not in data:  # a calibration
+    if "metrics" not in data:  # a calibration: every coefficient it sets, every case's (and held-out case's) errors
         keys += ["/objective/start", "/objective/fitted"]
-        keys += [f"/fitted/{k}" for k in data["fitted"] if k != "directions"]
-        keys += [f"/cases/{c}/{w}/{f}" for c in data["cases"] for w in ("before", "after") for f in FIELDS]
+        keys += [f"/fitted/{k}" for k in data["coefficients_used"]]
+        for group in ("cases", "held_out"):
+            for c, entry in data.get(group, {}).items():
+                keys += [f"/{group}/{c}/{w}/{f}" for w in ("before", "after") for f in data["fields"]
+                         if entry[w].get(f) is not None]
+                keys += [f"/{group}/{c}/threshold/coefficient", f"/{group}/{c}/threshold/fitted"]
         return keys
     keys += ["/gate/checked"]
     for name, m in data["metrics"].items():
@@ -182,9 +185,10 @@ def required(data):
         if "limit" in m:
             keys += [f"/metrics/{esc}/value", f"/metrics/{esc}/limit", f"/metrics/{esc}/passed"]
         keys += [f"/metrics/{esc}/{k}" for k, v in m.items() if isinstance(v, bool) and k != "passed" and v]
-    if data.get("model") == "agent":
+    if data.get("model") == "agent":  # every compared field's errors, the threshold in effect
+        keys += ["/unresolved_reference_error", "/agent/threshold/gamma_in_effect"]
         for scope in ("body", "far"):
-            for f in FIELDS:
+            for f in data["fields"]:
                 keys += [f"/metrics/{scope}.{f}.rel_l2/value", f"/metrics/{scope}.{f}.rel_l2/reference_error"]
         keys += ["/agent/applied", "/agent/rigid_reaction", "/agent/lost", "/agent/rule_set"]
         keys += [f"/agent/coefficients/{c}" for c in data["agent"]["coefficients_used"]]

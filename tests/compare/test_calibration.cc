@@ -5,8 +5,11 @@
 #include <compare/metrics.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "../support/scratch_folder.h"
@@ -416,5 +419,58 @@ TEST(Calibration, ReadsAWeightPerFieldFromTheCalibrationFile) {
   const auto plan = read_calibration_plan(file);
   for (std::size_t k = 0; k < kFieldCount; ++k) EXPECT_EQ(plan.options.weights.field[k], double(k + 1)) << kFields[k].name;
   EXPECT_NE(error_of("[calibrate]\n[[calibrate.case]]\nfile = \"plate.toml\"\n[calibrate.objective]\ntau = 1\n").find("tau"),
+            std::string::npos);
+}
+
+// [[calibrate.held_out]]: a case scored with the start and the fitted coefficients, never fitted.
+TEST(Calibration, ScoresHeldOutCasesWithTheStartAndTheFitWithoutFittingThem) {
+  ::setenv("WORKBENCH_SCRIPT_DIR", kSource.c_str(), 1);  // report_html.py from the source tree
+  write_file("plate_a.toml", plate_case("0.1"));
+  write_file("plate_b.toml", plate_case("0.05"));
+  const std::string head = "[calibrate]\nrule_set = \"conserving\"\nstarts = 1\nmax_evaluations = 12\nkeep_load = false\n"
+                           "threads = 1\n[[calibrate.case]]\nfile = \"plate_";
+  auto run = [&](const std::string& name, const std::string& text) {
+    workbench::CaseFile file(write_file(name + ".toml", text));
+    std::ostringstream log;
+    fs::create_directories(test_support::scratch_folder() / name);
+    return compare::run_calibration(file, test_support::scratch_folder() / name, log);
+  };
+  const auto held = run("held", head + "a.toml\"\n[[calibrate.held_out]]\nfile = \"plate_b.toml\"\n");
+  const auto alone = run("alone", head + "a.toml\"\n");
+  const auto on_b = run("on_b", head + "b.toml\"\n");
+  // Never fitted: the fit is the one without the held-out case, bit for bit.
+  for (const auto& c : agent::kCoefficients) EXPECT_EQ(c.get(held.best), c.get(alone.best)) << c.name;
+  EXPECT_EQ(held.objective_best, alone.objective_best);
+  ASSERT_EQ(held.held_out.size(), 1u);
+  const auto& h = held.held_out[0];
+  EXPECT_EQ(h.name, "plate_b");
+  // Before: the errors a calibration fitted on plate_b starts from (the same start).
+  for (std::size_t k = 0; k < kFieldCount; ++k) EXPECT_EQ(h.before.error[k], on_b.before[0].error[k]) << kFields[k].name;
+  EXPECT_GT(h.before.field("sigma_y"), 0.05);
+  // After: the errors of its calibrated case file, which holds the fitted coefficients.
+  workbench::CaseFile calibrated(test_support::scratch_folder() / "held" / "calibrated" / "plate_b.toml");
+  const auto c = load_calibration_case(calibrated, nullptr, nullptr, std::cout);
+  for (const auto& k : agent::kCoefficients)
+    if (k.fitted) {
+      EXPECT_EQ(k.get(c.study.coefficients), k.get(held.best)) << k.name;
+    }
+  std::vector<Score> s;
+  ObjectiveWeights w;
+  w.held_from_case.fill(true);  // every coefficient the file's own
+  objective({c}, c.study.coefficients, agent::RuleSet::Conserving, w, &s);
+  for (std::size_t k = 0; k < kFieldCount; ++k) EXPECT_EQ(h.after.error[k], s[0].error[k]) << kFields[k].name;
+  EXPECT_NE(h.after.field("sigma_y"), h.before.field("sigma_y"));
+  // report.json: every field compared in 2D, before and after; the page rendered beside it.
+  std::ifstream in(test_support::scratch_folder() / "held" / "report.json");
+  const auto report = nlohmann::json::parse(in);
+  for (const char* when : {"before", "after"}) {
+    EXPECT_EQ(report["held_out"]["plate_b"][when].size(), 7u);
+    EXPECT_EQ(report["held_out"]["plate_b"][when]["u_x"].get<double>(), (when[0] == 'b' ? h.before : h.after).field("u_x"));
+  }
+  EXPECT_FALSE(report["cases"].contains("plate_b"));
+  EXPECT_TRUE(fs::exists(test_support::scratch_folder() / "held" / "report.html"));
+  // A held-out case named like a fitted one is refused (both would write calibrated/plate_a.toml).
+  EXPECT_NE(error_of(head + "a.toml\"\n[[calibrate.held_out]]\nfile = \"plate_a.toml\"\n")
+                .find("calibrate.held_out[0].file: a case named \"plate_a\" is listed already"),
             std::string::npos);
 }

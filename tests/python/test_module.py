@@ -192,6 +192,39 @@ class Compare(unittest.TestCase):
         under = f["lines"]["line_x100y197p5_x100y2p5"]
         self.assertAlmostEqual(rel_l2(under["agent_sigma"][:, 1], under["fem_sigma"][:, 1]) / m["line_x100y197p5_x100y2p5.sigma_y.rel_l2"], 1, 12)
 
+    def test_a_line_across_a_hole_marks_where_it_leaves_the_body(self):
+        """The plate with a hole (cases/plate_hole.toml): the line along the pull and the line across
+        it at half depth run through the 20 mm hole; their samples on either side are segments 0 and
+        1, in the arrays, lines.csv and lines.json; every other line is one segment."""
+        name = os.path.join(SRC, "cases", "plate_hole.toml")
+        with open(name, "rb") as f:
+            case = tomllib.load(f)
+        case["compare"]["reference"] = {"mesh": "../meshes/plate_hole.geo", "degree": 1, "refine": 0}
+        with tempfile.TemporaryDirectory() as tmp:
+            r = workbench.compare(workbench.Case.from_dict(case, name=name), os.path.join(tmp, "c"))
+            csv = read_csv(os.path.join(tmp, "c", "lines.csv"))
+            with open(os.path.join(tmp, "c", "lines.json")) as f:
+                meta = {m["name"]: m for m in json.load(f)}
+        lines = r["fields"]["lines"]
+        crossing = sorted(n for n, l in lines.items() if l["segment"].max() > 0)
+        self.assertEqual(crossing, ["line_x100y1p25_x100y98p75", "line_x198p75y50_x1p25y50"])
+        for n in crossing:
+            l = lines[n]
+            self.assertEqual(l["segment"].dtype, np.int64)
+            np.testing.assert_array_equal(np.unique(l["segment"]), [0, 1])
+            self.assertTrue(np.all(np.diff(l["segment"]) >= 0))
+            cut = int(np.argmax(l["segment"]))  # the first sample past the hole
+            step = np.diff(l["arc_length"])
+            self.assertGreater(step[cut - 1], 15e-3)  # across the hole ...
+            self.assertAlmostEqual(np.delete(step, cut - 1).max(), 2.5e-3, delta=1e-9)  # ... one agent apart elsewhere
+            for model in ("agent", "fem"):
+                rows = (csv["line"] == n) & (csv["model"] == model)
+                np.testing.assert_array_equal(csv["segment"][rows], l["segment"])
+            a = l["arc_length"]
+            self.assertEqual(meta[n]["segments"], [[a[0], a[cut - 1]], [a[cut], a[-1]]])
+        self.assertTrue(all(len(meta[n]["segments"]) == 1 and lines[n]["segment"].max() == 0
+                            for n in lines if n not in crossing))
+
     def test_pbd_comparison_returns_its_centreline(self):
         with open(os.path.join(SRC, "cases", "pbd_strip_fem.toml"), "rb") as f:
             case = tomllib.load(f)
@@ -273,6 +306,54 @@ class Calibration(unittest.TestCase):
         self.assertAlmostEqual(objective({"diffusion_length": 0.004}), s["sigma_y"] ** 2 + s["displacement"] ** 2, delta=1e-12)
         with self.assertRaisesRegex(workbench.Error, 'rule_set: must be one of "patent", "conserving", "directional", "columns"'):
             workbench.Objective([workbench.Case.from_dict(plate())], rule_set="flamant")
+
+
+class HeldOut(unittest.TestCase):
+    def test_calibrate_returns_the_held_out_errors_of_report_json(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            for name, xc in (("fit", 0.1), ("held", 0.05)):
+                case = plate()
+                case["mesh"]["parameters"]["xc"] = xc
+                with open(os.path.join(tmp, f"{name}.toml"), "w") as f:
+                    f.write(workbench.Case.from_dict(case).toml)
+            with open(os.path.join(tmp, "cal.toml"), "w") as f:
+                f.write('[calibrate]\nstarts = 1\nmax_evaluations = 6\nthreads = 1\n'
+                        '[[calibrate.case]]\nfile = "fit.toml"\n[[calibrate.held_out]]\nfile = "held.toml"\n')
+            r = workbench.calibrate(workbench.Case(os.path.join(tmp, "cal.toml")), os.path.join(tmp, "out"))
+            with open(os.path.join(tmp, "out", "report.json")) as f:
+                report = json.load(f)
+            self.assertTrue(os.path.isfile(os.path.join(tmp, "out", "calibrated", "held.toml")))
+        self.assertEqual(list(r["held_out"]), ["held"])
+        for when in ("before", "after"):
+            self.assertEqual(r["held_out"]["held"][when], report["held_out"]["held"][when])  # every field, equal
+            self.assertEqual(set(r["held_out"]["held"][when]),
+                             {"sigma_x", "sigma_y", "displacement", "tau_xy", "von_mises", "u_x", "u_y"})
+        self.assertGreater(r["held_out"]["held"]["before"]["sigma_y"], 0.05)
+        self.assertNotIn("held", report["cases"])
+
+
+class Module(unittest.TestCase):
+    def test_a_missing_numpy_stops_the_import_before_any_work(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "out")
+            code = ("import sys; sys.modules['numpy'] = None\n"  # as if numpy were not installed
+                    "import workbench\n"
+                    f"workbench.compare(workbench.Case({os.path.join(SRC, 'cases', 'gate_plate.toml')!r}), {out!r})\n")
+            p = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True)
+            self.assertFalse(os.path.exists(out))
+        self.assertEqual(p.returncode, 1)
+        self.assertIn("ImportError: workbench needs numpy", p.stderr)
+        self.assertIn("python3-numpy", p.stderr)
+
+    def test_docstrings_name_every_argument_and_what_comes_back(self):
+        for name in ("run_agent", "run_fem", "compare", "front", "calibrate", "run_pbd", "summarize"):
+            doc = getattr(workbench, name).__doc__
+            self.assertIn("Arguments:", doc, name)
+            self.assertIn("Returns", doc, name)
+        doc = workbench.compare.__doc__
+        for key in ("metrics", "warnings", "gate_failures", "fields", "cells", "nodes", "lines", "segment", "output_dir", "progress"):
+            self.assertIn(key, doc)
+        self.assertIn("held_out", workbench.calibrate.__doc__)
 
 
 class CoefficientTable(unittest.TestCase):

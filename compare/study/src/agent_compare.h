@@ -67,7 +67,12 @@ inline std::string stress_name(int slot) {
   return "stress";
 }
 
-/// lines.csv: both models along every line, every field of kFields component by component.
+/// Per sample of `line` in the body (Line::body_samples), the piece of the body it lies on: 0 from
+/// the line's start, one more after each stretch of air the line crosses (a plot breaks there).
+std::vector<int> line_segments(const Line& line);
+
+/// lines.csv: both models along every line (with each sample's segment), every field of kFields
+/// component by component.
 void write_lines_csv(const std::filesystem::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
                      const std::vector<ScopeSamples>& samples);
 /// compare.vtu, cells.csv and nodes.csv: both models per cell and per node.
@@ -79,7 +84,8 @@ ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& ag
 /// steps.csv: the agent's sigma per cell at every load step (the animation's data).
 void write_steps_csv(const std::filesystem::path& file, const agent_study::AgentStudy& study,
                      const std::vector<agent_study::AgentState>& states);
-/// lines.json: each line's name, description, kind and ends.
+/// lines.json: each line's name, description, kind, ends and the arc lengths [m] where each of its
+/// segments in the body starts and ends.
 nlohmann::json lines_json(const std::vector<Line>& lines);
 
 }  // namespace compare::agent_compare

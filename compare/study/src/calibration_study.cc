@@ -18,14 +18,40 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <ostream>
 #include <sstream>
+#include <thread>
 
 namespace compare {
 
 namespace fs = std::filesystem;
 using workbench::Error;
 using workbench::Range;
+
+namespace {
+
+/// [[calibrate.case]] (file, weight) and [[calibrate.held_out]] (file). A case's name (its file's
+/// stem) names its calibrated/<name>.toml and its rows: one case per name.
+void read_case_lists(const workbench::CaseTable& t, CalibrationPlan& plan) {
+  const auto cases = t.tables("case");
+  if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
+  std::vector<std::string> names;
+  auto add_case = [&](const workbench::CaseTable& c, std::vector<fs::path>& files) {
+    files.push_back(c.path("file", std::nullopt));
+    const std::string name = files.back().stem().string();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      c.fail("file", "a case named \"" + name + "\" is listed already: each case's file name must differ (calibrated/" + name + ".toml)");
+    names.push_back(name);
+  };
+  for (const auto& c : cases) {
+    add_case(c, plan.case_files);
+    plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
+  }
+  for (const auto& c : t.tables("held_out")) add_case(c, plan.held_out_files);
+}
+
+}  // namespace
 
 CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   const auto root = file.root();
@@ -55,12 +81,7 @@ CalibrationPlan read_calibration_plan(const workbench::CaseFile& file) {
   o.weights.depths = w.numbers("depths", o.weights.depths, Range::open(0.0, 1.0));
   o.weights.keep_load = t.flag("keep_load", true);
 
-  const auto cases = t.tables("case");
-  if (cases.empty()) t.fail("case", "missing (at least one [[calibrate.case]] with the file of a study case)");
-  for (const auto& c : cases) {
-    plan.case_files.push_back(c.path("file", std::nullopt));
-    plan.case_weights.push_back(c.number("weight", 1.0, Range::positive()));
-  }
+  read_case_lists(t, plan);
   // Per coefficient (agent::kCoefficients): the library's value as the start, the table's fit
   // bounds, its range for what a file gives. Free by default: what the rule set uses, but gamma.
   int n_free = 0;
@@ -156,14 +177,28 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
 
 namespace {
 
-/// The plan's load cases (the agent study, and the FEM reference solved once); under MPI on every
-/// rank, the references across the ranks, bad input one line.
-std::vector<CalibrationCase> load_cases(const workbench::CaseFile& file, const CalibrationPlan& plan, std::ostream& log) {
+using CaseFiles = std::vector<std::unique_ptr<workbench::CaseFile>>;
+
+/// Every case file of `files` read and its sections checked: a bad one is refused before any
+/// reference is solved.
+CaseFiles open_cases(const std::vector<fs::path>& files) {
+  CaseFiles out;
+  for (const auto& f : files) {
+    out.push_back(std::make_unique<workbench::CaseFile>(f));
+    schema::check_every_section(*out.back());
+  }
+  return out;
+}
+
+/// The load cases of `files`, fitted or held out (`what`): the agent study, and the FEM reference
+/// solved once; under MPI on every rank, the references across the ranks, bad input one line.
+std::vector<CalibrationCase> load_cases(const workbench::CaseFile& file, const CalibrationPlan& plan,
+                                        const CaseFiles& files, const char* what, std::ostream& log) {
   std::vector<CalibrationCase> cases;
   const auto calibrate_table = file.root().table("calibrate");
-  for (std::size_t i = 0; i < plan.case_files.size(); ++i) {
-    workbench::CaseFile case_file(plan.case_files[i]);
-    log << "calibrate: case " << i + 1 << "/" << plan.case_files.size() << " ";
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const workbench::CaseFile& case_file = *files[i];
+    log << "calibrate: " << what << " " << i + 1 << "/" << files.size() << " ";
     CalibrationCase c;
     try {
       c = load_calibration_case(case_file, plan.readings ? &*plan.readings : nullptr, &calibrate_table, log);
@@ -171,7 +206,6 @@ std::vector<CalibrationCase> load_cases(const workbench::CaseFile& file, const C
       log << "\n" << std::flush;  // the error's line (`workbench: error: ...`) starts a line of its own
       throw;
     }
-    c.weight = plan.case_weights[i];
     cases.push_back(std::move(c));
   }
   return cases;
@@ -218,36 +252,87 @@ std::vector<Fold> cross_validate(const std::vector<CalibrationCase>& cases, cons
   return folds;
 }
 
-/// The warnings of the fit: load balance lost, or too little of the load reaching a rigid face.
+/// The warnings of one case: not solved, load balance lost, or too little of the load reaching a rigid face.
+void add_warnings(const std::string& name, const Score& b, const Score& a, std::vector<std::string>& warnings) {
+  for (const auto& [s, when] : {std::pair{&b, "start"}, {&a, "fitted"}})
+    if (s->load_refused)
+      warnings.push_back("calibrate: WARNING: " + name + ": the agent model cannot be solved with the " + when +
+                         " coefficients (its errors are not reported)");
+  if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
+    warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + name +
+                       ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
+                       std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
+  if (a.equilibrium_dev > 0.1)
+    warnings.push_back("calibrate: WARNING: " + name + ": the rigid reaction is " + std::to_string(a.reaction_share) +
+                       " of the applied load after the fit");
+}
+
+/// The warnings of the fit, fitted cases then held-out ones.
 std::vector<std::string> fit_warnings(const std::vector<CalibrationCase>& cases, const CalibrationResult& result) {
   std::vector<std::string> warnings;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto &b = result.before[i], &a = result.after[i];
-    if (a.equilibrium_dev > b.equilibrium_dev + kLoadTolerance)
-      warnings.push_back("calibrate: WARNING: the fit loses the load balance in " + cases[i].name +
-                         ": |rigid reaction - applied| / applied " + std::to_string(b.equilibrium_dev) + " before, " +
-                         std::to_string(a.equilibrium_dev) + " after (calibrate.keep_load = false)");
-    if (a.equilibrium_dev > 0.1)
-      warnings.push_back("calibrate: WARNING: " + cases[i].name + ": the rigid reaction is " +
-                         std::to_string(a.reaction_share) + " of the applied load after the fit");
-  }
+  for (std::size_t i = 0; i < cases.size(); ++i) add_warnings(cases[i].name, result.before[i], result.after[i], warnings);
+  for (const auto& h : result.held_out) add_warnings(h.name + " (held out)", h.before, h.after, warnings);
   return warnings;
+}
+
+/// The held-out cases scored with the start and the fitted coefficients (each keeps its own held
+/// coefficients, as a fitted case does); no load-balance ceiling: they are scored, not fitted.
+void score_held_out(const std::vector<CalibrationCase>& held, const CalibrationOptions& o, CalibrationResult& result) {
+  if (held.empty()) return;
+  // Every rank scores every held-out case (no collective): one thread each under MPI, as calibrate() runs.
+  const int threads = fem_reference::mpi_size() > 1 ? 1 : o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+  const CaseShare share{0, 1, std::max(1, threads)};
+  std::vector<Score> before, after;
+  objective(held, result.start, o.rules, o.weights, &before, share);
+  objective(held, result.best, o.rules, o.weights, &after, share);
+  for (std::size_t i = 0; i < held.size(); ++i)
+    result.held_out.push_back({held[i].name, held[i].study.mesh.grid.dim, before[i], after[i]});
 }
 
 /// What a calibration found, for its reports.
 struct Found {
   const CalibrationPlan& plan;
   const std::vector<CalibrationCase>& cases;
+  const std::vector<CalibrationCase>& held;  ///< the held-out cases (scores in result.held_out)
   const CalibrationResult& result;
   std::vector<Fold> folds;
   std::vector<std::string> warnings;
   double seconds;
 };
 
-/// report.txt: the objective, the fit, each field's error per case before and after, the load
-/// balance, the sensitivity and the cross-validation.
+/// A row of report.txt's table of errors: field k of a case before and after the fit, and its weight.
+void field_row(std::ostream& r, std::size_t k, const std::string& name, int dim, const Score& before,
+               const Score& after, const ObjectiveWeights& w) {
+  if (!kFields[k].in(dim)) return;  // not compared in the case's dimension
+  auto error = [&](const Score& s) {  // "-": not solved
+    std::ostringstream t;
+    t << std::setprecision(4);
+    if (s.load_refused) t << "-";
+    else t << s.error[k];
+    return t.str();
+  };
+  r << std::left << std::setw(14) << kFields[k].name << std::setw(28) << name << std::right << std::setw(12)
+    << error(before) << std::setw(12) << error(after) << std::setw(8) << w.field[k] << "\n";
+}
+
+/// report.txt's errors per field (kFields) and case, fitted then held out, before and after the fit.
+void errors_table(std::ostream& r, const std::vector<CalibrationCase>& cases, const CalibrationResult& result,
+                  const ObjectiveWeights& w) {
+  r << std::left << std::setw(14) << "field" << std::setw(28) << "case" << std::right << std::setw(12) << "before"
+    << std::setw(12) << "after" << std::setw(8) << "weight" << "\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      field_row(r, k, cases[i].name, cases[i].study.mesh.grid.dim, result.before[i], result.after[i], w);
+  if (result.held_out.empty()) return;
+  r << "\nheld out (scored with the start and the fitted coefficients, never fitted):\n";
+  for (std::size_t k = 0; k < kFieldCount; ++k)
+    for (const auto& h : result.held_out) field_row(r, k, h.name, h.dim, h.before, h.after, w);
+}
+
+/// report.txt: the objective, the fit, each field's error per case (fitted and held out) before and
+/// after, the load balance, the sensitivity and the cross-validation.
 std::string report_text(const workbench::CaseFile& file, const Found& found) {
-  const auto& [plan, cases, result, folds, warnings, seconds] = found;
+  const auto& [plan, cases, held, result, folds, warnings, seconds] = found;
   const auto& o = plan.options;
   std::ostringstream r;
   r << std::setprecision(4);
@@ -261,15 +346,7 @@ std::string report_text(const workbench::CaseFile& file, const Found& found) {
     << "; the other fields are reported, not fitted\n\n";
   r << "start:  " << coefficient_row(result.start) << "  objective " << result.objective_start << "\n";
   r << "fitted: " << coefficient_row(result.best) << "  objective " << result.objective_best << "\n\n";
-  // Per field (kFields) and case: the error before and after the fit (0: not compared in the case's dimension).
-  r << std::left << std::setw(14) << "field" << std::setw(28) << "case" << std::right << std::setw(12) << "before"
-    << std::setw(12) << "after" << std::setw(8) << "weight" << "\n";
-  for (std::size_t k = 0; k < kFieldCount; ++k)
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      if (kFields[k].in(cases[i].study.mesh.grid.dim))
-        r << std::left << std::setw(14) << kFields[k].name << std::setw(28) << cases[i].name << std::right
-          << std::setw(12) << result.before[i].error[k] << std::setw(12) << result.after[i].error[k] << std::setw(8)
-          << o.weights.field[k] << "\n";
+  errors_table(r, cases, result, o.weights);
   r << "\n" << std::left << std::setw(28) << "case" << std::right << std::setw(22) << "equilibrium_dev before"
     << std::setw(10) << "after" << std::setw(22) << "reaction share before" << std::setw(10) << "after" << std::setw(14)
     << "reach before" << std::setw(10) << "after" << "\n";
@@ -310,12 +387,21 @@ std::string report_text(const workbench::CaseFile& file, const Found& found) {
   return r.str();
 }
 
-/// The errors of a score per field of kFields compared in `dim` dimensions.
+/// The errors of a score per field of kFields compared in `dim` dimensions (null: not solved).
 nlohmann::json field_errors(const Score& s, int dim) {
   nlohmann::json e = nlohmann::json::object();
   for (std::size_t k = 0; k < kFieldCount; ++k)
-    if (kFields[k].in(dim)) e[kFields[k].name] = s.error[k];
+    if (kFields[k].in(dim)) e[kFields[k].name] = s.load_refused ? nlohmann::json() : nlohmann::json(s.error[k]);
   return e;
+}
+
+/// A case's entry of report.json (`cases` and `held_out`): its errors and load balance before and after.
+nlohmann::json case_json(const Score& b, const Score& a, int dim) {
+  return {{"before", field_errors(b, dim)},
+          {"after", field_errors(a, dim)},
+          {"reaction_share", {{"before", b.reaction_share}, {"after", a.reaction_share}}},
+          {"equilibrium_dev", {{"before", b.equilibrium_dev}, {"after", a.equilibrium_dev}}},
+          {"reach", {{"before", b.reach}, {"after", a.reach}}}};
 }
 
 nlohmann::json coefficients_json(const agent::Coefficients& k) {
@@ -324,15 +410,48 @@ nlohmann::json coefficients_json(const agent::Coefficients& k) {
   return j;
 }
 
+/// The threshold that acts in a case (agent::kCoefficients' row whose value acts) and the gamma
+/// it gives [N] at the start and at the fit: a case's own unless the calibration sets gamma.
+nlohmann::json threshold_json(const CalibrationCase& c, const CalibrationResult& result, const ObjectiveWeights& w) {
+  const double entering = agent_study::entering_load(c.study, 1.0);
+  const auto start = for_case(result.start, c.study.coefficients, w.held_from_case);
+  const auto fitted = for_case(result.best, c.study.coefficients, w.held_from_case);
+  nlohmann::json t{{"start", start.gamma_for(entering)}, {"fitted", fitted.gamma_for(entering)}};
+  for (const auto& k : agent::kCoefficients)
+    if (k.acts && k.acts_in(fitted)) t["coefficient"] = k.name;
+  return t;
+}
+
+/// report.json's lists of names: `coefficients_used`, the coefficients the rule set reads
+/// (agent::kCoefficients) that the calibration sets, fitted or held at a start (the rest, gamma when
+/// held, gamma_relative, directions, ..., are each case's own); `fields`, kFields compared in any
+/// case's dimension, in its order.
+void add_names(nlohmann::json& j, const Found& found) {
+  const auto& o = found.plan.options;
+  const auto gamma = std::size_t(agent::find_coefficient("gamma") - agent::kCoefficients.data());
+  j["coefficients_used"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < kCoefficientCount; ++i)
+    if (agent::kCoefficients[i].used_by(o.rules) && !(i == gamma && o.weights.held_from_case[i]))
+      j["coefficients_used"].push_back(agent::kCoefficients[i].name);
+  j["fields"] = nlohmann::json::array();
+  auto in_any = [](const FieldSpec& f, const std::vector<CalibrationCase>& list) {
+    return std::any_of(list.begin(), list.end(), [&](const CalibrationCase& c) { return f.in(c.study.mesh.grid.dim); });
+  };
+  for (const auto& f : kFields)
+    if (in_any(f, found.cases) || in_any(f, found.held)) j["fields"].push_back(f.name);
+}
+
 /// report.json: what report.txt says, as data.
 nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) {
-  const auto& [plan, cases, result, folds, warnings, seconds] = found;
+  const auto& [plan, cases, held, result, folds, warnings, seconds] = found;
   const auto& o = plan.options;
   nlohmann::json j;
   j["calibration"] = file.path().string();
   j["title"] = file.root().text("title", "");
   j["rule_set"] = agent::rule_set_name(o.rules);
+  j["scope"] = o.weights.lines ? "lines" : o.weights.far ? "far" : "body";  // where the errors are measured
   if (plan.readings) j["readings"] = agent_study::names_of(*plan.readings);
+  add_names(j, found);
   j["start"] = coefficients_json(result.start);
   j["fitted"] = coefficients_json(result.best);
   j["objective"] = {{"start", result.objective_start}, {"fitted", result.objective_best}};
@@ -340,13 +459,15 @@ nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) 
   j["seconds"] = seconds;
   j["start_objectives"] = result.start_objectives;
   for (std::size_t k = 0; k < kFieldCount; ++k) j["weights"][kFields[k].name] = o.weights.field[k];
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    j["cases"][cases[i].name] = {
-        {"before", field_errors(result.before[i], cases[i].study.mesh.grid.dim)},
-        {"after", field_errors(result.after[i], cases[i].study.mesh.grid.dim)},
-        {"reaction_share", {{"before", result.before[i].reaction_share}, {"after", result.after[i].reaction_share}}},
-        {"equilibrium_dev", {{"before", result.before[i].equilibrium_dev}, {"after", result.after[i].equilibrium_dev}}},
-        {"reach", {{"before", result.before[i].reach}, {"after", result.after[i].reach}}}};
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    j["cases"][cases[i].name] = case_json(result.before[i], result.after[i], cases[i].study.mesh.grid.dim);
+    j["cases"][cases[i].name]["threshold"] = threshold_json(cases[i], result, o.weights);
+  }
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const auto& h = result.held_out[i];
+    j["held_out"][h.name] = case_json(h.before, h.after, h.dim);
+    j["held_out"][h.name]["threshold"] = threshold_json(held[i], result, o.weights);
+  }
   j["keep_load"] = o.weights.keep_load;
   j["warnings"] = warnings;
   for (const auto& s : result.sensitivity)
@@ -357,24 +478,45 @@ nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) 
   return j;
 }
 
+/// calibrated/<case>.toml for every case, fitted and held out: its own file with the fitted coefficients.
+void write_calibrated_cases(const workbench::CaseFile& file, const CalibrationPlan& plan, const CalibrationResult& result,
+                            const std::vector<CalibrationCase>& cases, const std::vector<CalibrationCase>& held,
+                            const fs::path& dir) {
+  fs::create_directories(dir / "calibrated");
+  const std::string note = "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
+                           std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best);
+  const auto& o = plan.options;
+  auto write = [&](const fs::path& original, const CalibrationCase& c, const std::string& what) {
+    write_calibrated_case(original, dir / "calibrated" / (c.name + ".toml"),
+                          for_case(result.best, c.study.coefficients, o.weights.held_from_case), o.rules, plan.readings,
+                          note + what);
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) write(plan.case_files[i], cases[i], "");
+  for (std::size_t i = 0; i < held.size(); ++i) write(plan.held_out_files[i], held[i], " (this case held out: scored, not fitted)");
+}
+
 }  // namespace
 
 CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto start_time = std::chrono::steady_clock::now();
   CalibrationPlan plan;
-  std::vector<CalibrationCase> cases;
+  std::vector<CalibrationCase> cases, held;
   fem_reference::mpi_collective([&] {
     plan = read_calibration_plan(file);
     file.reject_unknown_keys();
-    cases = load_cases(file, plan, log);
+    const auto case_files = open_cases(plan.case_files), held_files = open_cases(plan.held_out_files);
+    cases = load_cases(file, plan, case_files, "case", log);
+    held = load_cases(file, plan, held_files, "held-out case", log);
   });
+  for (std::size_t i = 0; i < cases.size(); ++i) cases[i].weight = plan.case_weights[i];
   start_from_first_case(plan, cases, file);
   const auto& o = plan.options;
   log << "calibrate: fitting with " << o.starts << " starts (seed " << o.seed << ")\n" << std::flush;
   auto result = calibrate(cases, o, &log);
-  Found found{plan, cases, result, {}, {}, 0};
+  Found found{plan, cases, held, result, {}, {}, 0};
   // Cross-validation: fit on all cases but one, score the one left out.
   if (plan.cross_validate && cases.size() >= 2) found.folds = cross_validate(cases, o, result, log);
+  score_held_out(held, o, result);
   found.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   found.warnings = fit_warnings(cases, result);
   const std::string report = report_text(file, found);
@@ -383,12 +525,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
     report::write_text(dir / "report.txt", report);
     log << report;
     report::write_text(dir / "report.json", report_json(file, found).dump(2) + "\n");
-    fs::create_directories(dir / "calibrated");
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      write_calibrated_case(plan.case_files[i], dir / "calibrated" / (cases[i].name + ".toml"),
-                            for_case(result.best, cases[i].study.coefficients, o.weights.held_from_case), o.rules,
-                            plan.readings, "Calibrated by `workbench calibrate " + file.path().string() + "`: objective " +
-                                std::to_string(result.objective_start) + " -> " + std::to_string(result.objective_best));
+    write_calibrated_cases(file, plan, result, cases, held, dir);
     report::render_html(dir, log);
   });
   return result;

@@ -14,25 +14,34 @@ namespace compare::agent_compare {
 namespace fs = std::filesystem;
 using workbench::open_csv;
 
+std::vector<int> line_segments(const Line& line) {
+  std::vector<int> segment;
+  for (std::size_t i = 0; i < line.body_samples.size(); ++i)
+    segment.push_back(i == 0 ? 0 : segment.back() + (line.body_samples[i] != line.body_samples[i - 1] + 1));
+  return segment;
+}
+
 void write_lines_csv(const fs::path& file, const agent::Grid& grid, const std::vector<Line>& lines,
                      const std::vector<ScopeSamples>& samples) {
   const int dim = grid.dim;
   auto csv = open_csv(file);
-  csv << "model,line,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "");
+  csv << "model,line,segment,arc_length [m],x [m],y [m]" << (dim == 3 ? ",z [m]" : "");
   for (const auto& field : kFields)  // each component once: the displacement vector is u_x, u_y (, u_z)
     if (field.in(dim) && field.slot >= 0) csv << ',' << field.name << " [" << field.unit << ']';
   csv << '\n';
-  for (std::size_t li = 0; li < lines.size(); ++li)
+  for (std::size_t li = 0; li < lines.size(); ++li) {
+    const auto segment = line_segments(lines[li]);
     for (int m = 0; m < 2; ++m)
       for (std::size_t i = 0; i < lines[li].body_samples.size(); ++i) {  // the samples in the body only
         const Eigen::Vector3d p = lines[li].point(lines[li].body_samples[i]);
-        csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << (p - lines[li].from).norm();
+        csv << (m == 0 ? "agent" : "fem") << ',' << lines[li].name << ',' << segment[i] << ',' << (p - lines[li].from).norm();
         for (int a = 0; a < dim; ++a) csv << ',' << p[a];
         const auto& to = kSources[m].second;  // the agent (m = 0) or the reference
         for (std::size_t k = 0; k < std::size(kFields); ++k)
           if (kFields[k].in(dim) && kFields[k].slot >= 0) csv << ',' << (samples[li][k].*to)[i];
         csv << '\n';
       }
+  }
   csv.close();  // complete on disk before figures.py reads it
 }
 
@@ -199,6 +208,8 @@ ComparedFields compared_fields(const AgentCompareInput& in, const GridFields& ag
       }
     }
     FieldTable l;
+    const auto segment = line_segments(line);
+    l.add("segment", 1, {segment.begin(), segment.end()}, Kind::Integer);
     l.add("arc_length", 1, std::move(arc)), l.add("point", dim, std::move(at));
     l.add("agent_sigma", 2, std::move(sigma[0])), l.add("fem_sigma", 2, std::move(sigma[1]));
     l.add("agent_u", dim, std::move(u[0])), l.add("fem_u", dim, std::move(u[1]));
@@ -236,9 +247,18 @@ void write_steps_csv(const fs::path& file, const agent_study::AgentStudy& study,
 /// The sample lines as lines.json (for the figures) and summary.json list them.
 nlohmann::json lines_json(const std::vector<Line>& lines) {
   auto json = nlohmann::json::array();
-  for (const auto& l : lines)
+  for (const auto& l : lines) {
+    auto segments = nlohmann::json::array();  // [start, end] arc length of each piece in the body
+    const auto segment = line_segments(l);
+    for (std::size_t i = 0; i < segment.size(); ++i) {
+      const double arc = (l.point(l.body_samples[i]) - l.from).norm();
+      if (i == 0 || segment[i] != segment[i - 1]) segments.push_back({arc, arc});
+      segments.back()[1] = arc;
+    }
     json.push_back({{"name", l.name}, {"description", l.description}, {"kind", l.kind},
-                    {"from", {l.from[0], l.from[1], l.from[2]}}, {"to", {l.to[0], l.to[1], l.to[2]}}});
+                    {"from", {l.from[0], l.from[1], l.from[2]}}, {"to", {l.to[0], l.to[1], l.to[2]}},
+                    {"segments", segments}});
+  }
   return json;
 }
 

@@ -250,10 +250,16 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
                    {"packet_moves", d.packet_moves}};
   json["agent"]["threshold"] = {{"kind", agent::threshold_name(study.coefficients.threshold)},
                                 {"gamma_in_effect", study.coefficients.gamma_for(agent_study::entering_load(study, 1.0))}};
-  for (const auto& c : agent::kCoefficients) {  // every coefficient in effect; those the rule set reads, named
+  json["agent"]["not_in_effect"] = nlohmann::json::array();
+  for (const auto& c : agent::kCoefficients) {  // every coefficient; those the rule set reads, named
     json["agent"]["coefficients"][c.name] = c.get(study.coefficients);
     if (c.used_by(study.rules)) json["agent"]["coefficients_used"].push_back(c.name);
+    if (!c.acts_in(study.coefficients)) json["agent"]["not_in_effect"].push_back(c.name);  // the other threshold
+    else if (c.acts) json["agent"]["threshold"]["coefficient"] = c.name;  // the threshold that acts
   }
+  json["fields"] = nlohmann::json::array();  // the fields compared in this dimension (kFields), in its order
+  for (const auto& f : kFields)
+    if (f.in(study.mesh.grid.dim)) json["fields"].push_back(f.name);
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};

@@ -178,6 +178,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     }
     json["metrics"][m.name] = entry;
   }
+  json["unresolved_reference_error"] = kUnresolvedReferenceError;  // a metric is "resolved" below it
   json["gate"] = {{"checked", outcome.gated}, {"failed", outcome.failures.size()}};
   for (const auto& f : outcome.failures)
     if (!f.refused.empty()) json["gate"]["refused"].push_back(f.describe());

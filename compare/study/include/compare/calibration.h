@@ -109,6 +109,13 @@ struct Sensitivity {
   bool pinned;                             ///< the data pin it down (curvature > 1 %)
 };
 
+/// A held-out case ([[calibrate.held_out]]): scored with the start and the fitted coefficients, never fitted.
+struct HeldOutScore {
+  std::string name;
+  int dim = 2;
+  Score before, after;
+};
+
 struct CalibrationResult {
   agent::Coefficients start, best;
   double objective_start = 0, objective_best = 0;
@@ -116,6 +123,7 @@ struct CalibrationResult {
   std::vector<double> start_objectives;  ///< best objective reached from each start
   std::vector<Sensitivity> sensitivity;  ///< per free coefficient
   long evaluations = 0;
+  std::vector<HeldOutScore> held_out;    ///< per held-out case (run_calibration fills it)
 };
 
 /// Fits the free coefficients. Reproducible: the starts depend on `seed` only, and each start

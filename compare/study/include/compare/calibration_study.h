@@ -26,6 +26,7 @@ struct CalibrationPlan {
   bool cross_validate = true;
   std::vector<std::filesystem::path> case_files;
   std::vector<double> case_weights;
+  std::vector<std::filesystem::path> held_out_files;  ///< [[calibrate.held_out]]: scored, never fitted
   std::array<bool, kCoefficientCount> start_given{};  ///< else the start is the first case's own [agent] value
   std::optional<agent::Readings> readings;  ///< calibrate.readings: every case's, else each case's own
 };
@@ -42,7 +43,8 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
                                       const workbench::CaseTable* readings_key, std::ostream& log);
 
 /// Reads the calibration file and every case it lists, solves FEM for each, fits, cross-validates,
-/// and writes report.txt, report.json and calibrated/<case>.toml into `dir`.
+/// scores the held-out cases with the start and the fit, and writes report.txt, report.json and
+/// calibrated/<case>.toml (fitted and held-out cases) into `dir`.
 CalibrationResult run_calibration(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);
 
 }  // namespace compare

@@ -600,9 +600,10 @@ PYBIND11_MODULE(workbench, m) {
         "agent_<field>, fem_<field>); a PBD comparison has fields['lines']['centreline'] only.");
   m.def("front", &run_front, py::arg("case"), py::arg("output_dir"), py::arg("progress") = py::none(),
         "`workbench front`: the cost-accuracy front; writes everything into output_dir.\n\n"
-        "Arguments: case (workbench.Case, with [front]); output_dir; progress (a callable given each progress "
-        "line).\n\n"
-        "Returns front.json as a dict: points (model, label, size, work, seconds {min, median}, errors), verdicts "
+        "Arguments: case (workbench.Case, with [front]: an agent case, or a PBD case against its FEM strip); "
+        "output_dir; progress (a callable given each progress line).\n\n"
+        "Returns front.json as a dict: points (model \"agent\", \"pbd\" or \"fem\", label, size, work, seconds "
+        "{min, median}, errors), metrics, headline, verdicts "
         "(point, metric, dominated_by, speedup, speedup_at_most, speedup_at_least, below_floor), crossovers, "
         "reference {errors}, case_point, skipped, gate {checked, failed, failures}, machine.");
   m.def("calibrate", &run_calibrate, py::arg("calibration"), py::arg("output_dir"), py::arg("progress") = py::none(),

@@ -30,8 +30,7 @@ void add_agent_command(CLI::App& app, Action& action) {
     action = [case_file, output, check] {
       workbench::CaseFile file = read_case_file(*case_file);
       if (*check) {
-        studies::open_agent_study(file);
-        return checked(file, "agent");
+        return checked(file, "agent", studies::open_agent_study(file).warnings);
       }
       const auto run = studies::run_agent_study(file, output_folder(*output, file, "agent"), std::cerr);
       std::cerr << "agent: wrote " << run.folder.string() << "\n";

@@ -123,7 +123,19 @@ std::string model_counts() {
 
 }  // namespace gmsh_detail
 
-std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+namespace {
+
+/// Every node of the loaded model times `unit`: the file's coordinates in metres.
+void scale_nodes(double unit) {
+  if (unit == 1.0) return;
+  std::vector<std::size_t> tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(tags, coords, parametric, -1, -1, false, false);
+  for (std::size_t i = 0; i < tags.size(); ++i)
+    gmsh::model::mesh::setNode(tags[i], {unit * coords[3 * i], unit * coords[3 * i + 1], unit * coords[3 * i + 2]}, {});
+}
+
+std::vector<std::string> load_unscaled(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
   gmsh_detail::check_load_request(file, parameters);
   if (file.extension() == ".geo") {
     if (gmsh_detail::geo_mesher_server_running()) return gmsh_detail::load_geo_in_child({}, file, parameters);
@@ -131,6 +143,15 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
       return gmsh_detail::load_geo_in_child(mesher, file, parameters);
   }
   return gmsh_detail::load_here(file, parameters);
+}
+
+}  // namespace
+
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters,
+                                   double unit) {
+  auto declared = load_unscaled(file, parameters);
+  scale_nodes(unit);
+  return declared;
 }
 
 std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim) {

@@ -68,6 +68,8 @@ fem_reference::FemProblem open_fem_study(const workbench::CaseFile& file) {
   return problem;
 }
 
+void check_fem_study(const workbench::CaseFile& file) { fem_reference::check_fem_problem(open_fem_study(file)); }
+
 FemRun run_fem_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {
   const auto problem = open_fem_study(file);
   FemRun run;
@@ -90,6 +92,11 @@ fs::path run_pbd_study(const workbench::CaseFile& file, const fs::path& folder, 
 
 void open_compare_study(const workbench::CaseFile& file) {
   fem_reference::mpi_collective([&] { schema::check_every_section(file); });
+}
+
+std::vector<std::string> check_compare_study(const workbench::CaseFile& file) {
+  open_compare_study(file);
+  return compare::check_compare(file);
 }
 
 CompareRun run_compare_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {

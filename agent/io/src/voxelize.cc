@@ -326,11 +326,11 @@ void assign_groups(const Grid& grid, const BodyBoundary& boundary, ImportedMesh&
 }  // namespace
 
 ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std::string, double>& parameters,
-                      const fs::path& staircase_msh) {
+                      const fs::path& staircase_msh, double unit) {
   const std::string name = geometry.string();
   if (!(size > 0) || !std::isfinite(size)) throw std::runtime_error(name + ": the agent size must be a number > 0");
   ImportedMesh out;
-  out.parameters = workbench::gmsh_load(geometry, parameters);
+  out.parameters = workbench::gmsh_load(geometry, parameters, unit);
   const int dim = gmsh::model::getDimension();
   if (dim != 2 && dim != 3) throw std::runtime_error(name + ": the model must be 2D or 3D");
   const Nodes nodes = read_nodes(name, dim);

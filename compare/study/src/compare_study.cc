@@ -5,6 +5,7 @@
 #include <compare/compare_study.h>
 #include <compare/pbd_compare.h>
 #include <compare/reference.h>
+#include <compare/same_body.h>
 
 #include "agent_compare.h"
 #include "report.h"
@@ -100,6 +101,7 @@ AgentCompareInput agent_compare::read_input(const workbench::CaseFile& file, con
   AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
   const auto& grid = in.study.mesh.grid;
   in.reference = options.reference.resolved(grid.dim);
+  in.warnings = check_reference_body(file, in.study, in.reference);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
   // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
   for (auto& l : load_lines(grid, in.loads, options.depths))
@@ -333,6 +335,11 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // reason, before anything runs (docs/compare.md); it fails the gate after the run.
   const auto carry = agent_study::carry_check(in.study);
   CompareOutcome outcome;
+  for (const auto& w : in.study.warnings) outcome.warnings.push_back("agent: " + w);  // the agent run says them
+  for (const auto& w : in.warnings) {
+    if (fem_reference::mpi_rank() == 0) log << "compare: warning: " << w << "\n" << std::flush;
+    outcome.warnings.push_back(w);
+  }
   for (const auto& c : carry) {
     const std::string line = c.describe(in.study);
     if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
@@ -423,6 +430,18 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 }
 
 }  // namespace
+
+std::vector<std::string> check_compare(const workbench::CaseFile& file) {
+  const auto options = read_compare_options(file.root());
+  std::vector<std::string> warnings;
+  fem_reference::mpi_collective([&] {
+    if (options.model == "pbd") return check_pbd_compare(file, options);
+    const auto in = read_input(file, options);
+    warnings = in.study.warnings;
+    warnings.insert(warnings.end(), in.warnings.begin(), in.warnings.end());
+  });
+  return warnings;
+}
 
 CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto options = read_compare_options(file.root());

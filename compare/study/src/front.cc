@@ -226,6 +226,7 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   if (compare_options.model != "agent")
     file.root().table("compare").fail("model", "workbench front runs the agent model's front; the PBD front is not built");
   const auto in = read_input(file, compare_options);
+  for (const auto& w : in.warnings) log << "front: warning: " << w << "\n";
   const double size = case_size(file, in, options.size_parameter);
   front_files::check_gate_names(options.gate, front_metrics(in.study.mesh.grid.dim), file);
   // 2. The reference and its own error, as `workbench compare` solves them (its files in dir/fem).

@@ -47,7 +47,7 @@ void check_load_request(const std::filesystem::path& file, const std::map<std::s
   if (!std::filesystem::is_regular_file(file)) throw std::runtime_error(name + ": no such mesh file");
   const std::string ext = file.extension().string();
   if (ext != ".geo" && ext != ".msh") throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file");
-  if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters apply to .geo files only");
+  if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters ([mesh.parameters], pbd.mesh_parameters) apply to .geo files only: remove them, or name the .geo");
   for (const auto& [key, value] : parameters)
     if (!std::isfinite(value)) throw std::runtime_error(name + ": mesh parameter '" + key + "' is not a finite number");
 }

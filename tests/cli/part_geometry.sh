@@ -31,6 +31,8 @@ case_file ../right.msh >cases/m.toml
 case_file ../millimetres.msh 'unit = "mm"\n' "$geo" >cases/mm_against_m.toml
 case_file "$geo" >cases/triangles.toml
 case_file "$geo" 'agent_size = 0.005\n' >cases/voxelized.toml
+case_file "$geo" 'agent_size = 0.005\n[mesh.parameters]\npx = 0.1\n' >cases/voxelized_left.toml
+case_file "$src/tests/data/step_plate.geo" 'unit = "mm"\nagent_size = 0.005\n' >cases/step.toml
 case_file ../right.msh '[mesh.parameters]\nh = 1\n' >cases/msh_parameters.toml
 case_file ../right.msh 'unit = "inch"\n' >cases/inch.toml
 sed 's/"base"/"bottom"/' cases/m.toml >cases/no_group.toml
@@ -68,6 +70,34 @@ refused unit_unknown 'mesh.unit: must be one of "m", "cm", "mm" (got "inch")' "$
 "$bin" agent cases/voxelized.toml -o out/voxelized 2>"$logs/err" &&
   [ "$(($(wc -l <out/voxelized/agent_cells.csv) - 1))" -eq 1748 ] && cmp -s out/voxelized/agent_cells.csv out/m/agent_cells.csv
 check agent_size $? "$(cat "$logs/err")"
+
+# The comparison of that case: the reference on the .geo itself (the true geometry), FEM on the
+# agents' staircase beside it: every metric what the voxelized .msh against the .geo gives.
+"$bin" compare cases/voxelized.toml -o out/voxelized_compare 2>"$logs/err" &&
+  "$bin" compare cases/same.toml -o out/same_compare 2>>"$logs/err" &&
+  [ -s out/voxelized_compare/agent_staircase.msh ] && /usr/bin/python3 - out/voxelized_compare out/same_compare <<'EOF'
+import json, sys
+a, b = (json.load(open(d + "/summary.json"))["metrics"] for d in sys.argv[1:])
+differ = [k for k in a if not k.startswith("time.") and a[k] != b[k]]
+sys.exit(f"differ: {differ[:5]}" if differ or len(a) < 100 else 0)
+EOF
+check agent_size_compare $? "$(tail -3 "$logs/err")"
+# The same [mesh.parameters] for both models: the patch at px = 100 mm in the agents and the reference
+# alike (the check passes), its load line at x = 100 mm.
+"$bin" compare cases/voxelized_left.toml -o out/left 2>"$logs/err" && grep -q line_x100y147p5_x100y2p5 out/left/summary.txt
+check agent_size_parameters $? "$(tail -3 "$logs/err")"
+# A millimetre STEP file merged by a .geo, unit = "mm": the same 1748 agents as the metre .geo, byte
+# for byte; its comparison within 1 % of the metre one's body sigma_y error (0.082: the two references
+# mesh the hole differently), its lines named in millimetres.
+"$bin" agent cases/step.toml -o out/step 2>"$logs/err" && cmp -s out/step/agent_cells.csv out/m/agent_cells.csv
+check step_mm_agents $? "$(cat "$logs/err")"
+"$bin" compare cases/step.toml -o out/step_compare 2>"$logs/err" && grep -q line_x200y147p5_x200y2p5 out/step_compare/summary.txt &&
+  /usr/bin/python3 - out/step_compare out/same_compare <<'EOF'
+import json, sys
+a, b = (json.load(open(d + "/summary.json"))["metrics"]["body.sigma_y.rel_l2"]["value"] for d in sys.argv[1:])
+sys.exit(0 if 0.07 < b < 0.09 and abs(a - b) < 0.01 * b else f"body.sigma_y.rel_l2 {a} against {b}")
+EOF
+check step_mm_compare $? "$(tail -3 "$logs/err")"
 
 # 4. --check reads the mesh the run would use, and each mesh error names what fixes it.
 refused triangles_compare_check "has Triangle 3 elements; the agent method needs a structured mesh of 4-node squares (Transfinite + Recombine); for a body of any shape give [mesh] agent_size" \

@@ -50,7 +50,8 @@ double distance(const Vector3d& p, const Facet& f) {
                         : triangle_distance(p, f.corner[0], f.corner[1], f.corner[2]);
 }
 
-/// Writes the staircase into a new gmsh model and saves it.
+}  // namespace
+
 void write_staircase(const ImportedMesh& m, const fs::path& file) {
   const Grid& g = m.grid;
   const int dim = g.dim;
@@ -119,6 +120,8 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   gmsh::option::setNumber("Mesh.SaveAll", 0);
   workbench::gmsh_write_checked(file);  // gmsh does not check its writes
 }
+
+namespace {
 
 using Cell = std::array<std::int64_t, 3>;
 

@@ -235,8 +235,11 @@ std::vector<std::string> check_reference_body(const workbench::CaseFile& file, c
   if (reference.mesh.empty()) return {};  // the reference on the agents' own mesh
   const auto& grid = study.mesh.grid;
   const double size = grid.size.head(grid.dim).maxCoeff();
-  return check_same_body(file, "compare.reference.mesh", study.setup, size, shape_of_agents(study.mesh),
-                         shape_of_mesh(reference.mesh, {}, study.setup.mesh_unit), reference.mesh);
+  const bool own = reference.mesh == study.setup.mesh_file;  // voxelized in the run ([mesh] agent_size)
+  const auto true_shape = shape_of_mesh(reference.mesh, own ? study.setup.mesh_parameters : std::map<std::string, double>{},
+                                        study.setup.mesh_unit);
+  return check_same_body(file, own ? "mesh.agent_size" : "compare.reference.mesh", study.setup, size,
+                         shape_of_agents(study.mesh), true_shape, reference.mesh);
 }
 
 }  // namespace compare

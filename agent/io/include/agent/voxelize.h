@@ -27,4 +27,8 @@ ImportedMesh voxelize(const std::filesystem::path& geometry, double size,
                       const std::map<std::string, double>& parameters = {},
                       const std::filesystem::path& staircase_msh = {}, double unit = 1.0);
 
+/// Writes a voxelized mesh as voxelize's `staircase_msh` (coordinates in metres). Needs gmsh
+/// initialised: a process that voxelized has it.
+void write_staircase(const ImportedMesh& mesh, const std::filesystem::path& staircase_msh);
+
 }  // namespace agent

@@ -63,6 +63,9 @@ check unit_warning $? "$(cat "$logs/err")"
 "$bin" agent cases/mm.toml -o out/mm 2>"$logs/err" && "$bin" agent cases/m.toml -o out/m 2>>"$logs/err" &&
   ! grep -q warning: "$logs/err" && cmp -s out/mm/agent_cells.csv out/m/agent_cells.csv
 check unit_mm_same_agents $? "$(cat "$logs/err")"
+"$bin" voxelize "$geo" -p u=1000 -u mm -s 0.005 -o millimetres_in_m.msh 2>"$logs/err" &&
+  grep -q "^voxelize: 1748 agents of 0.005 m in a 60 x 30 box" "$logs/err"
+check voxelize_unit $? "$(cat "$logs/err")"
 refused unit_unknown 'mesh.unit: must be one of "m", "cm", "mm" (got "inch")' "$work" "$bin" agent cases/inch.toml --check
 
 # 3. One geometry file: [mesh] agent_size voxelizes the .geo in the run, the same 1748 agents as

@@ -142,6 +142,28 @@ std::string patch_warning(const std::string& what, const workbench::LoadSpec& lo
   return s.str();
 }
 
+/// The bodies' dimension, bounding boxes (within an agent `size` per side) and measures (within the
+/// staircase's boundary times an agent size).
+void check_body(const std::string& where, const std::string& names, const BodyShape& agents, const BodyShape& reference,
+                double size) {
+  const int dim = agents.dim;
+  if (reference.dim != dim)
+    throw Error(where + "the agents' mesh is " + std::to_string(dim) + "D, the reference's " +
+                std::to_string(reference.dim) + "D" + names);
+  const double tol = size * (1 + 1e-6);
+  if (apart(agents.lo, reference.lo, dim, tol) >= 0 || apart(agents.hi, reference.hi, dim, tol) >= 0)
+    throw Error(where + "the body's bounding box is " + point(agents.lo, dim) + " to " + point(agents.hi, dim) +
+                " in the agents' mesh and " + point(reference.lo, dim) + " to " + point(reference.hi, dim) +
+                " in the reference's, more than an agent size (" + millimetres(size) + ") apart" + names);
+  const double measure_tol = agents.boundary * size * (1 + 1e-6);
+  if (!(std::abs(agents.measure - reference.measure) <= measure_tol)) {
+    std::ostringstream s;
+    s << where << "the body's " << (dim == 2 ? "area" : "volume") << " is " << agents.measure << " in the agents' mesh and "
+      << reference.measure << " in the reference's, more apart than the staircase explains (" << measure_tol << ")" << names;
+    throw Error(s.str());
+  }
+}
+
 }  // namespace
 
 BodyShape shape_of_agents(const agent::ImportedMesh& mesh) {
@@ -196,22 +218,9 @@ std::vector<std::string> check_same_body(const workbench::CaseFile& file, const 
   const std::string where = file.path().string() + ": " + key + ": ";
   const std::string names = " (agents: " + setup.mesh_file.string() + ", reference: " + reference_file.string() +
                             "; the two must be the same body with the same loads and supports)";
+  check_body(where, names, agents, reference, size);
   const int dim = agents.dim;
-  if (reference.dim != dim)
-    throw Error(where + "the agents' mesh is " + std::to_string(dim) + "D, the reference's " +
-                std::to_string(reference.dim) + "D" + names);
   const double tol = size * (1 + 1e-6);
-  if (apart(agents.lo, reference.lo, dim, tol) >= 0 || apart(agents.hi, reference.hi, dim, tol) >= 0)
-    throw Error(where + "the body's bounding box is " + point(agents.lo, dim) + " to " + point(agents.hi, dim) +
-                " in the agents' mesh and " + point(reference.lo, dim) + " to " + point(reference.hi, dim) +
-                " in the reference's, more than an agent size (" + millimetres(size) + ") apart" + names);
-  const double measure_tol = agents.boundary * size * (1 + 1e-6);
-  if (!(std::abs(agents.measure - reference.measure) <= measure_tol)) {
-    std::ostringstream s;
-    s << where << "the body's " << (dim == 2 ? "area" : "volume") << " is " << agents.measure << " in the agents' mesh and "
-      << reference.measure << " in the reference's, more apart than the staircase explains (" << measure_tol << ")" << names;
-    throw Error(s.str());
-  }
   std::vector<std::pair<std::string, std::string>> groups;  // (what, group)
   for (std::size_t i = 0; i < setup.loads.size(); ++i)
     groups.push_back({"load[" + std::to_string(i) + "].group '" + setup.loads[i].group + "'", setup.loads[i].group});

@@ -216,7 +216,7 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
   double longest = 0;  // the box's longest side [m]
   for (int a = 0; a < study.mesh.grid.dim; ++a)
     longest = std::max(longest, study.mesh.grid.plane(a, study.mesh.grid.cells[a]) - study.mesh.grid.plane(a, 0));
-  if (auto w = workbench::body_size_warning(study.setup, longest); !w.empty()) study.warnings.push_back(w);
+  if (auto w = workbench::body_size_warning(study.setup.mesh_file, study.setup.mesh_unit, longest); !w.empty()) study.warnings.push_back(w);
   std::vector<std::string> groups;
   for (const auto& [name, faces] : study.mesh.face_groups) groups.push_back(name);
   workbench::check_groups_exist(file, study.setup, groups);

@@ -11,6 +11,7 @@
 #include <workbench/child_process.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -46,7 +47,16 @@ void check_load_request(const std::filesystem::path& file, const std::map<std::s
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) throw std::runtime_error(name + ": no such mesh file");
   const std::string ext = file.extension().string();
-  if (ext != ".geo" && ext != ".msh") throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file");
+  if (ext != ".geo" && ext != ".msh") {
+    std::string lower = ext;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const bool cad = lower == ".step" || lower == ".stp" || lower == ".iges" || lower == ".igs" || lower == ".brep";
+    throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file" +
+                             (cad ? std::string("; a CAD file is read through a .geo that Merges it and names its physical "
+                                                "groups (the loads' and supports' faces), e.g. tests/data/step_plate.geo; "
+                                                "its unit: [mesh] unit")
+                                  : std::string()));
+  }
   if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters ([mesh.parameters], pbd.mesh_parameters) apply to .geo files only: remove them, or name the .geo");
   for (const auto& [key, value] : parameters)
     if (!std::isfinite(value)) throw std::runtime_error(name + ": mesh parameter '" + key + "' is not a finite number");

@@ -46,13 +46,13 @@ const std::vector<std::pair<std::string, double>>& mesh_units() {
   return units;
 }
 
-std::string body_size_warning(const StudySetup& setup, double longest) {
+std::string body_size_warning(const std::filesystem::path& mesh, double unit_metres, double longest) {
   if (longest <= kLargestBody && longest >= kSmallestBody) return "";
   std::string unit = "m";
   for (const auto& [name, metres] : mesh_units())
-    if (metres == setup.mesh_unit) unit = name;
+    if (metres == unit_metres) unit = name;
   std::ostringstream s;
-  s << setup.mesh_file.string() << ": the body is " << longest << " m long (its longest side, read with mesh.unit = \""
+  s << mesh.string() << ": the body is " << longest << " m long (its longest side, read with mesh.unit = \""
     << unit << "\"): " << (longest > kLargestBody ? "over " : "under ") << (longest > kLargestBody ? "20 m" : "0.1 mm")
     << "; if the file is in other units, set mesh.unit (\"mm\", \"cm\" or \"m\")";
   return s.str();

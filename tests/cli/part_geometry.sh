@@ -30,6 +30,7 @@ case_file ../millimetres.msh 'unit = "mm"\n' >cases/mm.toml
 case_file ../right.msh >cases/m.toml
 case_file ../millimetres.msh 'unit = "mm"\n' "$geo" >cases/mm_against_m.toml
 case_file "$geo" >cases/triangles.toml
+case_file "$src/tests/data/plate_mm.step" 'unit = "mm"\nagent_size = 0.005\n' >cases/bare_step.toml
 case_file "$geo" 'agent_size = 0.005\n' >cases/voxelized.toml
 case_file "$geo" 'agent_size = 0.005\n[mesh.parameters]\npx = 0.1\n' >cases/voxelized_left.toml
 case_file "$src/tests/data/step_plate.geo" 'unit = "mm"\nagent_size = 0.005\n' >cases/step.toml
@@ -60,6 +61,8 @@ check patch_warning $? "$(cat "$logs/err")"
 "$bin" agent cases/mm_as_m.toml --check 2>"$logs/err"
 [ $? -eq 0 ] && grep -q "agent: warning: .*millimetres.msh: the body is 300 m long .*set mesh.unit" "$logs/err"
 check unit_warning $? "$(cat "$logs/err")"
+"$bin" fem cases/mm_as_m.toml -o out/mm_as_m_fem 2>"$logs/err" && grep -q "fem: warning: .*millimetres.msh: the body is 300 m long" "$logs/err"
+check unit_warning_fem $? "$(cat "$logs/err")"
 "$bin" agent cases/mm.toml -o out/mm 2>"$logs/err" && "$bin" agent cases/m.toml -o out/m 2>>"$logs/err" &&
   ! grep -q warning: "$logs/err" && cmp -s out/mm/agent_cells.csv out/m/agent_cells.csv
 check unit_mm_same_agents $? "$(cat "$logs/err")"
@@ -106,6 +109,8 @@ check step_mm_compare $? "$(tail -3 "$logs/err")"
 refused triangles_compare_check "has Triangle 3 elements; the agent method needs a structured mesh of 4-node squares (Transfinite + Recombine); for a body of any shape give [mesh] agent_size" \
   "$work" "$bin" compare cases/triangles.toml --check
 refused triangles_names_voxelize '`workbench voxelize`' "$work" "$bin" agent cases/triangles.toml --check
+refused bare_step "plate_mm.step: a mesh must be a gmsh .geo or .msh file; a CAD file is read through a .geo that Merges it" \
+  "$work" "$bin" compare cases/bare_step.toml --check
 refused msh_parameters_compare "mesh parameters ([mesh.parameters], pbd.mesh_parameters) apply to .geo files only" \
   "$work" "$bin" compare cases/msh_parameters.toml --check
 refused msh_parameters_fem "mesh parameters ([mesh.parameters]" "$work" "$bin" fem cases/msh_parameters.toml --check

@@ -37,9 +37,9 @@ const std::vector<std::pair<std::string, double>>& mesh_units();
 /// naming mesh.unit: a millimetre part read as metres (or the other way round).
 constexpr double kLargestBody = 20.0, kSmallestBody = 1e-4;
 
-/// The warning for a body of longest side `longest` [m] read from `mesh` with `setup`'s unit, "" when
-/// the size is plausible.
-std::string body_size_warning(const StudySetup& setup, double longest);
+/// The warning for a body of longest side `longest` [m] read from `mesh` in `unit` (metres per unit,
+/// [mesh] unit), "" when the size is plausible.
+std::string body_size_warning(const std::filesystem::path& mesh, double unit, double longest);
 
 /// Throws "case: key: group 'x' is not a physical group of mesh (it has: ...)" for a group the
 /// case names that the mesh lacks.

@@ -4,6 +4,7 @@
 #include <agent/voxelize.h>
 #include <studies/studies.h>
 #include <workbench/error.h>
+#include <workbench/study_setup.h>
 #include <workbench/case_file.h>
 
 #include <cmath>
@@ -30,8 +31,7 @@ void add_agent_command(CLI::App& app, Action& action) {
     action = [case_file, output, check] {
       workbench::CaseFile file = read_case_file(*case_file);
       if (*check) {
-        studies::open_agent_study(file);
-        return checked(file, "agent");
+        return checked(file, "agent", studies::open_agent_study(file).warnings);
       }
       const auto run = studies::run_agent_study(file, output_folder(*output, file, "agent"), std::cerr);
       std::cerr << "agent: wrote " << run.folder.string() << "\n";
@@ -46,12 +46,17 @@ void add_voxelize_command(CLI::App& app, Action& action) {
   auto output = std::make_shared<std::string>();
   auto size = std::make_shared<double>(0.0);
   auto settings = std::make_shared<std::vector<std::string>>();
+  auto unit = std::make_shared<std::string>("m");
+  std::vector<std::string> units;
+  for (const auto& [name, metres] : workbench::mesh_units()) units.push_back(name);
   cmd->add_option("geometry", *geometry, "gmsh .geo or .msh of the body (any elements, physical groups)")->required();
   cmd->add_option("-s,--size", *size, "agent size [m]")->required();
   cmd->add_option("-p,--parameter", *settings, "a .geo parameter, NAME=VALUE (repeatable)");
+  cmd->add_option("-u,--unit", *unit, "the unit of the geometry's coordinates, as [mesh] unit (the staircase is in metres)")
+      ->check(CLI::IsMember(units));
   cmd->add_option("-o,--output", *output, "the staircase mesh to write (.msh; must not exist)")->required();
-  cmd->callback([&action, geometry, output, size, settings] {
-    action = [geometry, output, size, settings] {
+  cmd->callback([&action, geometry, output, size, settings, unit] {
+    action = [geometry, output, size, settings, unit] {
       namespace fs = std::filesystem;
       std::map<std::string, double> parameters;
       for (const auto& s : *settings) {
@@ -68,7 +73,10 @@ void add_voxelize_command(CLI::App& app, Action& action) {
       // Written beside the target and renamed into place: whole or nothing.
       const fs::path staged = target.parent_path() / ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) + ".msh");
       try {
-        const auto mesh = agent::voxelize(*geometry, *size, parameters, staged);
+        double metres = 1.0;
+        for (const auto& [name, m] : workbench::mesh_units())
+          if (name == *unit) metres = m;
+        const auto mesh = agent::voxelize(*geometry, *size, parameters, staged, metres);
         fs::rename(staged, target);
         std::cerr << "voxelize: " << mesh.grid.agent_count() << " agents of " << *size << " m in a "
                   << mesh.grid.cells[0] << " x " << mesh.grid.cells[1];

@@ -9,14 +9,16 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace cli {
 
 /// `--check`: read the case file and open the model's study (studies::open_<module>_study: every
 /// section checked, unknown keys refused, then, for agent and pbd, the mesh), write nothing.
 inline constexpr const char* kCheckHelp = "only check the case file (every section) and write nothing";
-/// Says the case file was checked; returns exit code 0.
-int checked(const workbench::CaseFile& file, const std::string& subcommand);
+/// Says the warnings the run would give before it runs ("SUBCOMMAND: warning: ...") and that the
+/// case file was checked; returns exit code 0.
+int checked(const workbench::CaseFile& file, const std::string& subcommand, const std::vector<std::string>& warnings = {});
 
 /// The case file at `path`; a folder or a missing file is one line naming it.
 workbench::CaseFile read_case_file(const std::string& path);

@@ -61,8 +61,7 @@ void add_compare_command(CLI::App& app, Action& action) {
       const auto case_ptr = read_case_file_on_every_rank(*case_file);
       const workbench::CaseFile& file = *case_ptr;
       if (*check) {
-        studies::open_compare_study(file);
-        return checked(file, "compare");
+        return checked(file, "compare", studies::check_compare_study(file));
       }
       if (!junit->empty()) check_writable_file(*junit, "--junit");
       // Every rank solves the FEM and writes its VTU piece; rank 0 alone the rest and owns the

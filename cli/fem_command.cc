@@ -23,7 +23,7 @@ void add_fem_command(CLI::App& app, Action& action) {
       const auto case_ptr = read_case_file_on_every_rank(*case_file);
       const workbench::CaseFile& file = *case_ptr;
       if (*check) {
-        studies::open_fem_study(file);
+        studies::check_fem_study(file);
         return checked(file, "fem");
       }
       // Every rank solves and writes its VTU piece; rank 0 owns the folder (studies.h).

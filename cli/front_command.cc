@@ -26,7 +26,7 @@ void add_front_command(CLI::App& app, Action& action) {
       const workbench::CaseFile& file = *case_ptr;
       if (*check) {
         studies::open_front_study(file);
-        return checked(file, "front");
+        return checked(file, "front", studies::check_compare_study(file));
       }
       const auto run = studies::run_front_study(file, output_folder(*output, file, "front"), progress_log());
       int code = 0;

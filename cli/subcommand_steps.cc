@@ -54,7 +54,8 @@ void check_writable_file(const std::string& path, const std::string& option) {
   if (::access(parent.c_str(), W_OK | X_OK) != 0) refuse("cannot be created in " + parent.string() + " (no permission)");
 }
 
-int checked(const workbench::CaseFile& file, const std::string& subcommand) {
+int checked(const workbench::CaseFile& file, const std::string& subcommand, const std::vector<std::string>& warnings) {
+  for (const auto& w : warnings) progress_log() << subcommand << ": warning: " << w << "\n";
   progress_log() << subcommand << ": " << file.path().string() << ": checked, nothing written\n";
   return 0;
 }

@@ -6,9 +6,11 @@
 #include <workbench/output_file.h>
 #include <workbench/vtk_output.h>
 
+#include <agent/voxelize.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -34,22 +36,27 @@ namespace {
 /// are kept, none larger than kMeshCacheBytes.
 class MeshCache {
  public:
-  agent::ImportedMesh get(const fs::path& file, const std::map<std::string, double>& parameters) {
+  agent::ImportedMesh get(const workbench::StudySetup& setup) {
+    const auto& file = setup.mesh_file;
+    const auto& parameters = setup.mesh_parameters;
     std::string bytes = read_bytes(file);
     const bool keep = !reads_other_files(bytes);
+    const std::array<double, 2> how{setup.mesh_unit, setup.agent_size};
     if (keep) {
       const std::lock_guard<std::mutex> lock(mutex_);
       for (auto it = entries_.begin(); it != entries_.end(); ++it)
-        if (it->file == file && it->parameters == parameters && it->bytes == bytes) {
+        if (it->file == file && it->parameters == parameters && it->how == how && it->bytes == bytes) {
           entries_.splice(entries_.begin(), entries_, it);  // most recent first
           return it->mesh;
         }
     }
-    auto mesh = agent::import_mesh(file, parameters);
+    // With [mesh] agent_size the file is the true geometry, voxelized here (agent/voxelize.h).
+    auto mesh = setup.agent_size > 0 ? agent::voxelize(file, setup.agent_size, parameters, {}, setup.mesh_unit)
+                                     : agent::import_mesh(file, parameters, setup.mesh_unit);
     const std::lock_guard<std::mutex> lock(mutex_);
     ++imports_;
     if (!keep || bytes_of(mesh) + bytes.size() > kMeshCacheBytes) return mesh;
-    entries_.push_front({file, parameters, std::move(bytes), mesh});
+    entries_.push_front({file, parameters, how, std::move(bytes), mesh});
     if (entries_.size() > kMeshCacheSize) entries_.pop_back();
     return mesh;
   }
@@ -64,6 +71,7 @@ class MeshCache {
   struct Entry {
     fs::path file;
     std::map<std::string, double> parameters;
+    std::array<double, 2> how;  ///< the unit and the agent size
     std::string bytes;
     agent::ImportedMesh mesh;
   };
@@ -201,10 +209,14 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
   read_agent_section(root, study.coefficients, study.rules);
   study.readings = read_readings(root.table("agent"), study.rules);
   try {
-    study.mesh = mesh_cache().get(study.setup.mesh_file, study.setup.mesh_parameters);
+    study.mesh = mesh_cache().get(study.setup);
   } catch (const std::runtime_error& e) {
     throw Error(e.what());
   }
+  double longest = 0;  // the box's longest side [m]
+  for (int a = 0; a < study.mesh.grid.dim; ++a)
+    longest = std::max(longest, study.mesh.grid.plane(a, study.mesh.grid.cells[a]) - study.mesh.grid.plane(a, 0));
+  if (auto w = workbench::body_size_warning(study.setup.mesh_file, study.setup.mesh_unit, longest); !w.empty()) study.warnings.push_back(w);
   std::vector<std::string> groups;
   for (const auto& [name, faces] : study.mesh.face_groups) groups.push_back(name);
   workbench::check_groups_exist(file, study.setup, groups);
@@ -501,7 +513,8 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
         << d.lost << " N\n";
   }
   diagnostics.close();
-  const auto warnings = load_balance_warnings(states.back().diagnostics);
+  auto warnings = study.warnings;
+  for (const auto& w : load_balance_warnings(states.back().diagnostics)) warnings.push_back(w);
   for (const auto& w : warnings) log << "agent: warning: " << w << "\n";
   write_summary(dir / "agent_summary.json", study, states.back().diagnostics, warnings);
   workbench::write_pvd(dir / "agent.pvd", series);

@@ -28,6 +28,8 @@ struct AgentStudy {
   /// One per loaded face, at the full load, marching inward: a pull has the inward direction and a
   /// negative force (evaluate() carries it as a push and negates).
   std::vector<agent::EntryLoad> loads;
+  /// Said before the run and kept in agent_summary.json (a body of implausible size: mesh.unit).
+  std::vector<std::string> warnings;
 };
 
 /// `rule_set` of a table (one of the names of agent::kRuleSets), `fallback` when absent.

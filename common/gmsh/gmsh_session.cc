@@ -11,6 +11,7 @@
 #include <workbench/child_process.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -46,8 +47,17 @@ void check_load_request(const std::filesystem::path& file, const std::map<std::s
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) throw std::runtime_error(name + ": no such mesh file");
   const std::string ext = file.extension().string();
-  if (ext != ".geo" && ext != ".msh") throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file");
-  if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters apply to .geo files only");
+  if (ext != ".geo" && ext != ".msh") {
+    std::string lower = ext;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const bool cad = lower == ".step" || lower == ".stp" || lower == ".iges" || lower == ".igs" || lower == ".brep";
+    throw std::runtime_error(name + ": a mesh must be a gmsh .geo or .msh file" +
+                             (cad ? std::string("; a CAD file is read through a .geo that Merges it and names its physical "
+                                                "groups (the loads' and supports' faces), e.g. tests/data/step_plate.geo; "
+                                                "its unit: [mesh] unit")
+                                  : std::string()));
+  }
+  if (ext == ".msh" && !parameters.empty()) throw std::runtime_error(name + ": mesh parameters ([mesh.parameters], pbd.mesh_parameters) apply to .geo files only: remove them, or name the .geo");
   for (const auto& [key, value] : parameters)
     if (!std::isfinite(value)) throw std::runtime_error(name + ": mesh parameter '" + key + "' is not a finite number");
 }
@@ -123,7 +133,19 @@ std::string model_counts() {
 
 }  // namespace gmsh_detail
 
-std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
+namespace {
+
+/// Every node of the loaded model times `unit`: the file's coordinates in metres.
+void scale_nodes(double unit) {
+  if (unit == 1.0) return;
+  std::vector<std::size_t> tags;
+  std::vector<double> coords, parametric;
+  gmsh::model::mesh::getNodes(tags, coords, parametric, -1, -1, false, false);
+  for (std::size_t i = 0; i < tags.size(); ++i)
+    gmsh::model::mesh::setNode(tags[i], {unit * coords[3 * i], unit * coords[3 * i + 1], unit * coords[3 * i + 2]}, {});
+}
+
+std::vector<std::string> load_unscaled(const std::filesystem::path& file, const std::map<std::string, double>& parameters) {
   gmsh_detail::check_load_request(file, parameters);
   if (file.extension() == ".geo") {
     if (gmsh_detail::geo_mesher_server_running()) return gmsh_detail::load_geo_in_child({}, file, parameters);
@@ -131,6 +153,15 @@ std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std:
       return gmsh_detail::load_geo_in_child(mesher, file, parameters);
   }
   return gmsh_detail::load_here(file, parameters);
+}
+
+}  // namespace
+
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters,
+                                   double unit) {
+  auto declared = load_unscaled(file, parameters);
+  scale_nodes(unit);
+  return declared;
 }
 
 std::map<std::string, std::vector<GroupElement>> gmsh_physical_groups(int dim) {

@@ -21,8 +21,10 @@ namespace workbench {
 /// estimated mesh must fit the memory limit (mesh_checks.h); after loading, every node coordinate
 /// must be finite. Errors (no such file, a .geo's Error(), these checks, gmsh failures) are
 /// std::runtime_error with a one-line message starting with the file name. The model stays
-/// loaded until the next gmsh_load().
-std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
+/// loaded until the next gmsh_load(). `unit` (metres per unit of the file, [mesh] unit) scales every
+/// node once loaded, so that every reader sees metres.
+std::vector<std::string> gmsh_load(const std::filesystem::path& file, const std::map<std::string, double>& parameters,
+                                   double unit = 1.0);
 
 /// Starts the mesher server: a child forked from this process (no exec), which has gmsh's
 /// libraries loaded already, so that meshing a .geo does not pay for loading them again in the

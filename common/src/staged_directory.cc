@@ -113,6 +113,8 @@ StagedDirectory::StagedDirectory(fs::path target, const fs::path& case_file)
     throw Error(target_.string() + ": is the current folder or holds it; refusing to replace it");
   check_replaceable(target_);
   std::error_code ec;
+  for (fs::path p = target_.parent_path(); !p.empty() && !fs::exists(p, ec) && p != p.parent_path(); p = p.parent_path())
+    created_ = p;
   fs::create_directories(target_.parent_path(), ec);
   if (ec) throw Error(target_.string() + ": cannot create the output folder (" + ec.message() + ")");
   remove_stale_siblings(target_);
@@ -143,6 +145,10 @@ StagedDirectory::~StagedDirectory() {
   fs::remove_all(staging_, ec);  // created by this object (create_directory above succeeded)
   forget_on_interruption(staging_);
   forget_shown(staging_);
+  if (created_.empty()) return;
+  for (fs::path p = target_.parent_path(); ; p = p.parent_path()) {  // fs::remove removes empty folders only
+    if (!fs::remove(p, ec) || p == created_) break;
+  }
 }
 
 void StagedDirectory::commit() {

@@ -2,6 +2,7 @@
 #include <workbench/study_setup.h>
 
 #include <algorithm>
+#include <sstream>
 
 namespace workbench {
 
@@ -11,6 +12,12 @@ StudySetup read_study_setup(const CaseTable& root) {
   const auto mesh = root.table("mesh");
   s.mesh_file = mesh.path("file", std::nullopt);
   s.mesh_parameters = mesh.number_map("parameters");
+  std::vector<std::string> unit_names;
+  for (const auto& [name, metres] : mesh_units()) unit_names.push_back(name);
+  const std::string unit = mesh.text("unit", "m", unit_names);
+  for (const auto& [name, metres] : mesh_units())
+    if (name == unit) s.mesh_unit = metres;
+  s.agent_size = mesh.number("agent_size", 0.0, Range::positive());
   const auto material = root.table("material");
   s.young = material.number("young", 206e9, Range::positive());
   s.poisson = material.number("poisson", 0.3, Range::open(-1.0, 0.5));
@@ -32,6 +39,23 @@ StudySetup read_study_setup(const CaseTable& root) {
   }
   s.steps = root.table("steps").integer("count", 1, 1, 10000);
   return s;
+}
+
+const std::vector<std::pair<std::string, double>>& mesh_units() {
+  static const std::vector<std::pair<std::string, double>> units = {{"m", 1.0}, {"cm", 1e-2}, {"mm", 1e-3}};
+  return units;
+}
+
+std::string body_size_warning(const std::filesystem::path& mesh, double unit_metres, double longest) {
+  if (longest <= kLargestBody && longest >= kSmallestBody) return "";
+  std::string unit = "m";
+  for (const auto& [name, metres] : mesh_units())
+    if (metres == unit_metres) unit = name;
+  std::ostringstream s;
+  s << mesh.string() << ": the body is " << longest << " m long (its longest side, read with mesh.unit = \""
+    << unit << "\"): " << (longest > kLargestBody ? "over " : "under ") << (longest > kLargestBody ? "20 m" : "0.1 mm")
+    << "; if the file is in other units, set mesh.unit (\"mm\", \"cm\" or \"m\")";
+  return s.str();
 }
 
 void check_groups_exist(const CaseFile& file, const StudySetup& setup, const std::vector<std::string>& mesh_groups) {

@@ -47,6 +47,7 @@ FemProblem problem_from_case(const workbench::CaseFile& file) {
   p.name = file.path().string();
   p.mesh_file = setup.mesh_file;
   p.mesh_parameters = setup.mesh_parameters;
+  p.mesh_unit = setup.mesh_unit;
   p.young = setup.young;
   p.poisson = setup.poisson;
   p.thickness = setup.thickness;

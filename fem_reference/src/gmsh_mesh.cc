@@ -50,12 +50,12 @@ std::string type_name(int type) {
 
 }  // namespace
 
-PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
+PlainMesh read_gmsh_mesh(const fs::path& file, const std::map<std::string, double>& parameters, double unit) {
   const std::string name = file.string();
   // The one gmsh loader of the process (common/gmsh), shared with the agent and PBD readers. Every
   // rank loads the mesh (a .geo in a child process, which may fail on one rank only): a failure on
   // any rank ends every rank with the same message.
-  mpi_collective([&] { workbench::gmsh_load(file, parameters); });
+  mpi_collective([&] { workbench::gmsh_load(file, parameters, unit); });
 
   PlainMesh mesh;
   mesh.source = name;

@@ -25,7 +25,8 @@ struct PlainMesh {
 };
 
 /// Meshes a .geo (ONELAB parameters as in agent/src/mesh_import.cc) or reads a .msh through the gmsh API.
-PlainMesh read_gmsh_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters);
+PlainMesh read_gmsh_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters,
+                         double unit = 1.0);
 
 PlainMesh box_mesh(const Box& box);
 

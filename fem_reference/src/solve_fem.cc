@@ -150,20 +150,28 @@ std::array<double, 3> group_centre(const PlainMesh& mesh, const std::string& gro
   return c;
 }
 
-}  // namespace
-
-FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::ostream* log) {
-  const auto start = std::chrono::steady_clock::now();
+/// The problem's mesh, read and checked against the problem (groups, elements, memory).
+PlainMesh checked_mesh(const FemProblem& problem) {
   if (problem.supports.empty())
     throw Error(problem.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
   PlainMesh mesh;
   try {
-    mesh = problem.box ? box_mesh(*problem.box) : read_gmsh_mesh(problem.mesh_file, problem.mesh_parameters);
+    mesh = problem.box ? box_mesh(*problem.box) : read_gmsh_mesh(problem.mesh_file, problem.mesh_parameters, problem.mesh_unit);
   } catch (const Error& e) {
     throw Error(problem.name + ": mesh: " + e.what());
   }
   check_problem(problem, mesh);
   check_memory(problem, mesh);
+  return mesh;
+}
+
+}  // namespace
+
+void check_fem_problem(const FemProblem& problem) { checked_mesh(problem); }
+
+FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::ostream* log) {
+  const auto start = std::chrono::steady_clock::now();
+  const PlainMesh mesh = checked_mesh(problem);
   FemProblem p = problem;
   for (auto& f : p.point_forces)
     if (!f.group.empty()) f.point = group_centre(mesh, f.group);

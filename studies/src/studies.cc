@@ -6,7 +6,10 @@
 #include <fem_reference/mpi.h>
 #include <schema/every_section.h>
 #include <workbench/staged_directory.h>
+#include <workbench/study_setup.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <ostream>
 #include <utility>
@@ -46,6 +49,20 @@ fs::path write_staged_on_rank_0(const fs::path& folder, const workbench::CaseFil
   return target;
 }
 
+/// The longest side of the FEM mesh's bounding box [m].
+double longest_side(const fem_reference::FemResult& r) {
+  double longest = 0;
+  for (int a = 0; a < 3; ++a) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (std::size_t n = 0; n < r.node_count(); ++n) {
+      lo = std::min(lo, r.node_points[3 * n + a]);
+      hi = std::max(hi, r.node_points[3 * n + a]);
+    }
+    longest = std::max(longest, hi - lo);
+  }
+  return longest;
+}
+
 }  // namespace
 
 agent_study::AgentStudy open_agent_study(const workbench::CaseFile& file) {
@@ -68,12 +85,19 @@ fem_reference::FemProblem open_fem_study(const workbench::CaseFile& file) {
   return problem;
 }
 
+void check_fem_study(const workbench::CaseFile& file) { fem_reference::check_fem_problem(open_fem_study(file)); }
+
 FemRun run_fem_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {
   const auto problem = open_fem_study(file);
   FemRun run;
   run.folder = write_staged_on_rank_0(folder, file, [&](const fs::path& dir) {
     run.result = fem_reference::solve_fem(problem, dir, &log);
-    fem_reference::mpi_on_root([&] { fem_reference::write_fem_csv(run.result, dir); });
+    fem_reference::mpi_on_root([&] {
+      if (const auto w = workbench::body_size_warning(problem.mesh_file, problem.mesh_unit, longest_side(run.result));
+          !w.empty())
+        log << "fem: warning: " << w << "\n";
+      fem_reference::write_fem_csv(run.result, dir);
+    });
   });
   return run;
 }
@@ -90,6 +114,11 @@ fs::path run_pbd_study(const workbench::CaseFile& file, const fs::path& folder, 
 
 void open_compare_study(const workbench::CaseFile& file) {
   fem_reference::mpi_collective([&] { schema::check_every_section(file); });
+}
+
+std::vector<std::string> check_compare_study(const workbench::CaseFile& file) {
+  open_compare_study(file);
+  return compare::check_compare(file);
 }
 
 CompareRun run_compare_study(const workbench::CaseFile& file, const fs::path& folder, std::ostream& log) {

@@ -9,7 +9,8 @@
 # The files each model runs (the calibration file, cases/calibrate_*.toml, is another format).
 runs() {  # runs SUB CASE_NAME: whether SUB is meant to run CASE_NAME
   case "$1:$2" in
-    compare:*) return 0 ;;  # compare --check checks the sections only (its model is in [compare])
+    compare:cook | compare:pbd_sheet | compare:pbd_strip) return 1 ;;  # compare --check reads the meshes too
+    compare:*) return 0 ;;
     pbd:pbd_*) return 0 ;;
     pbd:*) return 1 ;;
     agent:pbd_* | fem:pbd_sheet | fem:pbd_strip | agent:cook) return 1 ;;

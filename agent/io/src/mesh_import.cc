@@ -24,6 +24,11 @@ struct MeshError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// What fixes a mesh that is not the agents' lattice: the voxelization (docs/agent-model.md).
+const std::string kVoxelizeHint =
+    "; for a body of any shape give [mesh] agent_size [m] (voxelized in the run) or make a .msh with "
+    "`workbench voxelize` (docs/agent-model.md, \"Voxelization\")";
+
 }  // namespace
 
 std::string point_text(const Eigen::Vector3d& x, int dim) {
@@ -91,7 +96,7 @@ GmshElements read_elements(const std::string& name) {
       std::vector<double> local;
       gmsh::model::mesh::getElementProperties(t, type_name, d, order, nn, local, np);
       throw MeshError(name + ": has " + type_name + " elements; the agent method needs a structured mesh of " +
-                      (dim == 2 ? "4-node squares" : "8-node cubes") + " (Transfinite + Recombine)");
+                      (dim == 2 ? "4-node squares" : "8-node cubes") + " (Transfinite + Recombine)" + kVoxelizeHint);
     }
   if (types.empty()) throw MeshError(name + ": holds no " + std::to_string(dim) + "D elements");
   m.nodes = std::move(element_nodes[0]);
@@ -131,14 +136,14 @@ ElementBoxes element_boxes(const GmshElements& m, const std::string& name) {
     for (int a = 0; a < dim; ++a)
       if (std::abs(s[a] - size[a]) > tol)
         throw MeshError(name + ": agents must all be the same size; " + m.element(e) + " at " + point_text(lo, dim) +
-                        " differs (structured mesh with uniform spacing needed)");
+                        " differs (structured mesh with uniform spacing needed)" + kVoxelizeHint);
     for (int c = 0; c < m.corners; ++c) {
       const Eigen::Vector3d& x = m.corner(e, c);
       for (int a = 0; a < dim; ++a)
         if (std::min(std::abs(x[a] - lo[a]), std::abs(x[a] - hi[a])) > tol)
           throw MeshError(name + ": " + m.element(e) +
                           " is not an axis-aligned square/cube; the agent method needs a grid aligned with x, y" +
-                          (dim == 3 ? ", z" : ""));
+                          (dim == 3 ? ", z" : "") + kVoxelizeHint);
     }
     b.lo[e] = lo;
     b.lo_all = b.lo_all.cwiseMin(lo);
@@ -163,7 +168,7 @@ std::int64_t lattice_coordinate(const ElementBoxes& b, const std::string& name, 
   const double f = (x - b.lo_all[a]) / b.size[a];
   if (!(std::abs(f) < 1e15)) throw MeshError(name + ": " + what + " lies more than 1e15 agent sizes from the others");
   const std::int64_t l = std::llround(f);
-  if (std::abs(f - double(l)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)");
+  if (std::abs(f - double(l)) > tol) throw MeshError(name + ": " + what + " is off the agent grid (uneven spacing)" + kVoxelizeHint);
   return l;
 }
 
@@ -312,11 +317,11 @@ void read_face_groups(const Grid& grid, const std::unordered_map<std::size_t, st
 
 }  // namespace
 
-ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters) {
+ImportedMesh import_mesh(const fs::path& file, const std::map<std::string, double>& parameters, double unit) {
   const std::string name = file.string();
   ImportedMesh out;
   try {
-    out.parameters = workbench::gmsh_load(file, parameters);
+    out.parameters = workbench::gmsh_load(file, parameters, unit);
   } catch (const std::runtime_error& e) {
     throw MeshError(e.what());
   }

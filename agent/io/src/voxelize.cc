@@ -50,7 +50,8 @@ double distance(const Vector3d& p, const Facet& f) {
                         : triangle_distance(p, f.corner[0], f.corner[1], f.corner[2]);
 }
 
-/// Writes the staircase into a new gmsh model and saves it.
+}  // namespace
+
 void write_staircase(const ImportedMesh& m, const fs::path& file) {
   const Grid& g = m.grid;
   const int dim = g.dim;
@@ -119,6 +120,8 @@ void write_staircase(const ImportedMesh& m, const fs::path& file) {
   gmsh::option::setNumber("Mesh.SaveAll", 0);
   workbench::gmsh_write_checked(file);  // gmsh does not check its writes
 }
+
+namespace {
 
 using Cell = std::array<std::int64_t, 3>;
 
@@ -326,11 +329,11 @@ void assign_groups(const Grid& grid, const BodyBoundary& boundary, ImportedMesh&
 }  // namespace
 
 ImportedMesh voxelize(const fs::path& geometry, double size, const std::map<std::string, double>& parameters,
-                      const fs::path& staircase_msh) {
+                      const fs::path& staircase_msh, double unit) {
   const std::string name = geometry.string();
   if (!(size > 0) || !std::isfinite(size)) throw std::runtime_error(name + ": the agent size must be a number > 0");
   ImportedMesh out;
-  out.parameters = workbench::gmsh_load(geometry, parameters);
+  out.parameters = workbench::gmsh_load(geometry, parameters, unit);
   const int dim = gmsh::model::getDimension();
   if (dim != 2 && dim != 3) throw std::runtime_error(name + ": the model must be 2D or 3D");
   const Nodes nodes = read_nodes(name, dim);

@@ -36,6 +36,9 @@ class StagedDirectory {
 
  private:
   std::filesystem::path target_, staging_;
+  /// The outermost parent folder this object created for the target (empty: none), removed again,
+  /// when left empty, by a study that fails before it commits: a refused run leaves nothing behind.
+  std::filesystem::path created_;
   bool committed_ = false;
 };
 

@@ -28,10 +28,13 @@ struct AgentCompareInput {
   NearLoad near;            ///< cells and nodes left out of the far field
   double far_distance = 0;  ///< [m]
   ReferenceOptions reference;  ///< resolved for the mesh's dimension
+  /// The same-body check's, said before the run and kept in summary.json.
+  std::vector<std::string> warnings;
 };
 
 /// Step 1: reads and checks the case (`options` already read): the study, its FEM problem, the
-/// loads' frames, the lines, the far field; gate names checked, unknown keys refused.
+/// loads' frames, the lines, the far field; gate names checked, unknown keys refused; with a
+/// reference on another mesh, the two meshes checked to be the same body (compare/same_body.h).
 AgentCompareInput read_input(const workbench::CaseFile& file, const CompareOptions& options);
 
 // Steps 5 and 7: what a comparison samples, from where.

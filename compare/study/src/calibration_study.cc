@@ -2,6 +2,7 @@
 #include <compare/calibration_study.h>
 #include <schema/every_section.h>
 #include <compare/compare_study.h>
+#include <compare/same_body.h>
 
 #include "report.h"
 
@@ -167,7 +168,8 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
   }
   auto problem = fem_reference::problem_from_case(case_file);
   // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
-  const auto reference = compare_options.reference.resolved(c.study.mesh.grid.dim);
+  const auto reference = reference_options(compare_options, c.study);
+  for (const auto& w : check_reference_body(case_file, c.study, reference)) log << c.name << ": warning: " << w << "\n";
   log << c.name << ": solving the reference (" << reference.describe() << ") once\n" << std::flush;
   const auto fem = fem_reference::solve_fem(reference_problem(problem, reference, c.study.mesh.grid));
   std::array<std::size_t, 2> outside{};

@@ -5,10 +5,12 @@
 #include <compare/compare_study.h>
 #include <compare/pbd_compare.h>
 #include <compare/reference.h>
+#include <compare/same_body.h>
 
 #include "agent_compare.h"
 #include "report.h"
 
+#include <agent/voxelize.h>
 #include <agent_study.h>
 #include <carry_check.h>
 #include <fem_reference/fem_case.h>
@@ -99,7 +101,8 @@ std::vector<std::string> metric_names(const CompareOptions& options, const std::
 AgentCompareInput agent_compare::read_input(const workbench::CaseFile& file, const CompareOptions& options) {
   AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
   const auto& grid = in.study.mesh.grid;
-  in.reference = options.reference.resolved(grid.dim);
+  in.reference = reference_options(options, in.study);
+  in.warnings = check_reference_body(file, in.study, in.reference);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
   // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
   for (auto& l : load_lines(grid, in.loads, options.depths))
@@ -236,6 +239,7 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["model"] = "agent";
   const auto& setup = study.setup;
   json["geometry"] = {{"mesh", setup.mesh_file.string()}, {"mesh_parameters", setup.mesh_parameters},
+                      {"mesh_unit_m", setup.mesh_unit}, {"agent_size", setup.agent_size},
                       {"dim", study.mesh.grid.dim}, {"young", setup.young}, {"poisson", setup.poisson},
                       {"thickness", setup.thickness}, {"rigid", setup.rigid_groups}, {"rollers", setup.roller_groups}};
   json["loads"] = nlohmann::json::array();
@@ -339,6 +343,11 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // reason, before anything runs (docs/compare.md); it fails the gate after the run.
   const auto carry = agent_study::carry_check(in.study);
   CompareOutcome outcome;
+  for (const auto& w : in.study.warnings) outcome.warnings.push_back("agent: " + w);  // the agent run says them
+  for (const auto& w : in.warnings) {
+    if (fem_reference::mpi_rank() == 0) log << "compare: warning: " << w << "\n" << std::flush;
+    outcome.warnings.push_back(w);
+  }
   for (const auto& c : carry) {
     const std::string line = c.describe(in.study);
     if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
@@ -367,6 +376,15 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 4. The FEM reference (its output in dir/fem), on every rank; then the agent model's failure,
   // if it failed, ends every rank.
   auto t = std::chrono::steady_clock::now();
+  // The agents voxelized in the run ([mesh] agent_size): their staircase as a file, for the FEM on it
+  // beside the reference (the staircase's own error), written by rank 0 before any rank reads it.
+  fs::path staircase;
+  if (in.study.setup.agent_size > 0) {
+    staircase = dir / "agent_staircase.msh";
+    fem_reference::mpi_collective([&] {
+      if (fem_reference::mpi_rank() == 0) agent::write_staircase(in.study.mesh, staircase);
+    });
+  }
   auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, fem_log);
   double fem_seconds = seconds_since(t);
   mpi_on_root([&] { agent_run.get(); });
@@ -389,7 +407,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 6. The reference's error estimate (and with the true geometry the staircase's own error), on
   // every rank.
   t = std::chrono::steady_clock::now();
-  estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log);
+  estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log, staircase);
   fem_seconds += seconds_since(t);
   // 7-9 on rank 0.
   mpi_on_root([&] {
@@ -429,6 +447,18 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 }
 
 }  // namespace
+
+std::vector<std::string> check_compare(const workbench::CaseFile& file) {
+  const auto options = read_compare_options(file.root());
+  std::vector<std::string> warnings;
+  fem_reference::mpi_collective([&] {
+    if (options.model == "pbd") return check_pbd_compare(file, options);
+    const auto in = read_input(file, options);
+    warnings = in.study.warnings;
+    warnings.insert(warnings.end(), in.warnings.begin(), in.warnings.end());
+  });
+  return warnings;
+}
 
 CompareOutcome run_compare(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {
   const auto options = read_compare_options(file.root());

@@ -199,6 +199,7 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   const auto compare_options = read_compare_options(file.root());
   if (compare_options.model == "pbd") return run_pbd_front(file, options, dir, log);
   const auto in = read_input(file, compare_options);
+  for (const auto& w : in.warnings) log << "front: warning: " << w << "\n";
   const double size = case_size(file, in, options.size_parameter);
   front_files::check_gate_names(options.gate, front_metrics(in.study.mesh.grid.dim), file);
   // 2. The reference and its own error, as `workbench compare` solves them (its files in dir/fem).

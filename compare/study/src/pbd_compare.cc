@@ -204,18 +204,41 @@ std::vector<std::string> summary_notes(const pbd_study::PbdStudy& study, const S
 
 }  // namespace
 
-CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
-                               std::ostream& log) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+/// What the PBD comparison reads and checks before it runs anything.
+struct PbdInput {
+  pbd_study::PbdStudy study;
+  fem_reference::FemProblem problem;
+  Rod rod;
+  double D = 0;  ///< the strip's height [m]
+};
+
+PbdInput read_pbd_input(const workbench::CaseFile& file, const CompareOptions& options) {
   const auto root = file.root();
   auto pbd_case = pbd_study::read_pbd_case(file);  // title and [pbd]
   auto problem = fem_reference::problem_from_case(file);             // [mesh], [material], [boundary], [[load]], [fem]
   report::check_gate_names(options, pbd_metric_names(), root);
   file.reject_unknown_keys();
   auto study = pbd_study::load_pbd_study(file, std::move(pbd_case));
-  const std::string case_name = file.path().string();
   const Rod rod = check_rod(study, root.table("pbd"));
-  const double D = strip_height(strip_extent(problem), rod, case_name);
+  const double D = strip_height(strip_extent(problem), rod, file.path().string());
+  return {std::move(study), std::move(problem), rod, D};
+}
+
+}  // namespace
+
+void check_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options) { read_pbd_input(file, options); }
+
+CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
+                               std::ostream& log) {
+  const auto start = std::chrono::steady_clock::now();
+  auto input = read_pbd_input(file, options);
+  auto& study = input.study;
+  const auto& problem = input.problem;
+  const Rod& rod = input.rod;
+  const double D = input.D;
+  const std::string case_name = file.path().string();
 
   // PBD to rest: the case's frames.
   auto t = std::chrono::steady_clock::now();

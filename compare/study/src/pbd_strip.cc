@@ -74,7 +74,7 @@ Rod check_rod(const pbd_study::PbdStudy& study, const workbench::CaseTable& pbd_
 
 std::array<std::array<double, 2>, 2> strip_extent(const fem_reference::FemProblem& problem) {
   if (problem.box) return {{{problem.box->lo[0], problem.box->hi[0]}, {problem.box->lo[1], problem.box->hi[1]}}};
-  workbench::gmsh_load(problem.mesh_file, problem.mesh_parameters);
+  workbench::gmsh_load(problem.mesh_file, problem.mesh_parameters, problem.mesh_unit);
   std::vector<std::size_t> tags;
   std::vector<double> xyz, parametric;
   gmsh::model::mesh::getNodes(tags, xyz, parametric);

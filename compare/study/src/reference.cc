@@ -28,13 +28,19 @@ GridFields agent_on_grid(const agent::Grid& grid, const agent::AgentState& state
   return out;
 }
 
+ReferenceOptions reference_options(const CompareOptions& options, const agent_study::AgentStudy& study) {
+  auto reference = options.reference.resolved(study.mesh.grid.dim);
+  if (reference.mesh.empty() && study.setup.agent_size > 0) reference.mesh = study.setup.mesh_file;
+  return reference;
+}
+
 fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
                                             const agent::Grid& grid) {
   problem.options.degree = options.degree;
   problem.options.refine = options.refine;
   if (!options.mesh.empty()) {  // the same body, loads and supports on the true geometry's mesh, evaluated at the agents
+    if (options.mesh != problem.mesh_file) problem.mesh_parameters.clear();  // another file's
     problem.mesh_file = options.mesh;
-    problem.mesh_parameters.clear();
     problem.box.reset();
     problem.probe_points = agent_probe_points(grid);
   }
@@ -65,7 +71,7 @@ Reference solve_reference(const fem_reference::FemProblem& problem, const Refere
 }
 
 void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
-                              const agent::ImportedMesh& mesh, std::ostream& log) {
+                              const agent::ImportedMesh& mesh, std::ostream& log, const std::filesystem::path& staircase_msh) {
   const auto start = std::chrono::steady_clock::now();
   if (r.fem.coarser) {  // solved with the reference, from its multigrid hierarchy
     log << "compare: the reference's error estimate: against " << r.estimate.describe()
@@ -86,6 +92,11 @@ void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, c
     problem.options.degree = options.degree;
     problem.options.refine = options.refine;
     problem.options.write_vtu = false;
+    if (!staircase_msh.empty()) {  // written in metres
+      problem.mesh_file = staircase_msh;
+      problem.mesh_parameters.clear();
+      problem.mesh_unit = 1.0;
+    }
     log << "compare: the staircase's own error: FEM on the agents' mesh at the reference's level\n";
     const auto staircase = fem_reference::solve_fem(problem, {}, &log);
     r.staircase_fields = fem_on_grid(mesh, staircase, problem.name);

@@ -106,6 +106,7 @@ struct FemProblem {
   std::string name = "fem";                    ///< names the input in messages (the case file)
   std::filesystem::path mesh_file;             ///< gmsh .geo or .msh
   std::map<std::string, double> mesh_parameters;
+  double mesh_unit = 1.0;                      ///< metres per unit of mesh_file's coordinates ([mesh] unit)
   std::optional<Box> box;                      ///< used instead of mesh_file when set
   double young = 206e9;                        ///< [Pa]
   double poisson = 0.3;
@@ -128,5 +129,9 @@ struct FemProblem {
 /// more than one rank (initialises MPI itself if needed). Progress goes to `log` (rank 0 only).
 FemResult solve_fem(const FemProblem& problem, const std::filesystem::path& output_dir = {},
                     std::ostream* log = nullptr);
+
+/// What solve_fem checks before it solves (the mesh read, its groups and elements against the
+/// problem, the memory), without solving: `--check`. Every rank, as solve_fem.
+void check_fem_problem(const FemProblem& problem);
 
 }  // namespace fem_reference

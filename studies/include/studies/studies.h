@@ -6,7 +6,8 @@
 //   2. the module's own reading, then its mesh (nothing is meshed for a case refused anyway);
 //   3. the output folder staged (workbench/staged_directory.h), written, moved into place whole.
 // (`workbench front` is the comparison's cost-accuracy front: a door of its own, compare/front.h.)
-// open_<module>_study is steps 1-2 (what `--check` runs and what Python uses without a folder);
+// open_<module>_study is steps 1-2 (what `--check` runs and what Python uses without a folder; fem,
+// compare and front read their meshes as they run: check_<module>_study adds them for `--check`);
 // run_<module>_study all three. fem, compare and calibrate run distributed under mpirun: every
 // rank calls their doors (each step collective, rank 0 owns the folder); agent and pbd run on one
 // rank (the command line calls them on rank 0 alone).
@@ -40,6 +41,8 @@ AgentRun run_agent_study(const workbench::CaseFile& file, const std::filesystem:
 
 /// `workbench fem`: the FEM problem, checked (collective).
 fem_reference::FemProblem open_fem_study(const workbench::CaseFile& file);
+/// `workbench fem --check`: open_fem_study and the mesh the run would solve on, checked (collective).
+void check_fem_study(const workbench::CaseFile& file);
 struct FemRun {
   fem_reference::FemResult result;
   std::filesystem::path folder;  ///< rank 0; empty on the other ranks
@@ -56,6 +59,10 @@ std::filesystem::path run_pbd_study(const workbench::CaseFile& file, const std::
 
 /// `workbench compare`: the case checked (collective); the comparison reads the rest as it runs.
 void open_compare_study(const workbench::CaseFile& file);
+/// `workbench compare --check` (and `workbench front --check`): open_compare_study and what the
+/// comparison reads before it runs: the meshes, the same-body check (compare::check_compare);
+/// returns the warnings the run would give before it runs.
+std::vector<std::string> check_compare_study(const workbench::CaseFile& file);
 struct CompareRun {
   compare::CompareOutcome outcome;
   std::filesystem::path folder;  ///< rank 0; empty on the other ranks

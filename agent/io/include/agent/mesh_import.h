@@ -37,7 +37,9 @@ double study_bytes(int dim, const std::array<int, 3>& cells, const std::vector<s
 
 /// Reads or generates the mesh. `parameters` override the .geo's DefineConstant values; a name
 /// the file does not declare is an error. Every error is a std::runtime_error whose message
-/// starts with the file name and says what is wrong (element type, overlap, size, ...).
-ImportedMesh import_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters = {});
+/// starts with the file name and says what is wrong (element type, overlap, size, ...). `unit`:
+/// metres per unit of the file's coordinates ([mesh] unit).
+ImportedMesh import_mesh(const std::filesystem::path& file, const std::map<std::string, double>& parameters = {},
+                         double unit = 1.0);
 
 }  // namespace agent

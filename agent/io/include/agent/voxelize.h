@@ -21,9 +21,14 @@ namespace agent {
 /// `staircase_msh` is given, the staircase is written there as gmsh MSH (4-node quadrangles or
 /// 8-node hexahedra in the physical group "body", the boundary groups as 2-node lines or 4-node
 /// quadrangles), so that import_mesh and the FEM read the identical mesh. Errors are
-/// std::runtime_error naming the file.
+/// std::runtime_error naming the file. `unit`: metres per unit of the geometry's coordinates
+/// ([mesh] unit; `size` is in metres).
 ImportedMesh voxelize(const std::filesystem::path& geometry, double size,
                       const std::map<std::string, double>& parameters = {},
-                      const std::filesystem::path& staircase_msh = {});
+                      const std::filesystem::path& staircase_msh = {}, double unit = 1.0);
+
+/// Writes a voxelized mesh as voxelize's `staircase_msh` (coordinates in metres). Needs gmsh
+/// initialised: a process that voxelized has it.
+void write_staircase(const ImportedMesh& mesh, const std::filesystem::path& staircase_msh);
 
 }  // namespace agent

@@ -89,4 +89,10 @@ struct CompareOutcome {
 /// gate keys naming no metric of the chosen model) before running anything.
 CompareOutcome run_compare(const workbench::CaseFile& file, const std::filesystem::path& dir, std::ostream& log);
 
+/// What run_compare reads and checks before it runs anything, without running it (`--check`):
+/// the case, the fast model's mesh, the FEM strip's (PBD) or the same-body check (agents). Every
+/// rank, each step collective. Returns the warnings the run would give before it runs (the body's
+/// size, the load patches).
+std::vector<std::string> check_compare(const workbench::CaseFile& file);
+
 }  // namespace compare

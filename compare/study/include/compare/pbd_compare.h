@@ -8,4 +8,7 @@ namespace compare {
 CompareOutcome run_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options,
                                const std::filesystem::path& dir, std::ostream& log);
 
+/// What run_pbd_compare reads and checks before it runs (the rod, the strip's mesh), without running.
+void check_pbd_compare(const workbench::CaseFile& file, const CompareOptions& options);
+
 }  // namespace compare

@@ -2,6 +2,7 @@
 // The FEM reference of a comparison: the same geometry refined and/or of higher degree, solved
 // with its output files, with its own discretisation error estimated from a second refinement
 // level, and sampled onto the agent grid (compare/sampling.h; docs/compare.md).
+#include <agent_study.h>
 #include <compare/sampling.h>
 #include <fem_reference/fem.h>
 #include <schema/compare_options.h>
@@ -25,8 +26,14 @@ using schema::ReferenceOptions;
 /// model's), and the von Mises stress of those (the general form).
 GridFields agent_on_grid(const agent::Grid& grid, const agent::AgentState& state);
 
+/// The comparison's reference for `study`: [compare.reference] resolved for the mesh's dimension;
+/// with [mesh] agent_size (the agents voxelized from mesh.file in the run) and no mesh of its own,
+/// on mesh.file itself, the true geometry.
+ReferenceOptions reference_options(const CompareOptions& options, const agent_study::AgentStudy& study);
+
 /// `problem` set to the level `options`: its degree and refinement, and with options.mesh (the true
-/// geometry) that mesh instead of the agents' and the agent_probe_points as probes.
+/// geometry) that mesh instead of the agents' and the agent_probe_points as probes (the case's
+/// [mesh.parameters] kept when it is the case's own mesh.file, and its mesh.unit always).
 fem_reference::FemProblem reference_problem(fem_reference::FemProblem problem, const ReferenceOptions& options,
                                             const agent::Grid& grid);
 
@@ -61,9 +68,11 @@ Reference solve_reference(const fem_reference::FemProblem& problem, const Refere
 
 /// The reference's own error: solves the estimate level of `r` without output and samples it onto
 /// the agent grid; with the true geometry also solves the case's own (staircase) mesh at the
-/// reference's level. Apart from solve_reference so that the reference's files can be used (the
-/// figures drawn) while it runs.
+/// reference's level: `staircase_msh` when given (the agents voxelized in the run, written there),
+/// else the case's mesh.file. Apart from solve_reference so that the reference's files can be used
+/// (the figures drawn) while it runs.
 void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
-                              const agent::ImportedMesh& mesh, std::ostream& log);
+                              const agent::ImportedMesh& mesh, std::ostream& log,
+                              const std::filesystem::path& staircase_msh = {});
 
 }  // namespace compare

@@ -1,6 +1,7 @@
 // `workbench front`: the cost-accuracy front of a case (compare/front.h): exit 1 if [front.gate] fails.
 #include "commands.h"
 
+#include <compare/front.h>
 #include <fem_reference/mpi.h>
 #include <studies/studies.h>
 
@@ -26,7 +27,7 @@ void add_front_command(CLI::App& app, Action& action) {
       const workbench::CaseFile& file = *case_ptr;
       if (*check) {
         studies::open_front_study(file);
-        return checked(file, "front", studies::check_compare_study(file));
+        return checked(file, "front", compare::check_front(file));
       }
       const auto run = studies::run_front_study(file, output_folder(*output, file, "front"), progress_log());
       int code = 0;

@@ -4,7 +4,7 @@
 # that of the FEM strip of half its cells, which is a point of the FEM's ladder; the work counts say
 # what ran; each speed-up is the FEM's time at that error read log-log off front.json's own points;
 # a rod under another load than the strip's, or a strip without the cells parameter, is refused
-# (exit 2, nothing written). Usage: front_pbd.sh WORKBENCH_BINARY SOURCE_DIR
+# (exit 2, nothing written), by the run and by --check. Usage: front_pbd.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 
 case_file() {  # PBD 250, 500, 1000 substeps x 4 iterations; FEM Q2 at 50, 100, 200 cells along the strip;
@@ -73,6 +73,11 @@ sed 's/^total_mass = 0.157/total_mass = 0.2/' "$work/front.toml" >"$work/heavier
 refused other_load "pbd.total_mass" "$work/front" "$bin" front "$work/heavier.toml" -o "$work/no"
 sed 's/^\[front\]$/[front]\ncells_parameter = "n"/' "$work/front.toml" >"$work/bad_cells.toml"
 refused bad_cells "front.cells_parameter" "$work/front" "$bin" front "$work/bad_cells.toml" -o "$work/no"
+# --check refuses them too, before any solve.
+refused other_load_check "pbd.total_mass" "$work/front" "$bin" front "$work/heavier.toml" --check
+refused bad_cells_check "front.cells_parameter" "$work/front" "$bin" front "$work/bad_cells.toml" --check
+"$bin" front "$work/front.toml" --check >"$work/check.out" 2>&1
+check check_passes $? "$(cat "$work/check.out")"
 
 echo "front_pbd: $passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -1,6 +1,7 @@
 // The cost-accuracy front (docs/front.md), in steps: read the case, solve the reference once, run
 // the agents' ladder and the FEM's ladder (each point a warm-up, then N timed runs), judge, write.
 #include <compare/front.h>
+#include <compare/compare_study.h>
 
 #include "agent_compare.h"
 #include "front_files.h"
@@ -190,6 +191,13 @@ void require_one_rank(const workbench::CaseFile& file) {
   if (fem_reference::mpi_size() > 1)  // every rank says so: printed once
     throw fem_reference::CollectiveError(file.path().string() + ": workbench front times each model on one core: "
                                          "run it without mpirun");
+}
+
+std::vector<std::string> check_front(const workbench::CaseFile& file) {
+  const auto options = schema::read_front_options(file.root());
+  if (read_compare_options(file.root()).model != "pbd") return check_compare(file);
+  check_pbd_front(file, options);
+  return {};
 }
 
 FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std::ostream& log) {

@@ -47,6 +47,10 @@ void add_point(FrontOutcome& out, std::ostream& log, const std::string& what, co
   }
 }
 
+/// Reads and checks what run_pbd_front reads before it runs anything (the strip, its load and
+/// stiffness, front.cells_parameter, the gate's names); a workbench::Error when one is wrong.
+void check_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options);
+
 /// The front of a PBD case (compare.model = "pbd"): the PBD rod at every substeps x iterations of
 /// [front], the FEM strip at every size factor and degree, against the case's FEM strip.
 FrontOutcome run_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options,

@@ -189,20 +189,39 @@ double case_cells(const workbench::CaseFile& file, const fem_reference::FemProbl
   return it->second;
 }
 
-}  // namespace
+/// What the PBD front reads and checks before it runs anything: one strip, one load.
+struct PbdFrontInput {
+  fem_reference::FemProblem problem;
+  pbd_study::PbdStudy study;
+  Rod rod;
+  double D = 0, cells = 0;
+};
 
-FrontOutcome run_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options, const fs::path& dir,
-                           std::ostream& log) {
-  // 1. Read and check everything before running anything: one strip, one load.
+PbdFrontInput read_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options) {
   const std::string case_name = file.path().string();
   auto problem = fem_reference::problem_from_case(file);
   const double cells = case_cells(file, problem, options.cells_parameter);
   front_files::check_gate_names(options.gate, kPbdMetrics, file);
   file.reject_unknown_keys();
-  const auto study = pbd_study::load_pbd_study(file, pbd_study::read_pbd_case(file));
+  auto study = pbd_study::load_pbd_study(file, pbd_study::read_pbd_case(file));
   const Rod rod = check_rod(study, file.root().table("pbd"));
   const double D = strip_height(strip_extent(problem), rod, case_name);
   require_same_strip(strip(problem, study, rod, D), case_name);
+  return {std::move(problem), std::move(study), rod, D, cells};
+}
+
+}  // namespace
+
+void check_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options) {
+  read_pbd_front(file, options);
+}
+
+FrontOutcome run_pbd_front(const workbench::CaseFile& file, const schema::FrontOptions& options, const fs::path& dir,
+                           std::ostream& log) {
+  // 1. Read and check everything before running anything.
+  const std::string case_name = file.path().string();
+  const auto input = read_pbd_front(file, options);
+  const auto& [problem, study, rod, D, cells] = input;
   // 2. The reference (the case's strip, its files in dir/fem) and its own error: the strip of half its cells.
   double reference_seconds = 0;
   const auto reference = report::run_fem(problem, dir, log, reference_seconds);

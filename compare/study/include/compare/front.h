@@ -37,6 +37,11 @@ struct FrontOutcome {
 /// dimensions, in the body and in the far field ("far.sigma_y.rel_l2").
 std::vector<std::string> front_metrics(int dim);
 
+/// What `workbench front --check` checks: everything run_front reads before it solves (an agent
+/// case as `workbench compare --check`; a PBD case's strip, load, stiffness and cells parameter).
+/// Returns the warnings the run would give; a workbench::Error when something is wrong.
+std::vector<std::string> check_front(const workbench::CaseFile& file);
+
 /// Throws (on every rank, fem_reference::CollectiveError) when more than one MPI rank runs: the
 /// front times each model on one core.
 void require_one_rank(const workbench::CaseFile& file);

@@ -316,6 +316,35 @@ std::vector<std::string> reference_notes(const AgentCompareInput& in, const Refe
   return notes;
 }
 
+/// The input's warnings and the carry check's lines into `outcome` (and on rank 0's log); a load
+/// the rule set cannot carry is named in outcome.refused. Returns the carry check.
+std::vector<agent_study::LoadCarry> warn_before_the_run(const AgentCompareInput& in, CompareOutcome& outcome,
+                                                         std::ostream& log) {
+  auto carry = agent_study::carry_check(in.study);
+  for (const auto& w : in.study.warnings) outcome.warnings.push_back("agent: " + w);  // the agent run says them
+  for (const auto& w : in.warnings) {
+    if (fem_reference::mpi_rank() == 0) log << "compare: warning: " << w << "\n" << std::flush;
+    outcome.warnings.push_back(w);
+  }
+  for (const auto& c : carry) {
+    const std::string line = c.describe(in.study);
+    if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
+    if (c.refused()) outcome.refused.push_back(line);
+  }
+  return carry;
+}
+
+/// With [mesh] agent_size the agents' staircase as dir/agent_staircase.msh, for the FEM on it beside
+/// the reference, written by rank 0 before any rank reads it; else an empty path.
+fs::path write_staircase_file(const AgentCompareInput& in, const fs::path& dir) {
+  if (!(in.study.setup.agent_size > 0)) return {};
+  const fs::path staircase = dir / "agent_staircase.msh";
+  fem_reference::mpi_collective([&] {
+    if (fem_reference::mpi_rank() == 0) agent::write_staircase(in.study.mesh, staircase);
+  });
+  return staircase;
+}
+
 CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareOptions& options, const fs::path& dir,
                                  std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
@@ -341,18 +370,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
 
   // 2b. The carry check: a load the rule set cannot carry to a rigid face is named, with the
   // reason, before anything runs (docs/compare.md); it fails the gate after the run.
-  const auto carry = agent_study::carry_check(in.study);
   CompareOutcome outcome;
-  for (const auto& w : in.study.warnings) outcome.warnings.push_back("agent: " + w);  // the agent run says them
-  for (const auto& w : in.warnings) {
-    if (fem_reference::mpi_rank() == 0) log << "compare: warning: " << w << "\n" << std::flush;
-    outcome.warnings.push_back(w);
-  }
-  for (const auto& c : carry) {
-    const std::string line = c.describe(in.study);
-    if (fem_reference::mpi_rank() == 0) log << "compare: carry check: " << line << "\n" << std::flush;
-    if (c.refused()) outcome.refused.push_back(line);
-  }
+  const auto carry = warn_before_the_run(in, outcome, log);
 
   // 3. The agent model, every load step, on rank 0 beside the FEM reference (step 4), on a thread
   // of its own that then writes the animation's data and tells the script (figures is used by one
@@ -378,13 +397,7 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   auto t = std::chrono::steady_clock::now();
   // The agents voxelized in the run ([mesh] agent_size): their staircase as a file, for the FEM on it
   // beside the reference (the staircase's own error), written by rank 0 before any rank reads it.
-  fs::path staircase;
-  if (in.study.setup.agent_size > 0) {
-    staircase = dir / "agent_staircase.msh";
-    fem_reference::mpi_collective([&] {
-      if (fem_reference::mpi_rank() == 0) agent::write_staircase(in.study.mesh, staircase);
-    });
-  }
+  const fs::path staircase = write_staircase_file(in, dir);
   auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, fem_log);
   double fem_seconds = seconds_since(t);
   mpi_on_root([&] { agent_run.get(); });

@@ -14,12 +14,16 @@ void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+constexpr const char* kAutoIsAStudyChoice =
+    "the auto rule set chooses a rule set per load (agent_study::transfer_model): a LoadTransfer runs one";
+
 Coefficients with_gamma(Coefficients k, double gamma);
 
 // The rule type of (rule set, readings) at the absolute threshold `gamma`, each checking its own coefficients.
 RuleType make_transfer(const Grid& grid, const Material& material, const Coefficients& case_k, double gamma,
                        RuleSet rules, const TransferReadings& readings) {
   check_coefficients(case_k, rules);  // as the case gave them: a bad gamma_relative is named as such
+  check(rules != RuleSet::Auto, kAutoIsAStudyChoice);
   const Coefficients k = with_gamma(case_k, gamma);
   check(grid.dim == 2 || grid.dim == 3, "grid dimension must be 2 or 3");
   check(grid.flags.size() == grid.count(), "grid cells are not set up (use Grid::box)");
@@ -61,6 +65,7 @@ void TransferResults::size_forces(const Grid& grid) {
 }
 
 int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings) {
+  check(rules != RuleSet::Auto, kAutoIsAStudyChoice);
   return with_rule_type(rules, readings, [&](auto type) { return decltype(type)::type::lateral_reach(grid, k); });
 }
 

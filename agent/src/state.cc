@@ -85,14 +85,14 @@ void for_each_field_value(AgentState& s, Visit visit) {
   for (double& v : s.displacement) visit(v);
 }
 
-/// `a` - `b` in every field (a push state less a pull's); generations the earlier, balances added
-/// (the balance tallies magnitudes: a pull carried to a rigid face is a rigid reaction).
-void subtract(AgentState& a, const AgentState& b) {
-  for (std::size_t i = 0; i < a.face_forces.size(); ++i) a.face_forces[i] -= b.face_forces[i];
+/// `a` + `sign` `b` in every field (-1: a push state less a pull's); generations the earlier,
+/// balances added (the balance tallies magnitudes: a pull carried to a rigid face is a rigid reaction).
+void combine(AgentState& a, const AgentState& b, double sign) {
+  for (std::size_t i = 0; i < a.face_forces.size(); ++i) a.face_forces[i] += sign * b.face_forces[i];
   for (auto [x, y] : {std::pair{&a.stress, &b.stress}, std::pair{&a.strain, &b.strain}})
     for (std::size_t c = 0; c < x->size(); ++c)
-      for (int k = 0; k < workbench::kVoigtCount; ++k) (*x)[c][k] -= (*y)[c][k];
-  for (std::size_t i = 0; i < a.displacement.size(); ++i) a.displacement[i] -= b.displacement[i];
+      for (int k = 0; k < workbench::kVoigtCount; ++k) (*x)[c][k] += sign * (*y)[c][k];
+  for (std::size_t i = 0; i < a.displacement.size(); ++i) a.displacement[i] += sign * b.displacement[i];
   for (std::size_t i = 0; i < a.generation.size(); ++i)
     a.generation[i] = std::int32_t(std::min(std::uint32_t(a.generation[i]), std::uint32_t(b.generation[i])));
   a.diagnostics += b.diagnostics;
@@ -125,12 +125,20 @@ AgentState solve_state(LoadTransfer& model, const std::vector<EntryLoad>& loads,
     for_each_field_value(s, [](double& v) { v = -v; });
   } else if (!pulls.empty()) {
     AgentState pushed = carried(model, pushes, stress_readings, load_dir, entering, datums);
-    subtract(pushed, s);
+    combine(pushed, s, -1.0);
     s = std::move(pushed);
   }
   // An unloaded agent's stress is -0 (a compression of nothing): written, it would read "-0".
   for_each_field_value(s, [](double& v) { v += 0.0; });
   return s;
+}
+
+void superpose(AgentState& total, const AgentState& part) {
+  if (total.stress.empty()) {
+    total = part;
+    return;
+  }
+  combine(total, part, 1.0);
 }
 
 }  // namespace agent

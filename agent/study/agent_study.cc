@@ -1,6 +1,8 @@
 // The agent model as a workbench study: case file -> grid and loads -> VTU/PVD/CSV/JSON output.
 #include "agent_study.h"
 
+#include "carry_check.h"
+
 #include <workbench/csv_file.h>
 #include <workbench/error.h>
 #include <workbench/output_file.h>
@@ -117,7 +119,7 @@ agent::RuleSet read_rule_set(const workbench::CaseTable& t, agent::RuleSet fallb
 
 void read_agent_section(const workbench::CaseTable& root, agent::Coefficients& k, agent::RuleSet& rules) {
   const auto t = root.table("agent");
-  rules = read_rule_set(t, agent::RuleSet::Patent);
+  rules = read_rule_set(t, agent::RuleSet::Auto);  // a case that names none: the rule set that carries each load
   // Every coefficient from the one table (agent/coefficients.h), at the library's defaults.
   const agent::CoefficientSpec* named_threshold = nullptr;
   for (const auto& c : agent::kCoefficients) {
@@ -191,6 +193,9 @@ agent::Readings read_readings(const workbench::CaseTable& t, agent::RuleSet rule
     t.fail("readings", "every_agent_all_operations and boundaries_return are readings of the patent rule set");
   if (r.any() && rules == agent::RuleSet::Columns)
     t.fail("readings", "entering_face_stress and lateral_strain_stress read face forces: the columns rule set gives its stresses itself");
+  if (r.any() && rules == agent::RuleSet::Auto)
+    t.fail("readings", "the auto rule set chooses directional or columns per load: the readings are the patent and "
+                       "directional rule sets' (name one of them)");
   return r;
 }
 
@@ -200,6 +205,22 @@ void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTabl
     if (stress_readings && l.dir != study.loads.front().dir)
       t.fail("readings", "entering_face_stress and lateral_strain_stress need every load in one direction");
 }
+
+namespace {
+
+/// Under "auto": each load's rule set (carry_check); a load no rule set carries is refused.
+void choose_rule_sets(AgentStudy& study) {
+  for (const auto& c : carry_check(study)) {
+    if (c.refused())
+      throw Error(study.case_file.string() + ": " + study.setup.loads[c.load].key() +
+                  ": no rule set carries it (agent.rule_set = \"auto\"): " + c.why);
+    for (std::size_t k = 0; k < study.loads.size(); ++k)
+      if (study.load_of[k] == c.load && study.loads[k].dir == c.inward) study.load_rules[k] = c.rules;
+    study.choices.push_back(c.describe(study));
+  }
+}
+
+}  // namespace
 
 AgentStudy load_agent_study(const workbench::CaseFile& file) {
   AgentStudy study;
@@ -236,7 +257,7 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
     root.table("boundary").fail("rigid", "no rigid faces: the agent method needs a rigid boundary to return the load");
   for (std::size_t i = 0; i < study.setup.loads.size(); ++i) {
     const auto& spec = study.setup.loads[i];
-    const std::string key = "load[" + std::to_string(i) + "]";
+    const std::string key = spec.key();
     if (spec.axis >= grid.dim)
       throw Error(file.path().string() + ": " + key + ".direction: " + spec.direction_name() + " is not an axis of a " +
                   std::to_string(grid.dim) + "D mesh");
@@ -252,8 +273,11 @@ AgentStudy load_agent_study(const workbench::CaseFile& file) {
       const double share = spec.force * grid.face_area(agent::axis_of(f.side)) / area;
       const bool pull = dir == f.side;  // the load points out of the body through its face
       study.loads.push_back({f.cell, pull ? agent::opposite(dir) : dir, pull ? -share : share});
+      study.load_of.push_back(i);
     }
   }
+  study.load_rules.assign(study.loads.size(), study.rules);
+  if (study.rules == agent::RuleSet::Auto) choose_rule_sets(study);
   check_readings_fit_loads(study, root.table("agent"));
   if (study.rules == agent::RuleSet::Columns) {  // what the columns cannot carry is refused before the run
     try {
@@ -285,9 +309,17 @@ double entering_load(const AgentStudy& study, double factor) {
   return sum;
 }
 
-AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor) {
+AgentState evaluate(const AgentStudy& study, StudyModel& model, double factor) {
   try {
-    return agent::solve_state(model, study.loads, study.readings, factor);
+    if (model.parts.size() == 1) return agent::solve_state(model.parts[0], study.loads, study.readings, factor);
+    AgentState total;
+    for (auto& part : model.parts) {
+      std::vector<agent::EntryLoad> loads;
+      for (std::size_t k = 0; k < study.loads.size(); ++k)
+        if (model.load_rules[k] == part.rules()) loads.push_back(study.loads[k]);
+      agent::superpose(total, agent::solve_state(part, loads, study.readings, factor));
+    }
+    return total;
   } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
     throw TransferDidNotEnd(study.case_file.string() + ": agent.gamma: " + e.what() +
                             "; raise gamma or lower alpha2, alpha3, poisson_decay (readings every_agent_all_operations, "
@@ -454,6 +486,7 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
   const Eigen::Vector3d v = load_vector(study, 1.0);
   nlohmann::json j;
   j["rule_set"] = agent::rule_set_name(study.rules);
+  if (study.rules == agent::RuleSet::Auto) j["rule_set_choices"] = study.choices;
   j["readings"] = names_of(study.readings);
   for (const auto& [name, value] : coefficient_values(study.coefficients)) j["coefficients"][name] = value;
   j["threshold"] = {{"kind", agent::threshold_name(study.coefficients.threshold)},
@@ -474,8 +507,24 @@ void write_summary(const fs::path& file, const AgentStudy& study, const agent::D
 
 }  // namespace
 
-agent::LoadTransfer transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules) {
-  return agent::LoadTransfer(study.mesh.grid, {study.setup.young, study.setup.poisson}, k, rules, study.readings);
+StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules) {
+  const agent::Material material{study.setup.young, study.setup.poisson};
+  StudyModel model;
+  if (rules != agent::RuleSet::Auto) {
+    model.parts.emplace_back(study.mesh.grid, material, k, rules, study.readings);
+    model.load_rules.assign(study.loads.size(), rules);
+    return model;
+  }
+  agent::check_coefficients(k, rules);  // auto's, whichever rule sets its loads take
+  model.load_rules = study.load_rules;
+  if (study.rules != agent::RuleSet::Auto)  // a calibration of "auto" on a case that names another rule set
+    for (const auto& c : carry_check(study, rules))
+      for (std::size_t i = 0; i < study.loads.size(); ++i)
+        if (study.load_of[i] == c.load && study.loads[i].dir == c.inward) model.load_rules[i] = c.rules;
+  for (const auto r : agent::kRuleSets)
+    if (std::find(model.load_rules.begin(), model.load_rules.end(), r) != model.load_rules.end())
+      model.parts.emplace_back(study.mesh.grid, material, k, r, study.readings);
+  return model;
 }
 
 std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
@@ -489,6 +538,7 @@ std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::p
   std::vector<std::size_t> node_ids(study.mesh.grid.node_count());  // every point of the output mesh
   for (std::size_t n = 0; n < node_ids.size(); ++n) node_ids[n] = n;
   std::vector<AgentState> states;
+  for (const auto& c : study.choices) log << "agent: " << c << "\n";
   for (int k = 1; k <= steps; ++k) {
     const double factor = double(k) / steps;
     states.push_back(evaluate(study, model, factor));

@@ -28,8 +28,13 @@ struct AgentStudy {
   /// One per loaded face, at the full load, marching inward: a pull has the inward direction and a
   /// negative force (evaluate() carries it as a push and negates).
   std::vector<agent::EntryLoad> loads;
+  std::vector<std::size_t> load_of;  ///< per entry load: its load (index in setup.loads)
+  /// Per entry load: the rule set that carries it (`rules`; under "auto" the one chosen for its load)
+  std::vector<agent::RuleSet> load_rules;
   /// Said before the run and kept in agent_summary.json (a body of implausible size: mesh.unit).
   std::vector<std::string> warnings;
+  /// Under "auto": per load, the rule set chosen and why, one line each (the log, agent_summary.json).
+  std::vector<std::string> choices;
 };
 
 /// `rule_set` of a table (one of the names of agent::kRuleSets), `fallback` when absent.
@@ -74,13 +79,18 @@ struct TransferDidNotEnd : workbench::Error {
   using workbench::Error::Error;
 };
 
+/// The study's agent model: one agent::LoadTransfer per rule set that carries some of its loads
+/// (one, unless the rule set is "auto"), and which loads each carries.
+struct StudyModel {
+  std::vector<agent::LoadTransfer> parts;
+  std::vector<agent::RuleSet> load_rules;  ///< per entry load (AgentStudy::loads): its part's rule set
+};
+
 /// The study's agent model: its grid, material and readings with coefficients `k` under `rules`
 /// (a calibration's trial point), by default the study's own. Throws std::invalid_argument for
-/// coefficients the rule set refuses.
-agent::LoadTransfer transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules);
-inline agent::LoadTransfer transfer_model(const AgentStudy& study) {
-  return transfer_model(study, study.coefficients, study.rules);
-}
+/// coefficients the rule set refuses (under "auto": those the directional rule set reads).
+StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules);
+inline StudyModel transfer_model(const AgentStudy& study) { return transfer_model(study, study.coefficients, study.rules); }
 
 /// The magnitude of the load entering the body at `factor` [N]: the sum over the entry loads,
 /// pushes and pulls alike. At factor 1 (the full load) it is the relative threshold's base
@@ -89,7 +99,8 @@ double entering_load(const AgentStudy& study, double factor);
 
 /// agent::solve_state of the study's loads scaled by `factor` (a load step) under its stress
 /// readings; throws TransferDidNotEnd at the cyclic transfer's cap.
-AgentState evaluate(const AgentStudy& study, agent::LoadTransfer& model, double factor);
+/// Under "auto" each part carries its own loads and their states superpose (agent::superpose).
+AgentState evaluate(const AgentStudy& study, StudyModel& model, double factor);
 
 /// A run whose rigid faces return less than this share of the applied load warns (on the log and
 /// in agent_summary.json): the method's answer stands, but a model that loses load says so.

@@ -49,9 +49,10 @@ Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry
 std::string LoadCarry::describe(const AgentStudy& study) const {
   const auto& spec = study.setup.loads[load];
   std::ostringstream s;
-  s << "load[" << load << "] (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
+  s << spec.key() << " (group \"" << group << "\", " << spec.force << " N " << spec.direction_name() << ", march "
     << agent::kDirectionNames[march] << "): rigid exits " << 1e6 * exits.rigid << " mm^2, free exits "
     << 1e6 * exits.free << " mm^2";
+  if (study.rules == agent::RuleSet::Auto) s << ": auto chose " << agent::rule_set_name(rules);
   if (refused())
     s << ": cannot carry: " << why;
   else if (!route.empty())
@@ -73,11 +74,44 @@ std::string columns_refusal(const agent::Grid& grid, const std::vector<agent::En
   }
 }
 
+/// `c` carried by the columns: by `plan`, or refused for `why`.
+void carry_by_columns(LoadCarry& c, const agent::ColumnPlan& plan, const std::string& why) {
+  c.rules = agent::RuleSet::Columns;
+  if (!why.empty()) {
+    c.why = why;
+    return;
+  }
+  c.march = plan.holding == agent::Holding::Clamp ? plan.clamp_side : agent::direction(plan.axis, false);
+  c.exits.rigid = plan.rigid_area, c.route = agent::describe(plan);
+}
+
+/// `c` carried by a march (`rules`) that leaves the body by `exits`; refused: why, and where
+/// bending would take it.
+void carry_by_march(LoadCarry& c, agent::RuleSet rules, const Exits& exits, const agent::Grid& grid,
+                    const std::vector<std::size_t>& cells, int widen, const std::string& columns_cannot,
+                    const agent::ColumnPlan& plan, bool chosen) {
+  c.rules = rules, c.exits = exits;
+  if (!c.refused()) return;
+  for (int d = 0; d < 2 * grid.dim; ++d)  // where a load path by shear and bending would go: the axes with a rigid face ahead
+    if (agent::axis_of(d) != agent::axis_of(c.march) && exits_ahead(grid, cells, d, widen).rigid > 0)
+      c.across += std::string(c.across.empty() ? "" : ", ") + agent::kDirectionNames[d];
+  c.why = std::string("no rigid face ahead of the loaded face (march ") + agent::kDirectionNames[c.march] + "); the " +
+          agent::rule_set_name(rules) + " rule set passes it out through free faces";
+  if (!c.across.empty())
+    c.why += " (rigid faces lie ahead along " + c.across + ": reached by bending; " +
+             (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + agent::describe(plan)
+                                     : "the columns rule set cannot: " + columns_cannot) + ")";
+  else if (chosen)  // auto tried the columns too
+    c.why += "; the columns rule set cannot: " + columns_cannot;
+}
+
 }  // namespace
 
-std::vector<LoadCarry> carry_check(const AgentStudy& study) {
+std::vector<LoadCarry> carry_check(const AgentStudy& study, agent::RuleSet rules) {
   const auto& grid = study.mesh.grid;
-  const int widen = agent::lateral_reach(grid, study.rules, study.coefficients, study.readings);
+  // Auto's march is the directional rule set's.
+  const auto marching = rules == agent::RuleSet::Auto ? agent::RuleSet::Directional : rules;
+  const int widen = marching == agent::RuleSet::Columns ? 0 : agent::lateral_reach(grid, marching, study.coefficients, study.readings);
   std::vector<LoadCarry> out;
   for (std::size_t i = 0; i < study.setup.loads.size(); ++i) {
     const auto& spec = study.setup.loads[i];
@@ -87,34 +121,19 @@ std::vector<LoadCarry> carry_check(const AgentStudy& study) {
       by_march[dir == f.side ? agent::opposite(dir) : dir].push_back(f.cell);
     for (const auto& [march, cells] : by_march) {
       LoadCarry c;
-      c.load = i, c.group = spec.group, c.march = march;
+      c.load = i, c.group = spec.group, c.inward = c.march = march;
       std::vector<agent::EntryLoad> entries;
       for (std::size_t cell : cells) entries.push_back({cell, march, 1.0});
       agent::ColumnPlan plan;
-      if (study.rules == agent::RuleSet::Columns) {
-        if (const auto columns_cannot = columns_refusal(grid, entries, plan); columns_cannot.empty()) {
-          c.march = plan.holding == agent::Holding::Clamp ? plan.clamp_side : agent::direction(plan.axis, false);
-          c.exits.rigid = plan.rigid_area, c.route = agent::describe(plan);
-        } else {
-          c.why = columns_cannot;
-        }
-        out.push_back(c);
-        continue;
-      }
-      c.exits = exits_ahead(grid, cells, march, widen);
-      if (c.refused()) {  // where a load path by shear and bending would go: the axes with a rigid face ahead
-        for (int d = 0; d < 2 * grid.dim; ++d)
-          if (agent::axis_of(d) != agent::axis_of(march) && exits_ahead(grid, cells, d, widen).rigid > 0)
-            c.across += std::string(c.across.empty() ? "" : ", ") + agent::kDirectionNames[d];
-        c.why = std::string("no rigid face ahead of the loaded face (march ") + agent::kDirectionNames[march] +
-                "); the " + agent::rule_set_name(study.rules) + " rule set passes it out through free faces";
-        if (!c.across.empty()) {
-          const auto columns_cannot = columns_refusal(grid, entries, plan);
-          c.why += " (rigid faces lie ahead along " + c.across + ": reached by bending; " +
-                   (columns_cannot.empty() ? "rule_set = \"columns\" carries it: " + agent::describe(plan)
-                                           : "the columns rule set cannot: " + columns_cannot) + ")";
-        }
-      }
+      const auto columns_cannot = columns_refusal(grid, entries, plan);
+      const Exits ahead = marching == agent::RuleSet::Columns ? Exits{} : exits_ahead(grid, cells, march, widen);
+      // Auto bends what the march would pass out more than return: the columns carry it whole.
+      const bool bend = rules == agent::RuleSet::Columns ||
+                        (rules == agent::RuleSet::Auto && columns_cannot.empty() && !(ahead.rigid > ahead.free));
+      if (bend)
+        carry_by_columns(c, plan, columns_cannot);
+      else
+        carry_by_march(c, marching, ahead, grid, cells, widen, columns_cannot, plan, rules == agent::RuleSet::Auto);
       out.push_back(c);
     }
   }

@@ -21,10 +21,15 @@ struct Exits {
 };
 Exits exits_ahead(const agent::Grid& grid, const std::vector<std::size_t>& entry, int march, int widen);
 
-/// One [[load]] of the case, checked.
+/// One load of the case (a [[load]] table, or one axis component of a vector direction) on the
+/// faces it enters by in one direction, checked.
 struct LoadCarry {
-  std::size_t load = 0;  ///< index of the [[load]] table
+  std::size_t load = 0;  ///< index in setup.loads (LoadSpec::key() names the [[load]] table)
   std::string group;
+  int inward = 0;  ///< the direction its entry loads march in (agent::EntryLoad::dir)
+  /// The rule set that carries it: the study's, or under "auto" the one chosen (columns where the
+  /// directional march leaves by free faces more than rigid ones and the columns can carry it)
+  agent::RuleSet rules = agent::RuleSet::Directional;
   /// The direction the rule set marches: the loaded face's inward normal; the columns rule set:
   /// along the beam axis toward the clamp (supports: toward the first, -x or -y)
   int march = 0;
@@ -40,7 +45,9 @@ struct LoadCarry {
   std::string describe(const AgentStudy& study) const;
 };
 
-/// Every [[load]] of the study, in case order.
-std::vector<LoadCarry> carry_check(const AgentStudy& study);
+/// Every load of the study (setup.loads) under `rules`, in case order: for "auto", the choice of
+/// each load's rule set.
+std::vector<LoadCarry> carry_check(const AgentStudy& study, agent::RuleSet rules);
+inline std::vector<LoadCarry> carry_check(const AgentStudy& study) { return carry_check(study, study.rules); }
 
 }  // namespace agent_study

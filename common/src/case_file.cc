@@ -123,6 +123,8 @@ void CaseTable::refuse_renamed(const std::string& old_key, const std::string& ne
 
 bool CaseTable::has(const std::string& key) const { return table_ && table_->get(key) != nullptr; }
 
+bool CaseTable::is_array(const std::string& key) const { return has(key) && table_->get(key)->is_array(); }
+
 double CaseTable::number(const std::string& key, std::optional<double> fallback, Range range) const {
   const toml::node* node = table_ ? table_->get(key) : nullptr;
   double value;

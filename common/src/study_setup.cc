@@ -2,9 +2,34 @@
 #include <workbench/study_setup.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace workbench {
+
+namespace {
+
+/// A [[load]]'s direction as (axis, signed share of the force) per axis it acts along: a name
+/// ("-y": one axis, share -1) or a vector ([x, y] or [x, y, z], normalised here; zero components
+/// dropped).
+std::vector<std::pair<int, double>> load_direction(const CaseTable& l) {
+  if (!l.is_array("direction")) {
+    const std::string dir = l.text("direction", "-y", {"-x", "+x", "-y", "+y", "-z", "+z"});
+    return {{dir[1] - 'x', dir[0] == '-' ? -1.0 : 1.0}};
+  }
+  const auto v = l.numbers("direction", std::nullopt);
+  if (v.size() < 2 || v.size() > 3)
+    l.fail("direction", "a vector has 2 or 3 components ([x, y] or [x, y, z]), not " + std::to_string(v.size()));
+  double norm = 0;
+  for (double c : v) norm = std::hypot(norm, c);
+  if (!(norm > 0)) l.fail("direction", "the zero vector has no direction");
+  std::vector<std::pair<int, double>> out;
+  for (std::size_t a = 0; a < v.size(); ++a)
+    if (v[a] != 0) out.emplace_back(int(a), v[a] / norm);
+  return out;
+}
+
+}  // namespace
 
 StudySetup read_study_setup(const CaseTable& root) {
   StudySetup s;
@@ -26,16 +51,13 @@ StudySetup read_study_setup(const CaseTable& root) {
   s.rigid_groups = boundary.texts("rigid", std::nullopt);
   s.roller_groups = boundary.texts("rollers", std::vector<std::string>{});
   const auto loads = root.tables("load");
-  for (const auto& l : loads) {
-    LoadSpec spec;
-    spec.group = l.text("group", std::nullopt);
-    if (std::find(s.rigid_groups.begin(), s.rigid_groups.end(), spec.group) != s.rigid_groups.end())
-      l.fail("group", "group '" + spec.group + "' is clamped (boundary.rigid): a load on it would carry nothing");
-    const std::string dir = l.text("direction", "-y", {"-x", "+x", "-y", "+y", "-z", "+z"});
-    spec.sign = dir[0] == '-' ? -1 : 1;
-    spec.axis = dir[1] - 'x';
-    spec.force = l.number("force", std::nullopt, Range::positive());
-    s.loads.push_back(spec);
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    const auto& l = loads[i];
+    const std::string group = l.text("group", std::nullopt);
+    if (std::find(s.rigid_groups.begin(), s.rigid_groups.end(), group) != s.rigid_groups.end())
+      l.fail("group", "group '" + group + "' is clamped (boundary.rigid): a load on it would carry nothing");
+    const double force = l.number("force", std::nullopt, Range::positive());
+    for (const auto& [axis, share] : load_direction(l)) s.loads.push_back({group, axis, share < 0 ? -1 : 1, force * std::abs(share), i});
   }
   s.steps = root.table("steps").integer("count", 1, 1, 10000);
   return s;
@@ -68,7 +90,7 @@ void check_groups_exist(const CaseFile& file, const StudySetup& setup, const std
   };
   for (const auto& g : setup.rigid_groups) check("boundary.rigid", g);
   for (const auto& g : setup.roller_groups) check("boundary.rollers", g);
-  for (std::size_t i = 0; i < setup.loads.size(); ++i) check("load[" + std::to_string(i) + "].group", setup.loads[i].group);
+  for (std::size_t i = 0; i < setup.loads.size(); ++i) check(setup.loads[i].key() + ".group", setup.loads[i].group);
 }
 
 }  // namespace workbench

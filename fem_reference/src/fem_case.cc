@@ -56,13 +56,19 @@ FemProblem problem_from_case(const workbench::CaseFile& file) {
   const auto fem = read_fem_section(root);
   p.options = fem.options;
   p.body_force = fem.body_force;
+  // One force per [[load]] table, as given: a vector direction's axis components add up again.
+  std::vector<std::array<double, 3>> forces;
+  std::vector<std::string> groups;
   for (const auto& l : setup.loads) {
-    std::array<double, 3> force{};
-    force[l.axis] = l.sign * l.force;
+    if (l.entry >= forces.size()) forces.resize(l.entry + 1, {}), groups.resize(l.entry + 1);
+    forces[l.entry][std::size_t(l.axis)] = l.sign * l.force;
+    groups[l.entry] = l.group;
+  }
+  for (std::size_t i = 0; i < forces.size(); ++i) {
     if (p.options.load == LoadKind::Traction)
-      p.tractions.push_back({l.group, force, {}});
+      p.tractions.push_back({groups[i], forces[i], {}});
     else
-      p.point_forces.push_back({{}, force, l.group});
+      p.point_forces.push_back({{}, forces[i], groups[i]});
   }
   if (p.supports.empty())
     root.table("boundary").fail("rigid", "no supports (rigid and rollers are both empty): the body could move "

@@ -42,7 +42,7 @@ TEST(AgentStudy, SeedPlateLoadIsSharedOverThePatchFaces) {
 TEST(AgentStudy, DisplacementIsZeroOnTheBaseAndMirrorSymmetric) {
   workbench::CaseFile file(write_file("plate.toml", plate_case()));
   const auto study = agent_study::load_agent_study(file);
-  agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients, study.rules);
+  auto model = agent_study::transfer_model(study);
   const auto s = agent_study::evaluate(study, model, 1.0);
   const auto& g = study.mesh.grid;
   // The conserving rule set returns the whole load at the rigid base.

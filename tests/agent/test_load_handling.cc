@@ -129,7 +129,7 @@ TEST(Threshold, ACaseNamesOneThreshold) {
   EXPECT_EQ(s.coefficients.gamma_for(2.0), 2e-4);
   auto model = agent_study::transfer_model(s);
   agent_study::evaluate(s, model, 1.0);
-  EXPECT_EQ(model.gamma_in_effect(), 2e-4);
+  EXPECT_EQ(model.parts.at(0).gamma_in_effect(), 2e-4);
 }
 
 // The carry check: the seed plate's load reaches the whole base (rigid exits 200 mm x 2 mm, none

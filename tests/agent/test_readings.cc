@@ -150,8 +150,7 @@ TEST(AgentReadings, SeedPlateLoadedAgentUnderEnteringFaceStress) {
     workbench::CaseFile file(test_support::write_file("seed.toml", seed_plate_with(readings)));
     const auto study = agent_study::load_agent_study(file);
     ASSERT_TRUE(study.readings.entering_face_stress);
-    agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients,
-                              study.rules, study.readings);
+    auto model = agent_study::transfer_model(study);
     const auto s = agent_study::evaluate(study, model, 1.0);
     const auto& g = study.mesh.grid;
     ASSERT_EQ(study.loads.size(), 2u);
@@ -178,8 +177,7 @@ TEST(AgentReadings, CaseFileTakesTheCyclicReadingsAndRefusesWhatWouldNotEnd) {
     EXPECT_TRUE(study.readings.boundaries_return);
     EXPECT_EQ(agent_study::names_of(study.readings),
               (std::vector<std::string>{"every_agent_all_operations", "boundaries_return"}));
-    agent::LoadTransfer model(study.mesh.grid, {study.setup.young, study.setup.poisson}, study.coefficients,
-                              study.rules, study.readings);
+    auto model = agent_study::transfer_model(study);
     const auto s = agent_study::evaluate(study, model, 1.0);
     EXPECT_NEAR(s.diagnostics.applied,
                 s.diagnostics.rigid_reaction + s.diagnostics.passed_out + s.diagnostics.dropped + s.diagnostics.lost,

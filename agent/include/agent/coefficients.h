@@ -22,14 +22,23 @@ enum class RuleSet {
   /// not the seed's: bending, columns across the beam axis carry the section resultants to a clamp
   /// or two supports (agent/columns.h); 2D, no coefficient
   Columns,
+  /// not the seed's: per load, the rule set that carries it (directional where a rigid face lies
+  /// ahead, columns where the supports lie beside), the loads' states superposed. A study's choice
+  /// (agent_study::carry_check): a LoadTransfer runs one rule set and refuses this one.
+  Auto,
 };
 
 /// Every rule set, in the order of the enum.
-constexpr std::array<RuleSet, 4> kRuleSets{RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional, RuleSet::Columns};
+constexpr std::array<RuleSet, 5> kRuleSets{RuleSet::Patent, RuleSet::Conserving, RuleSet::Directional, RuleSet::Columns,
+                                           RuleSet::Auto};
 
-/// The rule set's name in case files and reports ("patent", "conserving", "directional", "columns").
+/// The rule set's name in case files and reports ("patent", "conserving", "directional", "columns", "auto").
 constexpr const char* rule_set_name(RuleSet r) {
-  return r == RuleSet::Patent ? "patent" : r == RuleSet::Conserving ? "conserving" : r == RuleSet::Directional ? "directional" : "columns";
+  return r == RuleSet::Patent        ? "patent"
+         : r == RuleSet::Conserving  ? "conserving"
+         : r == RuleSet::Directional ? "directional"
+         : r == RuleSet::Columns     ? "columns"
+                                     : "auto";
 }
 
 /// How the directional rule set's packets go (docs/agent-model.md, "Paths"): turning toward the
@@ -185,8 +194,9 @@ constexpr CoefficientSpec row(const char* name, const char* meaning) {
 }
 
 inline constexpr unsigned kSeedRules = rule_bit(RuleSet::Patent) | rule_bit(RuleSet::Conserving);
-inline constexpr unsigned kAllRules = kSeedRules | rule_bit(RuleSet::Directional);
-inline constexpr unsigned kDirectionalRules = rule_bit(RuleSet::Directional);
+/// The directional rule set's coefficients are auto's too (the rule it chooses where a face lies ahead).
+inline constexpr unsigned kDirectionalRules = rule_bit(RuleSet::Directional) | rule_bit(RuleSet::Auto);
+inline constexpr unsigned kAllRules = kSeedRules | kDirectionalRules;
 
 /// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector
 /// (read a row by name: coefficient_index, find_coefficient).

@@ -53,12 +53,14 @@ decltype(auto) with_rule_type(RuleSet rules, const TransferReadings& readings, F
 
 /// Agents per row the rule set reaches sideways from the agents a march reaches (its rule type's
 /// lateral_reach): the directional fan ceil(tan(fan_angle)); the others the box's widest side.
+/// RuleSet::Auto has none of its own (std::invalid_argument): ask the rule set it chose.
 int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings = {});
 
 class LoadTransfer {
  public:
   /// Throws std::invalid_argument for a grid that is not set up, a material or coefficients
-  /// outside their ranges (docs/agent-model.md), a transfer reading with a rule set it does not
+  /// outside their ranges (docs/agent-model.md), RuleSet::Auto (a study's choice per load, which
+  /// checks its coefficients first), a transfer reading with a rule set it does not
   /// belong to (each is a reading of the patent rule set), and under readings 2 and 6 gamma = 0 or
   /// a transfer factor >= 1 (agent::check_cyclic: the cyclic transfer would not end). A Readings
   /// converts: its stress readings are not the transfer's (agent_stresses takes them).

@@ -39,6 +39,10 @@ struct AgentState {
 AgentState solve_state(LoadTransfer& model, const std::vector<EntryLoad>& loads, const StressReadings& stress_readings,
                        double factor);
 
+/// Adds `part`'s state to `total` (empty: becomes `part`): loads carried by different rule sets
+/// superpose, as linear elasticity's do. Generations the earlier, the balances added.
+void superpose(AgentState& total, const AgentState& part);
+
 /// Where a field lives.
 enum class FieldPlace { Agent, Node };
 /// How a field is written to a VTU file: one array per component named by the component

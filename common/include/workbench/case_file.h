@@ -67,6 +67,8 @@ class CaseTable {
   /// A path, resolved relative to the case file's folder.
   std::filesystem::path path(const std::string& key, std::optional<std::string> fallback) const;
   bool has(const std::string& key) const;
+  /// The key is present and holds an array (a key that takes a name or a vector: [[load]] direction).
+  bool is_array(const std::string& key) const;
   /// A sub-table; an absent one reads as empty (so its getters return their defaults).
   CaseTable table(const std::string& key) const;
   /// An array of tables ([[load]] entries); absent gives an empty list.

@@ -131,7 +131,7 @@ double objective(const std::vector<CalibrationCase>& cases, const agent::Coeffic
     const auto kc = for_case(k, c.study.coefficients, w.held_from_case);
     // Readings 2 and 6 refuse a factor of 1 (their transfer would not end) and stop at a cap: such
     // a point is refused like one that loses load (objective 1e30), never scored on partial results.
-    std::optional<agent::LoadTransfer> model;
+    std::optional<agent_study::StudyModel> model;
     std::optional<agent_study::AgentState> solved;
     try {
       model.emplace(agent_study::transfer_model(c.study, kc, rules));

@@ -293,7 +293,8 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
 nlohmann::json carry_check_json(const std::vector<agent_study::LoadCarry>& carry, const agent_study::AgentStudy& study) {
   auto json = nlohmann::json::array();
   for (const auto& c : carry)
-    json.push_back({{"load", c.load}, {"group", c.group}, {"march", agent::kDirectionNames[c.march]},
+    json.push_back({{"load", c.load}, {"group", c.group}, {"rule_set", agent::rule_set_name(c.rules)},
+                    {"march", agent::kDirectionNames[c.march]},
                     {"rigid_exit_area", c.exits.rigid}, {"free_exit_area", c.exits.free},
                     {"carries", !c.refused()}, {"said", c.describe(study)}});
   return json;

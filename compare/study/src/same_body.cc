@@ -223,7 +223,7 @@ std::vector<std::string> check_same_body(const workbench::CaseFile& file, const 
   const double tol = size * (1 + 1e-6);
   std::vector<std::pair<std::string, std::string>> groups;  // (what, group)
   for (std::size_t i = 0; i < setup.loads.size(); ++i)
-    groups.push_back({"load[" + std::to_string(i) + "].group '" + setup.loads[i].group + "'", setup.loads[i].group});
+    groups.push_back({setup.loads[i].key() + ".group '" + setup.loads[i].group + "'", setup.loads[i].group});
   for (const auto& g : setup.rigid_groups) groups.push_back({"boundary.rigid group '" + g + "'", g});
   std::vector<std::string> warnings;
   for (std::size_t i = 0; i < groups.size(); ++i) {

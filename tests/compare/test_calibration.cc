@@ -36,7 +36,7 @@ CalibrationCase agent_target(const std::string& xc, const agent::Coefficients& t
   CalibrationCase c;
   c.name = "plate_" + xc;
   c.study = agent_study::load_agent_study(file);
-  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth, rules);
+  auto model = agent_study::transfer_model(c.study, truth, rules);
   c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
   return c;
 }
@@ -308,10 +308,9 @@ TEST(Calibration, TheObjectiveSolvesEachCaseUnderItsReadings) {
   CalibrationCase c;
   c.name = "plate_readings";
   c.study = agent_study::load_agent_study(file);
-  agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
-                            agent::RuleSet::Patent, all);
   agent_study::AgentStudy truth_study = c.study;  // the stress readings are the study's, not the model's
   truth_study.readings = all;
+  auto model = agent_study::transfer_model(truth_study, truth, agent::RuleSet::Patent);
   c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(truth_study, model, 1.0));
   auto w = options().weights;
   std::vector<Score> without, with;
@@ -359,8 +358,7 @@ TEST(Calibration, FitsThePatentRuleSetUnderTheCyclicReadings) {
     c.name = "plate_cyclic_" + xc;
     c.study = agent_study::load_agent_study(file);
     c.study.readings = cyclic;
-    agent::LoadTransfer model(c.study.mesh.grid, {c.study.setup.young, c.study.setup.poisson}, truth,
-                              agent::RuleSet::Patent, cyclic);
+    auto model = agent_study::transfer_model(c.study, truth, agent::RuleSet::Patent);
     c.reference = agent_on_grid(c.study.mesh.grid, agent_study::evaluate(c.study, model, 1.0));
     cases.push_back(std::move(c));
   }

@@ -134,6 +134,15 @@ TEST(CoefficientTable, TheLibraryChecksTheRowsItsRuleSetUses) {
     for (agent::RuleSet r : agent::kRuleSets) {
       agent::Coefficients k;
       c.set(k, c.min - 1);  // out of range
+      if (r == agent::RuleSet::Auto) {  // a study's choice per load: refused, a bad coefficient it reads named first
+        try {
+          agent::LoadTransfer(grid, {}, k, r);
+          ADD_FAILURE() << "auto ran in a LoadTransfer";
+        } catch (const std::invalid_argument& e) {
+          EXPECT_EQ(std::string(e.what()).rfind(std::string(c.name) + " ", 0) == 0, c.used_by(r)) << c.name << ": " << e.what();
+        }
+        continue;
+      }
       if (c.used_by(r)) {
         EXPECT_THROW(agent::LoadTransfer(grid, {}, k, r), std::invalid_argument) << c.name << ", " << agent::rule_set_name(r);
       } else {

@@ -406,7 +406,7 @@ class CoefficientTable(unittest.TestCase):
             lo, hi = f"{c['min']:g}", f"{c['max']:g}"
             expected = f">= {lo}" if c["max"] >= 1e100 else f"{'(' if c['min_open'] else '['}{lo}, {hi}{')' if c['max_open'] else ']'}"
             self.assertIn(expected, kind, name)
-            for rule_set in ["every rule set"] if len(c["rule_sets"]) == 4 else c["rule_sets"]:  # all of agent::kRuleSets
+            for rule_set in ["every rule set"] if len(c["rule_sets"]) == 5 else c["rule_sets"]:  # all five of agent::kRuleSets
                 self.assertIn(rule_set, meaning, name)
 
 

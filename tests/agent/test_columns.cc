@@ -217,9 +217,6 @@ TEST(Columns, RefusesWhatItCannotCarry) {
   Grid split = cantilever(10, 4);
   for (int j = 0; j < 4; ++j) split.make_air(split.index(5, j, 0));
   EXPECT_NE(refusal(split, {down(split, 9, 1.0)}).find("no agent between x = 25 mm and 30 mm"), std::string::npos);
-  const Grid cube = Grid::box(3, {4, 2, 2}, Eigen::Vector3d(kH, kH, kH));
-  EXPECT_NE(refusal(cube, {{cube.index(3, 1, 1), 3, 1.0}}).find("2D"), std::string::npos);
-  EXPECT_THROW(LoadTransfer(cube, kSteel, Coefficients{}, RuleSet::Columns), std::invalid_argument);
 }
 
 // A case with rule_set = "columns" that the columns cannot carry (the seed plate on its base) is

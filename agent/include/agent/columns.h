@@ -27,7 +27,9 @@ enum class Holding { Clamp, Supports };
 /// How the column rule set carries a set of loads (agent::plan_columns).
 struct ColumnPlan {
   int axis = 0;    ///< the beam axis a: the columns are the slots of equal coordinate along it
-  int across = 1;  ///< the load axis t (the other axis)
+  int across = 1;  ///< the load axis t
+  /// The third axis w (3D: the sections are slabs across a, in t and w; 2D: the thickness, z).
+  int width_axis() const { return 3 - axis - across; }
   Holding holding = Holding::Clamp;
   /// Clamp: the clamp plane along a [m] (at [0]) and the side its faces face (-a: the body lies at
   /// larger a). Supports: the centres of the two supports along a [m], increasing.
@@ -54,7 +56,8 @@ std::string describe(const ColumnPlan& plan);
 struct Columns {
   ColumnPlan plan;
   std::vector<double> centre, width;            ///< per column, along a [m]
-  std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4]
+  std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4] (about w)
+  std::vector<double> centroid_w;               ///< 3D: per column, the centroid along w [m]; 2D: empty
   std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
   /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
   std::array<double, 2> reactions{};

@@ -257,11 +257,24 @@ ColumnAgents column_agents(const Grid& g, int a, int t) {
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
     if (!g.is_air(cell)) agents[next[std::size_t(g.coords(cell)[a])]++] = cell;
+  // A 3D column's id order runs across w first: sorted by a count over the levels where the column
+  // has at least as many agents as levels (linear), else by comparison (a sparse column).
   auto along_t = [&](std::size_t x, std::size_t y) { return g.coords(x)[t] < g.coords(y)[t]; };
+  std::vector<std::size_t> level(std::size_t(g.cells[t]) + 1), sorted;
   for (int i = 0; i < n; ++i) {
     const auto first = agents.begin() + std::ptrdiff_t(start[std::size_t(i)]);
     const auto last = agents.begin() + std::ptrdiff_t(start[std::size_t(i) + 1]);
-    if (!std::is_sorted(first, last, along_t)) std::sort(first, last, along_t);
+    if (std::is_sorted(first, last, along_t)) continue;
+    if (last - first < g.cells[t]) {
+      std::sort(first, last, along_t);
+      continue;
+    }
+    std::fill(level.begin(), level.end(), 0);
+    for (auto it = first; it != last; ++it) ++level[std::size_t(g.coords(*it)[t]) + 1];
+    for (std::size_t j = 1; j < level.size(); ++j) level[j] += level[j - 1];
+    sorted.resize(std::size_t(last - first));
+    for (auto it = first; it != last; ++it) sorted[level[std::size_t(g.coords(*it)[t])]++] = *it;
+    std::copy(sorted.begin(), sorted.end(), first);
   }
   return out;
 }

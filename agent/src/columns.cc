@@ -239,42 +239,56 @@ void add_bonded_thrust(Columns& c) {
 namespace {
 
 /// Each column's agents (column i: agents[start[i], start[i + 1])), sorted along t (a dense 2D
-/// grid's id order is that order: sorted only when not).
+/// grid's id order is that order: sorted only when not), with their coordinates along t (rows)
+/// and, in 3D, along w (read once: a slot's coordinates cost divisions).
 struct ColumnAgents {
   std::vector<std::size_t> start, agents;
+  std::vector<int> rows, across;
 };
 
-ColumnAgents column_agents(const Grid& g, int a, int t) {
+ColumnAgents column_agents(const Grid& g, int a, int t, int w) {
   const int n = g.cells[a];
   ColumnAgents out;
   auto& start = out.start;
-  auto& agents = out.agents;
   start.assign(std::size_t(n) + 1, 0);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
     if (!g.is_air(cell)) ++start[std::size_t(g.coords(cell)[a]) + 1];
   for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
-  agents.resize(start.back());
+  std::vector<std::array<int, 2>> key(start.back());  // (t, w) per agent
+  out.agents.resize(start.back());
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
-    if (!g.is_air(cell)) agents[next[std::size_t(g.coords(cell)[a])]++] = cell;
+    if (!g.is_air(cell)) {
+      const auto c = g.coords(cell);
+      const std::size_t k = next[std::size_t(c[a])]++;
+      out.agents[k] = cell, key[k] = {c[t], g.dim == 3 ? c[w] : 0};
+    }
   // A 3D column's id order runs across w first: sorted by a count over the levels where the column
   // has at least as many agents as levels (linear), else by comparison (a sparse column).
-  auto along_t = [&](std::size_t x, std::size_t y) { return g.coords(x)[t] < g.coords(y)[t]; };
-  std::vector<std::size_t> level(std::size_t(g.cells[t]) + 1), sorted;
-  for (int i = 0; i < n; ++i) {
-    const auto first = agents.begin() + std::ptrdiff_t(start[std::size_t(i)]);
-    const auto last = agents.begin() + std::ptrdiff_t(start[std::size_t(i) + 1]);
-    if (std::is_sorted(first, last, along_t)) continue;
-    if (last - first < g.cells[t]) {
-      std::sort(first, last, along_t);
-      continue;
+  std::vector<std::size_t> level(std::size_t(g.cells[t]) + 1);
+  std::vector<std::pair<std::array<int, 2>, std::size_t>> sorted;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const std::size_t first = start[i], last = start[i + 1];
+    bool in_order = true;
+    for (std::size_t k = first + 1; k < last && in_order; ++k) in_order = key[k - 1][0] <= key[k][0];
+    if (in_order) continue;
+    sorted.resize(last - first);
+    if (last - first < std::size_t(g.cells[t])) {
+      for (std::size_t k = first; k < last; ++k) sorted[k - first] = {key[k], out.agents[k]};
+      std::sort(sorted.begin(), sorted.end());
+    } else {
+      std::fill(level.begin(), level.end(), 0);
+      for (std::size_t k = first; k < last; ++k) ++level[std::size_t(key[k][0]) + 1];
+      for (std::size_t j = 1; j < level.size(); ++j) level[j] += level[j - 1];
+      for (std::size_t k = first; k < last; ++k) sorted[level[std::size_t(key[k][0])]++] = {key[k], out.agents[k]};
     }
-    std::fill(level.begin(), level.end(), 0);
-    for (auto it = first; it != last; ++it) ++level[std::size_t(g.coords(*it)[t]) + 1];
-    for (std::size_t j = 1; j < level.size(); ++j) level[j] += level[j - 1];
-    sorted.resize(std::size_t(last - first));
-    for (auto it = first; it != last; ++it) sorted[level[std::size_t(g.coords(*it)[t])]++] = *it;
-    std::copy(sorted.begin(), sorted.end(), first);
+    for (std::size_t k = first; k < last; ++k) key[k] = sorted[k - first].first, out.agents[k] = sorted[k - first].second;
+  }
+  out.rows.resize(key.size());
+  for (std::size_t k = 0; k < key.size(); ++k) out.rows[k] = key[k][0];
+  if (g.dim == 3) {
+    out.across.resize(key.size());
+    for (std::size_t k = 0; k < key.size(); ++k) out.across[k] = key[k][1];
   }
   return out;
 }
@@ -289,23 +303,21 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
   const std::size_t slot = std::size_t(shear_pair(a, t));
   std::vector<double> shear_strain(std::size_t(n), 0.0);
   for (std::size_t i = 0; i < std::size_t(n); ++i) {
-    const auto first = ca.agents.begin() + std::ptrdiff_t(ca.start[i]), last = ca.agents.begin() + std::ptrdiff_t(ca.start[i + 1]);
     const double A = c.area[i], rc = c.centroid[i], I = c.inertia[i];
     double above = 0, energy = 0;  // Q of the agents above; int (Q / (I b))^2 dA
-    for (auto end = last; end != first;) {
-      const int row = g.coords(*(end - 1))[t];
-      auto begin = end - 1;
-      while (begin != first && g.coords(*(begin - 1))[t] == row) --begin;
+    for (std::size_t end = ca.start[i + 1]; end != ca.start[i];) {
+      std::size_t begin = end - 1;
+      while (begin != ca.start[i] && ca.rows[begin - 1] == ca.rows[end - 1]) --begin;
       const double b = double(end - begin) * w;  // the section's width at this level
-      const double r = g.centre(*begin)[t];
+      const double r = g.centre(ca.agents[begin])[t];
       // The first moment of what lies above each level, Q, averaged over the agents' height: the
       // agents above, and this level above the cut (the column's shears then integrate to v exactly).
       const double z1 = r + 0.5 * h - rc, z0 = r - 0.5 * h - rc;
       const double top = above + 0.5 * b * z1 * z1, z3 = z1 * z1 * z1 - z0 * z0 * z0;  // Q = top - b z^2 / 2 in the level
       const double q = top - b * z3 / (6 * h);
-      for (auto it = begin; it != end; ++it) {
-        const std::size_t cell = *it;
-        const double sigma = c.n[i] / A + c.m[i] * (g.centre(cell)[t] - rc) / I;
+      const double sigma = c.n[i] / A + c.m[i] * (r - rc) / I;
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::size_t cell = ca.agents[k];
         out.faces[cell * faces + std::size_t(direction(a, false))] = out.faces[cell * faces + std::size_t(direction(a, true))] = -sigma * face;
         out.shear[cell * shears + slot] = c.v[i] * q / (I * b);
       }
@@ -372,13 +384,13 @@ void node_displacements(const Grid& g, const Material& material, const Columns& 
   std::vector<std::uint8_t> shared(g.node_count(), 0);
   for (std::size_t i = 0; i < std::size_t(n); ++i)
     for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) {
-      const auto at = g.coords(ca.agents[k]);
+      const int row = ca.rows[k], col = dim == 3 ? ca.across[k] : 0;
       for (int dl = 0; dl < (dim == 3 ? 2 : 1); ++dl)
         for (int dj = 0; dj < 2; ++dj)
           for (int dk = 0; dk < 2; ++dk) {
-            const int line = int(i) + dj, across = at[t] + dk;
+            const int line = int(i) + dj, across = row + dk;
             std::array<int, 3> p{0, 0, 0};
-            p[a] = line, p[t] = across, p[wa] = dim == 3 ? at[wa] + dl : 0;
+            p[a] = line, p[t] = across, p[wa] = col + dl;
             const std::size_t node = g.node_index(p[0], p[1], p[2]);
             const double r = g.plane(t, across), rc = c.centroid[i];
             const double s = dim == 3 ? g.plane(wa, p[wa]) - c.centroid_w[i] : 0.0;
@@ -412,7 +424,7 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   out.clear_all();
   out.displacement.assign(g.node_count() * std::size_t(g.dim), 0.0);
   auto& d = out.diagnostics;
-  const ColumnAgents ca = column_agents(g, a, t);
+  const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
   const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
   d.agent_updates += ca.agents.size();
   // Generation: columns from the nearest loaded column, in the columns that carry something.

@@ -12,8 +12,10 @@
 #include <cmath>
 
 #include "../support/agent_fixtures.h"
+#include "../support/column_refusal.h"
 
 using namespace agent;
+using test_support::column_refusal;
 using test_support::kMinusX, test_support::kMinusY;
 
 namespace {
@@ -52,15 +54,6 @@ LoadTransfer solved(const Grid& g, const std::vector<EntryLoad>& loads) {
 
 double u(const LoadTransfer& m, int i, int j, int k, int axis) {
   return m.displacement()[m.grid().node_index(i, j, k) * 3 + std::size_t(axis)];
-}
-
-std::string refusal(const Grid& g, const std::vector<EntryLoad>& loads) {
-  try {
-    plan_columns(g, loads);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "carried";
 }
 
 }  // namespace
@@ -291,22 +284,22 @@ TEST(Columns3D, RefusesWhatItCannotCarry) {
   const Grid g = cantilever3d();
   auto both = on_face(g, 19, kMinusY, 1.0);
   both.push_back({g.index(19, 1, 3), kMinusZ, 1.0});
-  EXPECT_NE(refusal(g, both).find("loads along both y and z"), std::string::npos) << refusal(g, both);
+  EXPECT_NE(column_refusal(g, both).find("loads along both y and z"), std::string::npos) << column_refusal(g, both);
   Grid two = cantilever3d();
   two.set_boundary(two.box_side(kMinusZ), Boundary::Rigid);
-  EXPECT_NE(refusal(two, on_face(two, 19, kMinusY, 1.0)).find("rigid faces across both x and z"), std::string::npos);
+  EXPECT_NE(column_refusal(two, on_face(two, 19, kMinusY, 1.0)).find("rigid faces across both x and z"), std::string::npos);
   // Four corner supports under a plate: apart along x and z.
   Grid plate = Grid::box(3, {10, 2, 10}, Eigen::Vector3d(kH, kH, kH));
   plate.set_boundary({{plate.index(0, 0, 0), kMinusY}, {plate.index(9, 0, 0), kMinusY}, {plate.index(0, 0, 9), kMinusY},
                       {plate.index(9, 0, 9), kMinusY}},
                      Boundary::Rigid);
-  EXPECT_NE(refusal(plate, {{plate.index(5, 1, 5), kMinusY, 1.0}}).find("apart along both x and z"), std::string::npos);
+  EXPECT_NE(column_refusal(plate, {{plate.index(5, 1, 5), kMinusY, 1.0}}).find("apart along both x and z"), std::string::npos);
   // A block on its base: one support (the marching rule sets carry it).
   Grid block = Grid::box(3, {4, 4, 4}, Eigen::Vector3d(kH, kH, kH));
   block.set_boundary(block.box_side(kMinusY), Boundary::Rigid);
-  EXPECT_NE(refusal(block, {{block.index(2, 3, 2), kMinusY, 1.0}}).find("form one support"), std::string::npos);
-  EXPECT_NE(refusal(Grid::box(3, {4, 4, 4}, Eigen::Vector3d(kH, kH, kH)), {{block.index(2, 3, 2), kMinusY, 1.0}}).find("no rigid face"),
+  EXPECT_NE(column_refusal(block, {{block.index(2, 3, 2), kMinusY, 1.0}}).find("form one support"), std::string::npos);
+  EXPECT_NE(column_refusal(Grid::box(3, {4, 4, 4}, Eigen::Vector3d(kH, kH, kH)), {{block.index(2, 3, 2), kMinusY, 1.0}}).find("no rigid face"),
             std::string::npos);
   // A load along the beam axis (the clamp's normal): the clamp lies ahead of it.
-  EXPECT_NE(refusal(g, {{g.index(19, 2, 2), kMinusX, 1.0}}).find("form one support"), std::string::npos);
+  EXPECT_NE(column_refusal(g, {{g.index(19, 2, 2), kMinusX, 1.0}}).find("form one support"), std::string::npos);
 }

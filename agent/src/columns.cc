@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace agent {
 
@@ -26,10 +27,52 @@ double column_centre(const Grid& g, int a, int i) {
   return g.planes[a].empty() ? g.origin[a] + (i + 0.5) * g.size[a] : 0.5 * (g.plane(a, i) + g.plane(a, i + 1));
 }
 
+/// An agent's extent along the third axis w: its edge in 3D, the thickness in 2D [m].
+double agent_width(const Grid& g, int w) { return g.dim == 3 ? g.size[w] : g.thickness; }
+
 /// A force across the beam axis at `s` along it [N], and a couple [N m] (the clamp's).
 struct Force {
   double s, f, couple;
 };
+
+/// Separate runs of the coordinates along `b` of `faces`' cells (1: one stretch, 0: no face).
+int stretches_along(const Grid& g, const std::vector<BoundaryFace>& faces, int b) {
+  std::vector<int> at;
+  for (const auto& f : faces) at.push_back(g.coords(f.cell)[b]);
+  std::sort(at.begin(), at.end());
+  int runs = 0;
+  for (std::size_t k = 0; k < at.size(); ++k) runs += k == 0 || at[k] > at[k - 1] + 1;
+  return runs;
+}
+
+/// The beam axis of a 3D body under loads along t: the normal of the rigid faces across it (a
+/// clamp), or, where every rigid face is along t (supports), the one axis across t along which they
+/// lie apart (the longer of the two when they form one stretch: plan_columns then says so).
+int beam_axis_3d(const Grid& g, int t) {
+  std::vector<BoundaryFace> along_t;
+  int clamp = -1;
+  for (const auto& f : g.boundary_faces()) {
+    if (g.boundary(f.side, f.cell) != Boundary::Rigid) continue;
+    const int n = axis_of(f.side);
+    if (n == t) {
+      along_t.push_back(f);
+    } else if (clamp < 0 || clamp == n) {
+      clamp = n;
+    } else {
+      refuse(std::string("rigid faces across both ") + char('x' + std::min(clamp, n)) + " and " +
+             char('x' + std::max(clamp, n)) + " (clamps on two sides): not built");
+    }
+  }
+  if (clamp >= 0) return clamp;
+  if (along_t.empty()) refuse("no rigid face");
+  const int b0 = t == 0 ? 1 : 0, b1 = t == 2 ? 1 : 2;  // the axes across t
+  const bool apart0 = stretches_along(g, along_t, b0) > 1, apart1 = stretches_along(g, along_t, b1) > 1;
+  if (apart0 && apart1)
+    refuse(std::string("the rigid faces along ") + char('x' + t) + " lie apart along both " + char('x' + b0) + " and " +
+           char('x' + b1) + " (a plate on point supports): the columns need supports along one beam axis");
+  if (apart0 != apart1) return apart0 ? b0 : b1;
+  return g.cells[b1] > g.cells[b0] ? b1 : b0;
+}
 
 }  // namespace
 
@@ -45,14 +88,15 @@ std::string describe(const ColumnPlan& p) {
 }
 
 ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
-  if (g.dim != 2) refuse("the columns rule set is 2D: a 3D body is not built");
   if (loads.empty()) refuse("no load");
   const int t = axis_of(loads.front().dir);
   for (const auto& l : loads)
-    if (axis_of(l.dir) != t) refuse("loads along both x and y: the columns carry loads across one beam axis");
+    if (axis_of(l.dir) != t)
+      refuse(std::string("loads along both ") + char('x' + std::min(t, axis_of(l.dir))) + " and " +
+             char('x' + std::max(t, axis_of(l.dir))) + ": the columns carry loads across one beam axis");
   ColumnPlan p;
   p.across = t;
-  p.axis = 1 - t;
+  p.axis = g.dim == 2 ? 1 - t : beam_axis_3d(g, t);
   const int a = p.axis;
   const char an = char('x' + a);
   std::vector<char> filled(std::size_t(g.cells[a]), 0);
@@ -116,15 +160,17 @@ ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
 Columns column_statics(const Grid& g, const std::vector<EntryLoad>& loads) {
   Columns c;
   c.plan = plan_columns(g, loads);
-  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
-  const double h = g.size[t], w = g.thickness;
+  const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a];
+  const double h = g.size[t], w = agent_width(g, wa);
   // Sections: sums over each column's agents, positions from the box's lower side (less round-off).
   std::vector<double> count(std::size_t(n), 0.0), sum(std::size_t(n), 0.0), sum2(std::size_t(n), 0.0);
+  std::vector<double> sum_w(g.dim == 3 ? std::size_t(n) : 0, 0.0);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
     if (!g.is_air(cell)) {
       const std::size_t i = std::size_t(g.coords(cell)[a]);
       const double r = g.centre(cell)[t] - g.origin[t];
       count[i] += 1, sum[i] += r, sum2[i] += r * r;
+      if (g.dim == 3) sum_w[i] += g.centre(cell)[wa] - g.origin[wa];
     }
   c.area.resize(std::size_t(n)), c.centroid.resize(std::size_t(n)), c.inertia.resize(std::size_t(n));
   c.centre.resize(std::size_t(n)), c.width.resize(std::size_t(n));
@@ -136,6 +182,7 @@ Columns column_statics(const Grid& g, const std::vector<EntryLoad>& loads) {
     c.centroid[i] = g.origin[t] + rc;
     c.inertia[i] = w * h * std::max(0.0, sum2[i] - count[i] * rc * rc) + count[i] * w * h * h * h / 12;
   }
+  for (std::size_t i = 0; i < sum_w.size(); ++i) c.centroid_w.push_back(g.origin[wa] + sum_w[i] / count[i]);
   // The forces across the axis: the loads, then the reactions (statics).
   std::vector<Force> forces;
   double total = 0, moment = 0;  // sum f, sum s f
@@ -189,64 +236,112 @@ void add_bonded_thrust(Columns& c) {
     if (in_span(i)) c.n[i] = -c.thrust, c.m[i] += (c.centroid[i] - level) * c.thrust;
 }
 
-void column_fields(const Grid& g, const Material& material, const Columns& c, const std::vector<EntryLoad>& loads,
-                   TransferResults& out) {
-  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
-  const double h = g.size[t], w = g.thickness, dA = h * w, face = g.face_area(a);
-  const double E = material.young, nu = material.poisson, G = E / (2 * (1 + nu));
-  out.clear_all();
-  out.displacement.assign(g.node_count() * 2, 0.0);
-  auto& d = out.diagnostics;
-  // Each column's agents along t (id order is that order in a dense grid: sorted only when not).
-  std::vector<std::size_t> start(std::size_t(n) + 1, 0), agents;
+namespace {
+
+/// Each column's agents (column i: agents[start[i], start[i + 1])), sorted along t (a dense 2D
+/// grid's id order is that order: sorted only when not), with their coordinates along t (rows)
+/// and, in 3D, along w (read once: a slot's coordinates cost divisions).
+struct ColumnAgents {
+  std::vector<std::size_t> start, agents;
+  std::vector<int> rows, across;
+};
+
+ColumnAgents column_agents(const Grid& g, int a, int t, int w) {
+  const int n = g.cells[a];
+  ColumnAgents out;
+  auto& start = out.start;
+  start.assign(std::size_t(n) + 1, 0);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
     if (!g.is_air(cell)) ++start[std::size_t(g.coords(cell)[a]) + 1];
   for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
-  agents.resize(start.back());
-  {
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t cell = 0; cell < g.count(); ++cell)
-      if (!g.is_air(cell)) agents[next[std::size_t(g.coords(cell)[a])]++] = cell;
+  std::vector<std::array<int, 2>> key(start.back());  // (t, w) per agent
+  out.agents.resize(start.back());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) {
+      const auto c = g.coords(cell);
+      const std::size_t k = next[std::size_t(c[a])]++;
+      out.agents[k] = cell, key[k] = {c[t], g.dim == 3 ? c[w] : 0};
+    }
+  // A 3D column's id order runs across w first: sorted by a count over the levels where the column
+  // has at least as many agents as levels (linear), else by comparison (a sparse column).
+  std::vector<std::size_t> level(std::size_t(g.cells[t]) + 1);
+  std::vector<std::pair<std::array<int, 2>, std::size_t>> sorted;
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const std::size_t first = start[i], last = start[i + 1];
+    bool in_order = true;
+    for (std::size_t k = first + 1; k < last && in_order; ++k) in_order = key[k - 1][0] <= key[k][0];
+    if (in_order) continue;
+    sorted.resize(last - first);
+    if (last - first < std::size_t(g.cells[t])) {
+      for (std::size_t k = first; k < last; ++k) sorted[k - first] = {key[k], out.agents[k]};
+      std::sort(sorted.begin(), sorted.end());
+    } else {
+      std::fill(level.begin(), level.end(), 0);
+      for (std::size_t k = first; k < last; ++k) ++level[std::size_t(key[k][0]) + 1];
+      for (std::size_t j = 1; j < level.size(); ++j) level[j] += level[j - 1];
+      for (std::size_t k = first; k < last; ++k) sorted[level[std::size_t(key[k][0])]++] = {key[k], out.agents[k]};
+    }
+    for (std::size_t k = first; k < last; ++k) key[k] = sorted[k - first].first, out.agents[k] = sorted[k - first].second;
   }
-  auto along_t = [&](std::size_t x, std::size_t y) { return g.coords(x)[t] < g.coords(y)[t]; };
-  // Stresses per agent; each column's shear strain per unit v (the energy mean: int (Q / (I w))^2 dA / G).
+  out.rows.resize(key.size());
+  for (std::size_t k = 0; k < key.size(); ++k) out.rows[k] = key[k][0];
+  if (g.dim == 3) {
+    out.across.resize(key.size());
+    for (std::size_t k = 0; k < key.size(); ++k) out.across[k] = key[k][1];
+  }
+  return out;
+}
+
+/// Per agent sigma_a (compressive face forces on its faces across a) and tau_at (Jourawski, one scan
+/// down each column, level by level: the agents of equal t, b their width across w); returns each
+/// column's shear strain per unit v (the energy mean: int (Q / (I b))^2 dA / G).
+std::vector<double> column_stresses(const Grid& g, const Columns& c, const ColumnAgents& ca, double G, TransferResults& out) {
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double h = g.size[t], w = agent_width(g, c.plan.width_axis()), face = g.face_area(a);
+  const std::size_t faces = 2 * std::size_t(g.dim), shears = std::size_t(shear_count(g.dim));
+  const std::size_t slot = std::size_t(shear_pair(a, t));
   std::vector<double> shear_strain(std::size_t(n), 0.0);
   for (std::size_t i = 0; i < std::size_t(n); ++i) {
-    const auto first = agents.begin() + std::ptrdiff_t(start[i]), last = agents.begin() + std::ptrdiff_t(start[i + 1]);
-    if (!std::is_sorted(first, last, along_t)) std::sort(first, last, along_t);
     const double A = c.area[i], rc = c.centroid[i], I = c.inertia[i];
-    double above = 0, energy = 0;  // Q of the agents above; int (Q / (I w))^2 dA
-    for (auto it = last; it != first;) {
-      const std::size_t cell = *--it;
-      const double r = g.centre(cell)[t];
-      const double sigma = c.n[i] / A + c.m[i] * (r - rc) / I;
-      out.faces[cell * 4 + std::size_t(direction(a, false))] = out.faces[cell * 4 + std::size_t(direction(a, true))] = -sigma * face;
-      // The first moment of what lies above each level, Q, averaged over the agent's height: the
-      // agents above, and this one above the level (its shear then integrates to v exactly).
+    double above = 0, energy = 0;  // Q of the agents above; int (Q / (I b))^2 dA
+    for (std::size_t end = ca.start[i + 1]; end != ca.start[i];) {
+      std::size_t begin = end - 1;
+      while (begin != ca.start[i] && ca.rows[begin - 1] == ca.rows[end - 1]) --begin;
+      const double b = double(end - begin) * w;  // the section's width at this level
+      const double r = g.centre(ca.agents[begin])[t];
+      // The first moment of what lies above each level, Q, averaged over the agents' height: the
+      // agents above, and this level above the cut (the column's shears then integrate to v exactly).
       const double z1 = r + 0.5 * h - rc, z0 = r - 0.5 * h - rc;
-      const double top = above + 0.5 * w * z1 * z1, z3 = z1 * z1 * z1 - z0 * z0 * z0;  // Q = top - w z^2 / 2 in the agent
-      const double q = top - w * z3 / (6 * h);
-      out.shear[cell] = c.v[i] * q / (I * w);
-      // The shear energy's integral of Q^2 over the agent, exact (a solid rectangle's k is 5/6).
+      const double top = above + 0.5 * b * z1 * z1, z3 = z1 * z1 * z1 - z0 * z0 * z0;  // Q = top - b z^2 / 2 in the level
+      const double q = top - b * z3 / (6 * h);
+      const double sigma = c.n[i] / A + c.m[i] * (r - rc) / I;
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::size_t cell = ca.agents[k];
+        out.faces[cell * faces + std::size_t(direction(a, false))] = out.faces[cell * faces + std::size_t(direction(a, true))] = -sigma * face;
+        out.shear[cell * shears + slot] = c.v[i] * q / (I * b);
+      }
+      // The shear energy's integral of Q^2 over the level, exact (a solid rectangle's k is 5/6).
       const double z5 = z1 * z1 * z1 * z1 * z1 - z0 * z0 * z0 * z0 * z0;
-      energy += w * (top * top * h - top * w * z3 / 3 + w * w * z5 / 20) / ((I * w) * (I * w));
-      above += dA * (r - rc);
+      energy += b * (top * top * h - top * b * z3 / 3 + b * b * z5 / 20) / ((I * b) * (I * b));
+      above += h * b * (r - rc);
+      end = begin;
     }
     shear_strain[i] = energy / G;
-    d.agent_updates += start[i + 1] - start[i];
   }
-  // Generation: columns from the nearest loaded column, in the columns that carry something.
-  std::vector<int> reach(std::size_t(n), n + 1);
-  for (const auto& l : loads) reach[std::size_t(g.coords(l.cell)[a])] = 0;
-  for (int i = 1; i < n; ++i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) - 1] + 1);
-  for (int i = n - 2; i >= 0; --i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) + 1] + 1);
-  for (std::size_t i = 0; i < std::size_t(n); ++i) {
-    if (c.v[i] == 0 && c.m[i] == 0 && c.n[i] == 0) continue;
-    for (std::size_t k = start[i]; k < start[i + 1]; ++k) out.generation[agents[k]] = reach[i];
-    d.agents_generated += start[i + 1] - start[i];
-  }
-  // The plane sections' march over the node lines (planes along a): rotation theta (u_a = U - theta
-  // (r - r0)), axial displacement U and deflection W at the reference level r0.
+  return shear_strain;
+}
+
+/// The plane sections' march over the node lines (planes along a), held by the clamp or the
+/// supports: rotation theta, axial displacement U and deflection W at the reference level r0.
+struct Sections {
+  double r0;
+  std::vector<double> theta, U, W;
+};
+
+Sections march_sections(const Grid& g, const Material& material, const Columns& c, const std::vector<double>& shear_strain) {
+  const int a = c.plan.axis, n = g.cells[a];
+  const double E = material.young;
   const double r0 = c.plan.holding == Holding::Supports ? c.plan.support_level
                     : is_positive(c.plan.clamp_side)    ? c.centroid.back()
                                                         : c.centroid.front();
@@ -273,40 +368,81 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   }
   for (std::size_t j = 0; j <= std::size_t(n); ++j)
     theta[j] += omega, U[j] -= u0, W[j] += omega * (g.plane(a, int(j)) - s0) - w0;
-  // Per node: u_a from the plane section, u_t = W + the Poisson strain -nu sigma_a / E integrated
-  // from r0 (the mean over the columns whose agents share the node).
-  std::vector<double> poisson(g.node_count(), 0.0);
+  return {r0, std::move(theta), std::move(U), std::move(W)};
+}
+
+/// Per node: u_a from the plane section, u_t = W + the Poisson strain -nu sigma_a / E integrated
+/// from r0 and, in 3D, u_w = that strain integrated across w from the column's centroid, with u_t's
+/// anticlastic part (Saint-Venant's pure bending: no shear strain in the section); each the mean
+/// over the columns whose agents share the node.
+void node_displacements(const Grid& g, const Material& material, const Columns& c, const ColumnAgents& ca,
+                        const Sections& sec, TransferResults& out) {
+  const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a], dim = g.dim;
+  const double E = material.young, nu = material.poisson, r0 = sec.r0;
+  const std::size_t du = std::size_t(dim);
+  std::vector<double> poisson(g.node_count(), 0.0), poisson_w(dim == 3 ? g.node_count() : 0, 0.0);
   std::vector<std::uint8_t> shared(g.node_count(), 0);
-  auto node_of = [&](int along, int across) { return a == 0 ? g.node_index(along, across, 0) : g.node_index(across, along, 0); };
   for (std::size_t i = 0; i < std::size_t(n); ++i)
-    for (std::size_t k = start[i]; k < start[i + 1]; ++k) {
-      const int row = g.coords(agents[k])[t];
-      for (int dj = 0; dj < 2; ++dj)
-        for (int dk = 0; dk < 2; ++dk) {
-          const int line = int(i) + dj, across = row + dk;
-          const std::size_t node = node_of(line, across);
-          const double r = g.plane(t, across), rc = c.centroid[i];
-          const double p = -nu / E * (c.n[i] / c.area[i] * (r - r0) +
-                                      c.m[i] / (2 * c.inertia[i]) * ((r - rc) * (r - rc) - (r0 - rc) * (r0 - rc)));
-          // A node is met twice in a column (by the agents above and below it): counted once per column.
-          const std::uint8_t bit = std::uint8_t(1u << dj);
-          if (shared[node] & bit) continue;
-          shared[node] |= bit;
-          poisson[node] += p;
-          out.displacement[node * 2 + std::size_t(a)] = U[std::size_t(line)] - theta[std::size_t(line)] * (r - r0);
-          out.displacement[node * 2 + std::size_t(t)] = W[std::size_t(line)];
-        }
-      d.agent_updates += 1;
+    for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) {
+      const int row = ca.rows[k], col = dim == 3 ? ca.across[k] : 0;
+      for (int dl = 0; dl < (dim == 3 ? 2 : 1); ++dl)
+        for (int dj = 0; dj < 2; ++dj)
+          for (int dk = 0; dk < 2; ++dk) {
+            const int line = int(i) + dj, across = row + dk;
+            std::array<int, 3> p{0, 0, 0};
+            p[a] = line, p[t] = across, p[wa] = col + dl;
+            const std::size_t node = g.node_index(p[0], p[1], p[2]);
+            const double r = g.plane(t, across), rc = c.centroid[i];
+            const double s = dim == 3 ? g.plane(wa, p[wa]) - c.centroid_w[i] : 0.0;
+            const double pt = -nu / E * (c.n[i] / c.area[i] * (r - r0) +
+                                         c.m[i] / (2 * c.inertia[i]) * ((r - rc) * (r - rc) - (r0 - rc) * (r0 - rc) - s * s));
+            // A node is met more than once in a column (by the agents around it): counted once per column.
+            const std::uint8_t bit = std::uint8_t(1u << dj);
+            if (shared[node] & bit) continue;
+            shared[node] |= bit;
+            poisson[node] += pt;
+            if (dim == 3) poisson_w[node] += -nu / E * (c.n[i] / c.area[i] + c.m[i] * (r - rc) / c.inertia[i]) * s;
+            out.displacement[node * du + std::size_t(a)] = sec.U[std::size_t(line)] - sec.theta[std::size_t(line)] * (r - r0);
+            out.displacement[node * du + std::size_t(t)] = sec.W[std::size_t(line)];
+          }
+      out.diagnostics.agent_updates += 1;
     }
   for (std::size_t node = 0; node < shared.size(); ++node)
-    if (shared[node]) out.displacement[node * 2 + std::size_t(t)] += poisson[node] / double((shared[node] & 1) + (shared[node] >> 1));
+    if (shared[node]) {
+      const double columns = double((shared[node] & 1) + (shared[node] >> 1));
+      out.displacement[node * du + std::size_t(t)] += poisson[node] / columns;
+      if (dim == 3) out.displacement[node * du + std::size_t(wa)] = poisson_w[node] / columns;
+    }
+}
+
+}  // namespace
+
+void column_fields(const Grid& g, const Material& material, const Columns& c, const std::vector<EntryLoad>& loads,
+                   TransferResults& out) {
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double E = material.young, nu = material.poisson, G = E / (2 * (1 + nu));
+  out.clear_all();
+  out.displacement.assign(g.node_count() * std::size_t(g.dim), 0.0);
+  auto& d = out.diagnostics;
+  const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
+  const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
+  d.agent_updates += ca.agents.size();
+  // Generation: columns from the nearest loaded column, in the columns that carry something.
+  std::vector<int> reach(std::size_t(n), n + 1);
+  for (const auto& l : loads) reach[std::size_t(g.coords(l.cell)[a])] = 0;
+  for (int i = 1; i < n; ++i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) - 1] + 1);
+  for (int i = n - 2; i >= 0; --i) reach[std::size_t(i)] = std::min(reach[std::size_t(i)], reach[std::size_t(i) + 1] + 1);
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    if (c.v[i] == 0 && c.m[i] == 0 && c.n[i] == 0) continue;
+    for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) out.generation[ca.agents[k]] = reach[i];
+    d.agents_generated += ca.start[i + 1] - ca.start[i];
+  }
+  node_displacements(g, material, c, ca, march_sections(g, material, c, shear_strain), out);
   for (const auto& l : loads) d.applied += l.force;
   d.rigid_reaction = d.applied;  // every load is carried to the rigid faces by the statics
 }
 
-ColumnTransfer::ColumnTransfer(const Grid& grid, const Material& material) : material_(material) {
-  if (grid.dim != 2) throw std::invalid_argument("the columns rule set is 2D: a 3D body is not built");
-}
+ColumnTransfer::ColumnTransfer(const Grid&, const Material& material) : material_(material) {}
 
 void ColumnTransfer::solve(const Grid& grid, const std::vector<EntryLoad>& loads, TransferResults& out) {
   if (loads.empty()) return out.clear_all();

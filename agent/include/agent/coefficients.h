@@ -20,7 +20,7 @@ enum class RuleSet {
   Conserving,  ///< each agent splits its whole load between below (alpha2) and the outward sides (alpha3 each)
   Directional, ///< not the seed's: packets with slopes from a fan (agent/directional.h); uses gamma only
   /// not the seed's: bending, columns across the beam axis carry the section resultants to a clamp
-  /// or two supports (agent/columns.h); 2D, no coefficient
+  /// or two supports (agent/columns.h); 2D and 3D, no coefficient
   Columns,
   /// not the seed's: per load, the rule set that carries it (directional where a rigid face lies
   /// ahead, columns where the supports lie beside), the loads' states superposed. A study's choice

@@ -6,7 +6,8 @@
 // area, centroid and second moment come from its own agents (a notch changes them). The section
 // resultants are passed column to column from the loads to the clamp or the supports; each column
 // spreads its moment linearly over its agents (Navier) and its shear by a scan down the column
-// (Jourawski). The deflection is marched from the clamp or the supports. 2D only.
+// (Jourawski). The deflection is marched from the clamp or the supports. In 3D a column is the
+// slab of agents of equal coordinate along the beam axis: a section in t (the load axis) and w.
 #include <agent/grid.h>
 #include <agent/stress_components.h>
 #include <agent/transfer.h>
@@ -27,7 +28,9 @@ enum class Holding { Clamp, Supports };
 /// How the column rule set carries a set of loads (agent::plan_columns).
 struct ColumnPlan {
   int axis = 0;    ///< the beam axis a: the columns are the slots of equal coordinate along it
-  int across = 1;  ///< the load axis t (the other axis)
+  int across = 1;  ///< the load axis t
+  /// The third axis w (3D: the sections are slabs across a, in t and w; 2D: the thickness, z).
+  int width_axis() const { return 3 - axis - across; }
   Holding holding = Holding::Clamp;
   /// Clamp: the clamp plane along a [m] (at [0]) and the side its faces face (-a: the body lies at
   /// larger a). Supports: the centres of the two supports along a [m], increasing.
@@ -38,10 +41,13 @@ struct ColumnPlan {
 };
 
 /// The plan for `loads` (EntryLoad: cell, marching direction; forces are not read) on `grid`, or
-/// std::invalid_argument saying in one sentence why the column rule cannot carry them: a 3D grid, no
-/// load, loads along both axes, no rigid face, rigid faces both across and along the beam axis,
-/// clamps at both ends or on several planes, agents beyond the clamp, one support or more than two,
-/// supports on both sides or at two levels, a column along the beam axis without agents.
+/// std::invalid_argument saying in one sentence why the column rule cannot carry them: no load,
+/// loads along two axes, no rigid face, rigid faces both across and along the beam axis, clamps at
+/// both ends or on several planes, agents beyond the clamp, one support or more than two, supports
+/// on both sides or at two levels, a column along the beam axis without agents; in 3D also clamps
+/// across two axes and supports apart along both axes across t. The beam axis: in 2D the axis
+/// across t; in 3D the rigid faces' normal where it is not t (a clamp), else the axis across t along
+/// which the supports lie apart.
 ColumnPlan plan_columns(const Grid& grid, const std::vector<EntryLoad>& loads);
 
 /// How a plan carries its loads, in words: "bending: columns along x to the clamp at x = 0 mm".
@@ -54,7 +60,8 @@ std::string describe(const ColumnPlan& plan);
 struct Columns {
   ColumnPlan plan;
   std::vector<double> centre, width;            ///< per column, along a [m]
-  std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4]
+  std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4] (about w)
+  std::vector<double> centroid_w;               ///< 3D: per column, the centroid along w [m]; 2D: empty
   std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
   /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
   std::array<double, 2> reactions{};
@@ -76,12 +83,15 @@ void add_bonded_thrust(Columns& columns);
 
 /// The fields of the columns into `out` (every slot of the grid; out.faces, generation and shear
 /// sized for it): per agent sigma_a = n / A + m (t - centroid) / I as compressive face forces on its
-/// two faces across a (sigma_t = 0: its faces along a carry nothing), tau = v Q / (I w) in out.shear
-/// (Q the first moment of what lies above each level, averaged over the agent's height: a column's
-/// shears integrate to v; w the thickness); per node (out.displacement, dim per node id) the plane
-/// sections' displacement marched from the clamp or the supports: rotation by the curvature m /
-/// (E I), deflection by the rotation and the column's shear strain (the energy mean of tau / G),
-/// axial displacement by n / (E A), the Poisson strain -nu sigma_a / E integrated across; zero
+/// two faces across a (sigma_t = sigma_w = 0: its other faces carry nothing), tau_at = v Q / (I b)
+/// in out.shear's a-t slot (Q the first moment of what lies above each level of agents, averaged
+/// over their height: a column's shears integrate to v; b the section's width there: the
+/// thickness in 2D, the level's agents times their edge in 3D; the other shears 0); per node
+/// (out.displacement, dim per node id) the plane sections' displacement marched from the clamp or
+/// the supports: rotation by the curvature m / (E I), deflection by the rotation and the column's
+/// shear strain (the energy mean of tau / G), axial displacement by n / (E A), the Poisson strain
+/// -nu sigma_a / E integrated across t (u_t) and in 3D across w from the column's centroid (u_w,
+/// and u_t's anticlastic part nu m (w - w_c)^2 / (2 E I): Saint-Venant's pure bending); zero
 /// rotation, axial displacement and deflection of the clamp column's centroid on the clamp plane;
 /// zero deflection at both support centres and zero axial displacement at the first, at the
 /// supports' plane. Generation: columns from the nearest loaded column (-1 in a column without
@@ -91,8 +101,8 @@ void column_fields(const Grid& grid, const Material& material, const Columns& co
                    const std::vector<EntryLoad>& loads, TransferResults& out);
 
 /// The column rule set as a LoadTransfer rule type: statics, the bonded thrust, the fields. It reads
-/// no coefficient and takes no reading; the grid must be 2D (checked at construction), the plan is
-/// made per solve (std::invalid_argument when the loads cannot be carried).
+/// no coefficient and takes no reading; 2D or 3D; the plan is made per solve (std::invalid_argument
+/// when the loads cannot be carried).
 class ColumnTransfer {
  public:
   ColumnTransfer(const Grid& grid, const Material& material);

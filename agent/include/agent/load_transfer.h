@@ -13,7 +13,7 @@
 //   agent::LayerSweep           patent (readings 2 and 6 off) and conserving: the layer sweep (agent/sweep.h);
 //   agent::DirectionalTransfer  the directional rule set: the packet fan (agent/directional.h);
 //   agent::CyclicTransfer       patent under readings 2 and/or 6: the work-list (agent/cyclic_transfer.h);
-//   agent::ColumnTransfer       the columns rule set: beam sections (agent/columns.h), 2D.
+//   agent::ColumnTransfer       the columns rule set: beam sections (agent/columns.h), 2D and 3D.
 // Each rule type checks its own coefficients and owns what it produces: the results it sizes
 // (size_results) and fills (solve), its stress components (stress_components) and how far it
 // reaches across a march (lateral_reach). The stress readings (4, 5) are not the transfer's:

@@ -81,6 +81,21 @@ TEST(AutoRuleSet, BendsACantileverAsColumns) {
   EXPECT_EQ(sa.diagnostics.rigid_reaction, 2.0);  // the statics carry it whole
 }
 
+// In 3D too: the beam clamped at x = 0 bends (the columns' slabs), a block pushed onto its base marches.
+TEST(AutoRuleSet, ChoosesIn3D) {
+  const std::string beam = "[mesh]\nfile = \"" + kMeshes + "cantilever3d.geo\"\n[mesh.parameters]\nh = 0.005\nlw = 0.005\n"
+                           "[boundary]\nrigid = [\"clamp\"]\n[[load]]\ngroup = \"load\"\nforce = 2.0\n";
+  const auto a = study_of("beam.toml", beam);
+  const auto c = study_of("beam_columns.toml", beam + rule_set("columns"));
+  EXPECT_TRUE(all_are(a.load_rules, RuleSet::Columns));
+  const auto sa = solved(a), sc = solved(c);
+  EXPECT_EQ(flat(sa.stress), flat(sc.stress));
+  EXPECT_EQ(sa.diagnostics.rigid_reaction, 2.0);
+  const std::string block = "[mesh]\nfile = \"" + kMeshes + "block3d.geo\"\n[mesh.parameters]\nh = 0.005\nlw = 0.01\n"
+                            "[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\nforce = 2.0\n";
+  EXPECT_TRUE(all_are(study_of("block.toml", block).load_rules, RuleSet::Directional));
+}
+
 // An axial pull on the cantilever's end patch: no rigid face ahead of the march (+x leaves by the
 // free end) and the clamp is along the load, not beside it: refused, naming the load and both reasons.
 TEST(AutoRuleSet, RefusesALoadNoRuleSetCarries) {

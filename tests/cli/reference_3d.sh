@@ -72,6 +72,20 @@ grep -q "compare: reference level 0 (FEM Q2 on the agents' mesh, 2673 DoFs, .* s
   grep -q "compare: reference level 1 (FEM Q2, the agents' mesh refined 1 time, 18207 DoFs, .* s): its own error in the body's sigma_y .* <= 0.05: converged" "$work/converges.log"
 check converges_log $? "$(grep 'reference' "$work/converges.log")"
 
+# 1a. A tighter tolerance (0.01) takes a third level, whose estimate is the level before, kept (not
+# solved again: no estimate line after it in the log).
+block "$work/level2.toml" "tolerance = 0.01"
+"$bin" compare "$work/level2.toml" -o "$work/level2" 2>"$work/level2.log"
+rc=$?
+check level2_exit "$rc" "exit $rc: $(tail -3 "$work/level2.log")"
+summary_check level2_level "$work/level2/summary.json" "
+c['converged'] and [l['refine'] for l in c['levels']] == [0, 1, 2] and s['reference']['refine'] == 2
+and [l['dofs'] for l in c['levels']] == [2673, 18207, 133947] and s['reference']['estimate_dofs'] == 18207
+and c['levels'][0]['own_error'] > c['levels'][1]['own_error'] > 0.01 >= c['own_error'] > 0
+and c['own_error'] == s['metrics']['body.sigma_y.rel_l2']['reference_error']"
+[ "$(sed -n '/reference level 1/,$p' "$work/level2.log" | grep -c "error estimate")" -eq 0 ]
+check level2_estimate_kept $? "$(grep -E 'reference|estimate' "$work/level2.log")"
+
 # 1b. On 2 MPI ranks every rank takes the same decision: the same levels, each said once, the same
 # own errors to 1e-8.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1

@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
-#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -147,18 +146,17 @@ Reference converge(const fem_reference::FemProblem& problem, const ReferenceOpti
   log << "compare: reference: the 3D default, refined until its own error in the body is at most "
       << options.tolerance << " ([compare.reference] tolerance)\n";
   std::vector<Reference::Level> levels;
-  std::optional<Reference> previous;
+  GridFields previous;  // the level before on the agent grid (its solve's result freed)
   for (int level = options.refine;; ++level) {
     const auto start = std::chrono::steady_clock::now();
     Reference r = solve_level(problem, options.at(level), mesh, dir, log);
-    if (previous && !r.fem.coarser && previous->options.describe() == r.estimate.describe()) {
-      r.estimate_fields = std::move(previous->fields);  // the level before is this one's estimate
-      r.estimate_dofs = previous->fem.n_dofs;
+    if (!levels.empty() && !r.fem.coarser && options.at(level - 1).describe() == r.estimate.describe()) {
+      r.estimate_fields = std::move(previous);  // the level before is this one's estimate
+      r.estimate_dofs = levels.back().dofs;
       r.estimated = true;
     } else {
       solve_estimate(r, problem, mesh, log);
     }
-    previous.reset();
     levels.push_back({level, r.fem.n_dofs, agreed_own_error(r, mesh), report::seconds_since(start)});
     const auto& e = levels.back().error;
     std::string stopped;
@@ -181,7 +179,7 @@ Reference converge(const fem_reference::FemProblem& problem, const ReferenceOpti
       if (!r.stopped.empty()) log << "compare: warning: " << r.limits_judgement() << "\n";
       return r;
     }
-    previous = std::move(r);
+    previous = std::move(r.fields);
   }
 }
 

@@ -124,6 +124,7 @@ check explicit_refine_no_ladder $? "$(grep 'reference level' "$work/refine1.log"
 # 3. The memory limit stops it: Q2 on the agents' mesh fits in 0.25 GiB (about 0.20 GiB), refined
 # once (about 0.31 GiB) does not. It runs, exit 0, and everything says the reference limits the judgement.
 block "$work/memory.toml" ""
+printf '[compare.gate]\n"fem.equilibrium_dev" = 0.01\n' >>"$work/memory.toml"  # (the page shows a gate)
 WORKBENCH_MEMORY_LIMIT=0.25 "$bin" compare "$work/memory.toml" -o "$work/memory" 2>"$work/memory.log"
 rc=$?
 check memory_exit "$rc" "exit $rc: $(tail -3 "$work/memory.log")"
@@ -140,6 +141,11 @@ check memory_summary_txt $? "$(head -5 "$work/memory/summary.txt")"
 grep -q "compare: warning: the reference limits the judgement: its own error in the body's sigma_y is .* above the tolerance 0.03" "$work/memory.log" &&
   grep -q "compare: reference level 0 .*: stopping" "$work/memory.log"
 check memory_log $? "$(grep 'reference' "$work/memory.log")"
+# The page: the warning and the convergence row, every value its summary's (headless Chromium).
+[ "$(grep -c "the reference limits the judgement" "$work/memory/report.html")" -eq 2 ]
+check memory_page_says_so $? "$(grep -c "limits the judgement" "$work/memory/report.html") mentions"
+out=$(/usr/bin/python3 "$src/tests/common/check_report.py" "$work/memory" 2>&1)
+check memory_page_checked $? "$out"
 
 # 4. The tolerance where no ladder runs is refused: with refine, with degree 1, in 2D.
 block "$work/both.toml" "refine = 1

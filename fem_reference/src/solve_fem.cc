@@ -87,13 +87,13 @@ int ranks_on_this_machine() {
   return mpi_size();
 }
 
-/// Refuses, before anything large is allocated, a solve whose estimated memory on this machine
-/// exceeds its limit (workbench/memory_limit.h), saying what it needs and on how many machines.
+/// Why a solve whose estimated memory on this machine exceeds its limit (workbench/memory_limit.h)
+/// is refused, saying what it needs and on how many machines; empty when it fits.
 /// Measured peaks (fem_summary.csv, one rank): about 190 MB of libraries and MPI per process; per
 /// DoF 0.7-1.6 kB in 2D (matrix-free multigrid, KLU, AMG), 4 kB for 3D Q1 and 5-7 kB for 3D Q2
 /// (the assembled matrix and its ML hierarchy); the mesh and the gathered results, on every rank,
 /// about 1 kB per gmsh cell.
-void check_memory(const FemProblem& p, const PlainMesh& mesh) {
+std::string memory_refusal(const FemProblem& p, const PlainMesh& mesh) {
   const int dim = mesh.dim, degree = p.options.degree;
   const double fine_cells = double(mesh.cell_count()) * std::pow(double(1 << dim), p.options.refine);
   const double dofs = dim * fine_cells * std::pow(double(degree), dim);
@@ -102,7 +102,7 @@ void check_memory(const FemProblem& p, const PlainMesh& mesh) {
   const int ranks = mpi_size(), local = std::min(ranks_on_this_machine(), ranks);
   const double per_rank = process + dofs * per_dof / ranks;
   const double limit = workbench::memory_limit_bytes();
-  if (local * per_rank <= limit) return;
+  if (local * per_rank <= limit) return {};
   // Machines of this one's memory, each with as many ranks as it has cores.
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   const double room = limit - cores * process;
@@ -117,7 +117,13 @@ void check_memory(const FemProblem& p, const PlainMesh& mesh) {
     s << "; about " << (dofs * per_dof + machines * cores * process) / workbench::kGiB << " GiB in all: run it on "
       << machines << " machines of this memory, e.g. mpirun -np " << machines * cores << " (docs/scaling.md)";
   s << " (WORKBENCH_MEMORY_LIMIT=<GiB> sets the limit)";
-  throw CollectiveError(s.str());  // every rank finds the same
+  return s.str();
+}
+
+/// Refuses, before anything large is allocated, a solve whose memory_refusal is not empty.
+void check_memory(const FemProblem& p, const PlainMesh& mesh) {
+  if (auto refusal = memory_refusal(p, mesh); !refusal.empty())
+    throw CollectiveError(refusal);  // every rank finds the same
 }
 
 /// CPU seconds of this process so far (all its threads; CLOCK_PROCESS_CPUTIME_ID: exact, unlike
@@ -150,8 +156,8 @@ std::array<double, 3> group_centre(const PlainMesh& mesh, const std::string& gro
   return c;
 }
 
-/// The problem's mesh, read and checked against the problem (groups, elements, memory).
-PlainMesh checked_mesh(const FemProblem& problem) {
+/// The problem's mesh, read and checked against the problem (groups, elements), not yet its memory.
+PlainMesh problem_mesh(const FemProblem& problem) {
   if (problem.supports.empty())
     throw Error(problem.name + ": no supports: the body could move freely, the FEM problem has no unique solution");
   PlainMesh mesh;
@@ -161,6 +167,12 @@ PlainMesh checked_mesh(const FemProblem& problem) {
     throw Error(problem.name + ": mesh: " + e.what());
   }
   check_problem(problem, mesh);
+  return mesh;
+}
+
+/// The problem's mesh, read and checked against the problem (groups, elements, memory).
+PlainMesh checked_mesh(const FemProblem& problem) {
+  PlainMesh mesh = problem_mesh(problem);
   check_memory(problem, mesh);
   return mesh;
 }
@@ -168,6 +180,8 @@ PlainMesh checked_mesh(const FemProblem& problem) {
 }  // namespace
 
 void check_fem_problem(const FemProblem& problem) { checked_mesh(problem); }
+
+std::string fem_memory_refusal(const FemProblem& problem) { return memory_refusal(problem, problem_mesh(problem)); }
 
 FemResult solve_fem(const FemProblem& problem, const fs::path& output_dir, std::ostream* log) {
   const auto start = std::chrono::steady_clock::now();

@@ -25,7 +25,11 @@ CompareOptions read_compare_options(const workbench::CaseTable& root) {
     o.mask = t.number("mask", o.mask, workbench::Range{0.0, 1.0, false, true});
     const auto r = t.table("reference");
     o.reference.degree = r.integer("degree", o.reference.degree, 1, 2);
-    if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, 4);
+    if (r.has("refine")) o.reference.refine = r.integer("refine", std::nullopt, 0, ReferenceOptions::kMaxRefine);
+    o.reference.tolerance = r.number("tolerance", o.reference.tolerance, workbench::Range{0.0, 1.0, true, false});
+    if (r.has("tolerance") && (o.reference.refine >= 0 || o.reference.degree == 1))
+      r.fail("tolerance", std::string("the reference converges to a tolerance only without ") +
+                              (o.reference.refine >= 0 ? "refine (refine fixes the level)" : "degree = 1 (Q1 stays on its mesh)"));
     o.reference.algebraic_share =
         r.number("algebraic_share", o.reference.algebraic_share, workbench::Range{0.0, 1.0, false, true});
     if (r.has("mesh")) {

@@ -131,3 +131,53 @@ TEST(ReferenceOnCompressedGrid, TwoPlates1mApartAreSampledAtTheirTrueAgents) {
         EXPECT_NEAR(f.u[2 * g.node_index(11 + i, j, 0) + c], 2 * f.u[2 * g.node_index(i, j, 0) + c], 1e-8 * u_largest)
             << i << "," << j;
 }
+
+TEST(ReferenceOwnError, TheBodysLargestStressComponentAgainstItsEstimate) {
+  // The converging 3D default judges a level by this number: on two_plates.geo (100 agents, a
+  // column of air slots between the plates) the reference has sigma_y = -3 Pa and tau_xy = 2 Pa
+  // in every agent, the estimate sigma_y = -3.3 Pa: sigma_y has the larger norm, and its relative
+  // L2 error is 0.3 / 3 = 0.1. The air slots hold a larger sigma_x that must not count.
+  const auto mesh = agent::import_mesh(WORKBENCH_SOURCE_DIR "/tests/data/two_plates.geo");
+  const auto& g = mesh.grid;
+  GridFields reference, estimate;
+  reference.stress.assign(g.count() * kStressSlots, 0.0);
+  for (std::size_t slot = 0; slot < g.count(); ++slot) reference.stress[kStressSlots * slot + kSigmaX] = 100;
+  for (std::size_t cell : mesh.cell_of_element) {
+    reference.stress[kStressSlots * cell + kSigmaX] = 0;
+    reference.stress[kStressSlots * cell + kSigmaY] = -3;
+    reference.stress[kStressSlots * cell + kTauXY] = 2;
+  }
+  estimate = reference;
+  for (std::size_t slot = 0; slot < g.count(); ++slot) estimate.stress[kStressSlots * slot + kSigmaX] = 0;
+  for (std::size_t cell : mesh.cell_of_element) estimate.stress[kStressSlots * cell + kSigmaY] = -3.3;
+  ASSERT_EQ(mesh.cell_of_element.size(), 100u);
+  auto e = body_own_error(mesh, reference, estimate);
+  EXPECT_EQ(e.field, "sigma_y");
+  EXPECT_NEAR(e.rel_l2, 0.1, 1e-14);
+  // A shear larger than sigma_y is judged instead: here the estimate has it exactly.
+  for (std::size_t cell : mesh.cell_of_element) reference.stress[kStressSlots * cell + kTauXY] = 4;
+  for (std::size_t cell : mesh.cell_of_element) estimate.stress[kStressSlots * cell + kTauXY] = 4;
+  e = body_own_error(mesh, reference, estimate);
+  EXPECT_EQ(e.field, "tau_xy");
+  EXPECT_EQ(e.rel_l2, 0.0);
+}
+
+TEST(ReferenceOwnError, OnlyThe3DQ2DefaultConverges) {
+  ReferenceOptions o;  // degree 2, refine unset
+  EXPECT_TRUE(o.resolved(3).converges);
+  EXPECT_EQ(o.resolved(3).refine, 0);
+  EXPECT_FALSE(o.resolved(2).converges);
+  EXPECT_EQ(o.resolved(2).refine, 1);
+  o.refine = 1;  // a level set by hand
+  EXPECT_FALSE(o.resolved(3).converges);
+  o.refine = -1;
+  o.degree = 1;  // Q1 stays on the agents' mesh
+  EXPECT_FALSE(o.resolved(3).converges);
+  EXPECT_EQ(o.resolved(3).refine, 0);
+  // Each level's estimate: Q1 on the unrefined mesh for Q2, else one refinement coarser; never converging.
+  ReferenceOptions q2 = ReferenceOptions{}.resolved(3);
+  EXPECT_EQ(q2.estimate().degree, 1);
+  EXPECT_FALSE(q2.estimate().converges);
+  EXPECT_EQ(q2.at(2).estimate().refine, 1);
+  EXPECT_EQ(q2.at(2).estimate().degree, 2);
+}

@@ -267,15 +267,16 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
-  json["reference"] = {{"description", in.reference.describe()},
-                       {"degree", in.reference.degree},
-                       {"refine", in.reference.refine},
+  json["reference"] = {{"description", reference.options.describe()},
+                       {"degree", reference.options.degree},
+                       {"refine", reference.options.refine},
                        {"dofs", fem.n_dofs},
                        {"estimate", reference.estimate.describe()},
                        {"estimate_dofs", reference.estimate_dofs},
                        {"estimate_seconds", reference.estimate_seconds},
                        {"reference_error", "each error metric's reference_error: the same norm of the estimate "
                                            "level against the reference"}};
+  if (!reference.levels.empty()) json["reference"]["convergence"] = convergence_json(reference);  // the 3D default
   if (reference.staircase_fields)
     json["reference"]["staircase"] = {
         {"dofs", reference.staircase_dofs},
@@ -303,7 +304,7 @@ nlohmann::json carry_check_json(const std::vector<agent_study::LoadCarry>& carry
 /// summary.txt's notes on the reference: its level and error estimate, the far field, the staircase.
 std::vector<std::string> reference_notes(const AgentCompareInput& in, const Reference& reference) {
   std::vector<std::string> notes{
-      "reference: " + in.reference.describe() + " (" + std::to_string(reference.fem.n_dofs) +
+      "reference: " + reference.options.describe() + " (" + std::to_string(reference.fem.n_dofs) +
           " DoFs); its own error (column reference_error): the same norm of " + reference.estimate.describe() + " (" + std::to_string(reference.estimate_dofs) +
           " DoFs) against it",
       "far field: cells and nodes at least " + std::to_string(1e3 * in.far_distance).substr(0, 6) +
@@ -421,7 +422,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   // 6. The reference's error estimate (and with the true geometry the staircase's own error), on
   // every rank.
   t = std::chrono::steady_clock::now();
-  estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log, staircase);
+  estimate_reference_error(reference, in.problem, in.study.mesh, log, staircase);
+  if (!reference.stopped.empty()) outcome.warnings.push_back(reference.limits_judgement());
   fem_seconds += seconds_since(t);
   // 7-9 on rank 0.
   mpi_on_root([&] {

@@ -212,7 +212,7 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   front_files::check_gate_names(options.gate, front_metrics(in.study.mesh.grid.dim), file);
   // 2. The reference and its own error, as `workbench compare` solves them (its files in dir/fem).
   auto reference = solve_reference(in.problem, in.reference, in.study.mesh, dir, log);
-  estimate_reference_error(reference, in.problem, in.reference, in.study.mesh, log);
+  estimate_reference_error(reference, in.problem, in.study.mesh, log);
   const FrontContext c{file, options, in, reference, compare_options.mask, size, log};
   // 3. The ladders.
   FrontOutcome out;
@@ -231,7 +231,7 @@ FrontOutcome run_front(const workbench::CaseFile& file, const fs::path& dir, std
   front_files::apply_gate(options.gate, out);
   const front_files::FrontHeader header{
       in.study.setup.title, metrics, {kHeadline, "far.von_mises.rel_l2", "body.displacement.rel_l2"},
-      {{"description", in.reference.describe()}, {"dofs", reference.fem.n_dofs},
+      {{"description", reference.options.describe()}, {"dofs", reference.fem.n_dofs},
        {"estimate", reference.estimate.describe()}, {"estimate_dofs", reference.estimate_dofs}}};
   front_files::write(dir, file, header, options, out, log);
   return out;

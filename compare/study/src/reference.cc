@@ -5,12 +5,15 @@
 
 #include <agent_study.h>
 #include <compare/metrics.h>
+#include <fem_reference/mpi.h>
 #include <workbench/error.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 
 namespace compare {
 
@@ -53,9 +56,41 @@ GridFields reference_on_grid(const ReferenceOptions& options, const agent::Impor
   return options.mesh.empty() ? fem_on_grid(mesh, fem, case_name) : fem_at_agents(mesh.grid, fem, outside);
 }
 
-Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
-                          const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
+OwnError body_own_error(const agent::ImportedMesh& mesh, const GridFields& reference, const GridFields& estimate) {
+  const auto& grid = mesh.grid;
+  std::vector<char> body(grid.count(), 0);
+  for (std::size_t cell : mesh.cell_of_element) body[cell] = 1;
+  const auto ids = agent_ids(grid);  // box order, as the summary's body scope sums
+  OwnError out;
+  double largest = -1;
+  for (const auto& field : kFields) {
+    if (field.per_node || field.slot == kVonMises || !field.in(grid.dim)) continue;
+    std::vector<double> ref, est;
+    for (std::size_t id : ids)
+      if (body[id]) {
+        ref.push_back(reference.stress[kStressSlots * id + field.slot]);
+        est.push_back(estimate.stress[kStressSlots * id + field.slot]);
+      }
+    double norm = 0;
+    for (double v : ref) norm += v * v;
+    if (norm > largest) out = {field.name, relative_errors(est, ref).rel_l2}, largest = norm;
+  }
+  return out;
+}
+
+namespace {
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << std::setprecision(3) << v;
+  return s.str();
+}
+
+/// One level of the reference (solve_reference without `converges`).
+Reference solve_level(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
+                      const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
   Reference r;
+  r.options = options;
   r.estimate = options.estimate();
   log << "compare: reference " << options.describe() << "\n";
   auto reference = reference_problem(problem, options, mesh.grid);
@@ -70,8 +105,10 @@ Reference solve_reference(const fem_reference::FemProblem& problem, const Refere
   return r;
 }
 
-void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const ReferenceOptions& options,
-                              const agent::ImportedMesh& mesh, std::ostream& log, const std::filesystem::path& staircase_msh) {
+/// The estimate level of `r` on the agent grid: from the reference's multigrid hierarchy when it
+/// has it, else solved without output.
+void solve_estimate(Reference& r, const fem_reference::FemProblem& problem, const agent::ImportedMesh& mesh,
+                    std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   if (r.fem.coarser) {  // solved with the reference, from its multigrid hierarchy
     log << "compare: the reference's error estimate: against " << r.estimate.describe()
@@ -87,7 +124,84 @@ void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, c
     r.estimate_dofs = estimate.n_dofs;
   }
   r.estimate_seconds = report::seconds_since(start);
+  r.estimated = true;
+}
 
+/// Rank 0's own error of `r`, on every rank (the ranks' fields are the same: the decision is one).
+OwnError agreed_own_error(const Reference& r, const agent::ImportedMesh& mesh) {
+  OwnError e = body_own_error(mesh, r.fields, r.estimate_fields);
+  std::size_t index = 0;
+  while (index < std::size(kFields) && kFields[index].name != e.field) ++index;
+  std::vector<double> agreed{fem_reference::mpi_rank() == 0 ? e.rel_l2 : 0.0,
+                             fem_reference::mpi_rank() == 0 ? double(index) : 0.0};
+  fem_reference::mpi_sum(agreed);
+  return {kFields[std::size_t(agreed[1])].name, agreed[0]};
+}
+
+/// The converging default: levels from options.refine on, each with its estimate (the level before
+/// it when that is its estimate level, from the multigrid at refine 1), until the own error is at
+/// most the tolerance or the next level cannot be taken (the memory estimate, kMaxRefine).
+Reference converge(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
+                   const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
+  log << "compare: reference: the 3D default, refined until its own error in the body is at most "
+      << options.tolerance << " ([compare.reference] tolerance)\n";
+  std::vector<Reference::Level> levels;
+  GridFields previous;  // the level before on the agent grid (its solve's result freed)
+  for (int level = options.refine;; ++level) {
+    const auto start = std::chrono::steady_clock::now();
+    Reference r = solve_level(problem, options.at(level), mesh, dir, log);
+    if (!levels.empty() && !r.fem.coarser && options.at(level - 1).describe() == r.estimate.describe()) {
+      r.estimate_fields = std::move(previous);  // the level before is this one's estimate
+      r.estimate_dofs = levels.back().dofs;
+      r.estimated = true;
+    } else {
+      solve_estimate(r, problem, mesh, log);
+    }
+    levels.push_back({level, r.fem.n_dofs, agreed_own_error(r, mesh), report::seconds_since(start)});
+    const auto& e = levels.back().error;
+    std::string stopped;
+    if (e.rel_l2 > options.tolerance) {
+      const auto next = options.at(level + 1);
+      stopped = level >= ReferenceOptions::kMaxRefine
+                    ? "it has the most refinements a reference takes (" + std::to_string(level) + ")"
+                    : fem_reference::fem_memory_refusal(reference_problem(problem, next, mesh.grid));
+      if (!stopped.empty() && level < ReferenceOptions::kMaxRefine)
+        stopped = "the next level (" + next.describe() + ") would not fit: " + stopped;
+    }
+    log << "compare: reference level " << level << " (" << r.options.describe() << ", " << r.fem.n_dofs << " DoFs, "
+        << number(levels.back().seconds) << " s): its own error in the body's " << e.field << " " << number(e.rel_l2)
+        << (e.rel_l2 <= options.tolerance ? " <= " : " > ") << options.tolerance
+        << (e.rel_l2 <= options.tolerance ? ": converged" : stopped.empty() ? ": refining once more" : ": stopping")
+        << "\n";
+    if (e.rel_l2 <= options.tolerance || !stopped.empty()) {
+      r.levels = std::move(levels);
+      r.stopped = std::move(stopped);
+      if (!r.stopped.empty()) log << "compare: warning: " << r.limits_judgement() << "\n";
+      return r;
+    }
+    previous = std::move(r.fields);
+  }
+}
+
+}  // namespace
+
+std::string Reference::limits_judgement() const {
+  if (stopped.empty() || levels.empty()) return {};
+  const auto& e = levels.back().error;
+  return "the reference limits the judgement: its own error in the body's " + e.field + " is " + number(e.rel_l2) +
+         " (" + options.describe() + " against " + estimate.describe() + "), above the tolerance " +
+         number(options.tolerance) + " ([compare.reference] tolerance); it was not refined further: " + stopped;
+}
+
+Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
+                          const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log) {
+  return options.converges ? converge(problem, options, mesh, dir, log) : solve_level(problem, options, mesh, dir, log);
+}
+
+void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, const agent::ImportedMesh& mesh,
+                              std::ostream& log, const std::filesystem::path& staircase_msh) {
+  if (!r.estimated) solve_estimate(r, problem, mesh, log);
+  const auto& options = r.options;
   if (!options.mesh.empty()) {  // the true geometry: FEM on the staircase at the reference's level
     problem.options.degree = options.degree;
     problem.options.refine = options.refine;
@@ -102,6 +216,22 @@ void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, c
     r.staircase_fields = fem_on_grid(mesh, staircase, problem.name);
     r.staircase_dofs = staircase.n_dofs;
   }
+}
+
+nlohmann::json convergence_json(const Reference& r) {
+  auto levels = nlohmann::json::array();
+  for (const auto& l : r.levels)
+    levels.push_back({{"refine", l.refine}, {"dofs", l.dofs}, {"own_error", l.error.rel_l2}, {"seconds", l.seconds}});
+  const auto& last = r.levels.back().error;
+  nlohmann::json json{{"tolerance", r.options.tolerance}, {"scope", "body"}, {"field", last.field},
+                      {"own_error", last.rel_l2}, {"converged", r.stopped.empty()},
+                      {"limits_judgement", !r.stopped.empty()}, {"levels", levels},
+                      {"rule", "refined from Q2 on the agents' mesh until the relative L2 error of its estimate level "
+                               "against it, over the body, in its largest stress component (the body rel_l2 "
+                               "reference_error of that field), is at most the tolerance, while the next level's "
+                               "memory estimate fits"}};
+  if (!r.stopped.empty()) json["stopped"] = r.stopped;
+  return json;
 }
 
 }  // namespace compare

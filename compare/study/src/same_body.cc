@@ -241,6 +241,10 @@ std::vector<std::string> check_same_body(const workbench::CaseFile& file, const 
 
 std::vector<std::string> check_reference_body(const workbench::CaseFile& file, const agent_study::AgentStudy& study,
                                               const schema::ReferenceOptions& reference) {
+  if (study.mesh.grid.dim == 2)  // read before the dimension is known: refused here, not ignored
+    if (const auto r = file.root().table("compare").table("reference"); r.has("tolerance"))
+      r.fail("tolerance", "a 2D reference keeps its level (Q2 refined once unless refine says otherwise): the "
+                          "tolerance is the 3D default's");
   if (reference.mesh.empty()) return {};  // the reference on the agents' own mesh
   const auto& grid = study.mesh.grid;
   const double size = grid.size.head(grid.dim).maxCoeff();

@@ -134,4 +134,9 @@ FemResult solve_fem(const FemProblem& problem, const std::filesystem::path& outp
 /// problem, the memory), without solving: `--check`. Every rank, as solve_fem.
 void check_fem_problem(const FemProblem& problem);
 
+/// Why solve_fem would refuse `problem` for its memory estimate on this machine (the mesh read and
+/// checked as solve_fem does, nothing solved), or "" when it fits: a reference asks it before it
+/// refines further. Every rank finds the same.
+std::string fem_memory_refusal(const FemProblem& problem);
+
 }  // namespace fem_reference

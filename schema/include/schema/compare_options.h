@@ -18,8 +18,11 @@ namespace schema {
 /// global refinements of the gmsh mesh and polynomial `degree`. degree 1, refine 0 is FEM Q1 on the
 /// agents' own mesh.
 struct ReferenceOptions {
+  static constexpr int kMaxRefine = 4;  ///< the most refinements a reference takes (the key's range)
   int degree = 2;
-  int refine = -1;  ///< -1 (the default): 1 in 2D, 0 in 3D (a refined 3D mesh costs 8 times more)
+  /// -1 (the default): 1 in 2D; in 3D (a refinement costs 8 times more) Q2 starts at 0 and is
+  /// refined until its own error is under `tolerance` (`converges`), Q1 stays at 0
+  int refine = -1;
   /// The true (smooth) geometry the agents' staircase was voxelized from (.geo or .msh with the same
   /// physical groups); empty: the agents' own mesh.
   std::filesystem::path mesh;
@@ -29,16 +32,33 @@ struct ReferenceOptions {
   /// is higher): an algebraic error this small beside the discretisation error the two levels
   /// show (docs/compare.md). 0: fem.tolerance alone.
   double algebraic_share = 1e-7;
+  /// The converging default: the largest own error (body, relative L2, the reference's dominant
+  /// stress component) it is refined down to, while the next level's memory estimate fits.
+  double tolerance = 0.03;
+  /// Resolved: refine from `refine` on until the own error is under `tolerance` (the 3D Q2 default).
+  bool converges = false;
   /// These options with the default refinement resolved for a `dim`-dimensional mesh.
   ReferenceOptions resolved(int dim) const {
-    return {degree, refine >= 0 ? refine : dim == 2 ? 1 : 0, mesh, algebraic_share};
+    ReferenceOptions r = *this;
+    r.converges = refine < 0 && dim == 3 && degree == 2;
+    r.refine = refine >= 0 ? refine : dim == 2 ? 1 : 0;
+    return r;
+  }
+  /// These options at `level` refinements (nothing else changed).
+  ReferenceOptions at(int level) const {
+    ReferenceOptions r = *this;
+    r.refine = level;
+    return r;
   }
   /// The level beside the reference for its error estimate: one refinement coarser; on the
   /// unrefined mesh Q1 for Q2, and for Q1 itself one refinement finer.
   ReferenceOptions estimate() const {
-    if (refine > 0) return {degree, refine - 1, mesh, algebraic_share};
-    if (degree == 2) return {1, 0, mesh, algebraic_share};
-    return {1, 1, mesh, algebraic_share};
+    ReferenceOptions r = *this;
+    r.converges = false;
+    if (refine > 0) r.refine = refine - 1;
+    else if (degree == 2) r.degree = 1;
+    else r.refine = 1;
+    return r;
   }
   std::string describe() const;  ///< e.g. "FEM Q2, the agents' mesh refined 1 time"
 };

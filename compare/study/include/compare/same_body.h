@@ -58,7 +58,8 @@ std::vector<std::string> check_same_body(const workbench::CaseFile& file, const 
                                          const BodyShape& reference, const std::filesystem::path& reference_file);
 
 /// check_same_body of a comparison's agent study against its reference's mesh (`reference.mesh`,
-/// in the case's mesh.unit), when the reference is on a mesh of its own; returns its warnings.
+/// in the case's mesh.unit), when the reference is on a mesh of its own; returns its warnings. Refuses
+/// [compare.reference] tolerance in 2D (it applies to the 3D default).
 std::vector<std::string> check_reference_body(const workbench::CaseFile& file, const agent_study::AgentStudy& study,
                                               const schema::ReferenceOptions& reference);
 

@@ -114,6 +114,12 @@ class ColumnTransfer {
                                             const std::vector<double>& normal, double, const std::vector<EntryLoad>&) {
     return stress_components_with_shear(grid, normal, out.shear);
   }
+  /// sigma along the beam axis and the shear; not sigma along the load (the faces along the beam
+  /// axis carry nothing: 0, not modelled).
+  static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>& loads) {
+    const unsigned along_load = loads.empty() ? 0u : 1u << unsigned(axis_of(loads.front().dir));
+    return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
+  }
 
  private:
   Material material_;

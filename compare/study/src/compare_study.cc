@@ -100,11 +100,13 @@ std::vector<std::string> metric_names(const CompareOptions& options, const std::
 }
 
 AgentCompareInput agent_compare::read_input(const workbench::CaseFile& file, const CompareOptions& options) {
-  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
+  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}, {}, {}};
   const auto& grid = in.study.mesh.grid;
   in.reference = reference_options(options, in.study);
   in.warnings = check_reference_body(file, in.study, in.reference);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
+  const auto& study = in.study;
+  in.stress_model = agent::stress_model(grid, study.rules, study.coefficients, study.readings, study.loads);
   // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
   for (auto& l : load_lines(grid, in.loads, options.depths))
     if (l.body_samples.size() >= 2) in.lines.push_back(std::move(l));
@@ -420,17 +422,14 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   std::mutex log_lock;
   workbench::LineLog agent_log(log, log_lock), fem_log(log, log_lock);
   std::vector<agent_study::AgentState> states;
-  // The components the rule set models; with closed-form layers in its fields, the agents alone too.
-  const auto stress_model = agent::stress_model(grid, in.study.rules, in.study.coefficients, in.study.readings,
-                                                in.study.loads);
-  GridFields alone_fields;
+  GridFields alone_fields;  // with closed-form layers in the agents' fields, the agents alone
   double agent_seconds = 0;
   std::future<void> agent_run;
   if (fem_reference::mpi_rank() == 0)
     agent_run = std::async(std::launch::async, [&] {
       const auto t0 = std::chrono::steady_clock::now();
       states = run_agent(in.study, dir, agent_log);
-      if (stress_model.closed_forms) alone_fields = agents_alone(in.study);
+      if (in.stress_model.closed_forms) alone_fields = agents_alone(in.study);
       agent_seconds = seconds_since(t0);
       write_steps_csv(dir / "steps.csv", in.study, states);
       report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
@@ -478,8 +477,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
     for (std::size_t li = 0; li < in.lines.size(); ++li)
       add_scope(outcome, in.lines[li].name, samples[li], options.mask, grid.dim);
-    if (stress_model.closed_forms) add_agents_only(outcome, in, alone_fields, reference.fields, options.mask);
-    mark_unmodelled(outcome, stress_model, grid.dim);
+    if (in.stress_model.closed_forms) add_agents_only(outcome, in, alone_fields, reference.fields, options.mask);
+    mark_unmodelled(outcome, in.stress_model, grid.dim);
     add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
     outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
                                "|reactions + applied| / |applied| (FEM)"});

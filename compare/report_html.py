@@ -59,7 +59,8 @@ class Page:
         value = self.get(*path)
         text = {"num": number, "text": str, "list": lambda v: ", ".join(str(x) for x in v),
                 "pass": lambda v: "ok" if v else "EXCEEDED",
-                "flag": lambda v: path[-1].replace("_", " ")}[fmt](value)
+                "flag": lambda v: path[-1].replace("_", " "),
+                "modelled": lambda v: "modelled" if v else "not modelled"}[fmt](value)
         pointer = "".join("/" + str(p).replace("~", "~0").replace("/", "~1") for p in path)
         return Markup(f'<span data-key="{escape(pointer)}" data-format="{fmt}">{escape(text)}</span>')
 

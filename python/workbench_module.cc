@@ -280,11 +280,14 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
     auto file = c.open();
     return studies::run_compare_study(*file, output_dir, log).outcome;
   });
-  py::dict metrics, meanings, reference_errors;
+  py::dict metrics, meanings, reference_errors, agents_only;
+  py::list not_modelled;
   for (const auto& m : outcome.metrics) {
     metrics[py::str(m.name)] = m.value;
     meanings[py::str(m.name)] = m.meaning;
     if (!std::isnan(m.reference_error)) reference_errors[py::str(m.name)] = m.reference_error;
+    if (!std::isnan(m.agents_only)) agents_only[py::str(m.name)] = m.agents_only;
+    if (!m.modelled) not_modelled.append(m.name);
   }
   py::list failures;
   for (const auto& f : outcome.failures) failures.append(py::make_tuple(f.metric, f.value, f.limit));
@@ -292,6 +295,8 @@ py::dict run_compare(const Case& c, const fs::path& output_dir, const py::object
   r["metrics"] = metrics;
   r["meanings"] = meanings;
   r["reference_errors"] = reference_errors;  // the reference's own error, beside each error metric
+  r["agents_only"] = agents_only;            // the agents alone, beside each metric of closed-form layers
+  r["not_modelled"] = not_modelled;          // metrics of components the rule set does not model
   py::list warning_list;
   for (const auto& w : outcome.warnings) warning_list.append(w);
   r["warnings"] = warning_list;
@@ -591,7 +596,9 @@ PYBIND11_MODULE(workbench, m) {
         "Arguments: case (workbench.Case); output_dir (the output folder); progress (a callable given each "
         "progress line).\n\n"
         "Returns a dict: metrics (name: value, summary.json's names), meanings (name: text), reference_errors (name: "
-        "the reference's own error), warnings (list), gate_failures (list of (metric, value, limit)), gated (how "
+        "the reference's own error), agents_only (name: the same error of the agents alone, where the rule set adds "
+        "closed-form layers), not_modelled (list: the metrics of stress components the rule set does not model), "
+        "warnings (list), gate_failures (list of (metric, value, limit)), gated (how "
         "many limits were checked), and fields: the compared fields as arrays in the CSV files' row order, "
         "fields['cells'] (cells.csv: point, agent_sigma, fem_sigma, diff_sigma, ratio_sigma, masked, far, "
         "generation, agent_<field>, fem_<field>), fields['nodes'] (nodes.csv: box_coords, point, agent_u, fem_u, "

@@ -69,6 +69,12 @@ int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const 
   return with_rule_type(rules, readings, [&](auto type) { return decltype(type)::type::lateral_reach(grid, k); });
 }
 
+StressModel stress_model(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings,
+                         const std::vector<EntryLoad>& loads) {
+  check(rules != RuleSet::Auto, kAutoIsAStudyChoice);
+  return with_rule_type(rules, readings, [&](auto type) { return decltype(type)::type::stress_model(grid, k, loads); });
+}
+
 LoadTransfer::LoadTransfer(const Grid& grid, Material material, Coefficients k, RuleSet rules,
                            TransferReadings readings)
     : grid_(grid), material_(material), k_(k), rules_(rules), readings_(readings), gamma_(k.gamma_for(1.0)),

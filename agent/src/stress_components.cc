@@ -478,7 +478,7 @@ void add_balance_shear(const Lines& lines, const AxisPair& p, const double* slop
 
 /// The turning paths' components along (a, l) after the balance's shear (stress_components.h):
 /// in 2D each hole's shear, then the tie (horizontal equilibrium scanned along each run of l) and
-/// the bonded rigid face's layer.
+/// the bonded rigid face's layer; in 2D with k.closed_forms left out the tie alone.
 void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<double>& normal,
                        const DirectionalCoefficients& k, double nu_layer, StressComponents& out, Scratch& scratch) {
   const Grid& g = lines.g;
@@ -487,7 +487,9 @@ void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<
   const LateralAxes lat = lateral_axes(a);
   const double h_l = g.size[l];
   std::vector<double>& derivative = scratch.second;
-  if (dim == 2) {  // a hole's corners: the shear of the load going round it, before the tie reads it
+  // 2D: Kirsch's shear and the half-plane's layer are closed forms (k.closed_forms leaves them out)
+  const bool closed_forms = dim == 2 && k.closed_forms == ClosedForms::Added;
+  if (closed_forms) {  // a hole's corners: the shear of the load going round it, before the tie reads it
     const std::vector<double> holes = hole_shear(g, a, normal);
     for (std::size_t c = 0; c < n; ++c) out.shear[c] += holes[c];
   }
@@ -511,6 +513,7 @@ void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<
     for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
   });
   if (dim == 2) {
+    if (!closed_forms) return;  // the agents alone: no layer
     half_plane_layer(lines, a, l, p.exit_side, normal, nu_layer, scratch.second, scratch.first);
   } else {
     local_layer(lines, a, l, p.exit_side, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);

@@ -527,6 +527,18 @@ StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k,
   return model;
 }
 
+agent::StressModel stress_model(const AgentStudy& study) {
+  agent::StressModel model;
+  for (const auto r : agent::kRuleSets) {
+    std::vector<agent::EntryLoad> loads;
+    for (std::size_t k = 0; k < study.loads.size(); ++k)
+      if (study.load_rules[k] == r) loads.push_back(study.loads[k]);
+    if (!loads.empty())
+      model = model | agent::stress_model(study.mesh.grid, r, study.coefficients, study.readings, loads);
+  }
+  return model;
+}
+
 std::vector<AgentState> write_agent_outputs(const AgentStudy& study, const fs::path& dir, std::ostream& log) {
   auto model = transfer_model(study);
   const auto mesh = output_mesh(study);

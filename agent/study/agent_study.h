@@ -92,6 +92,10 @@ struct StudyModel {
 StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k, agent::RuleSet rules);
 inline StudyModel transfer_model(const AgentStudy& study) { return transfer_model(study, study.coefficients, study.rules); }
 
+/// The stress components the study's model models and whether its fields include a closed-form
+/// layer: its rule set's, under "auto" the union over the rule sets it chose (each under its loads).
+agent::StressModel stress_model(const AgentStudy& study);
+
 /// The magnitude of the load entering the body at `factor` [N]: the sum over the entry loads,
 /// pushes and pulls alike. At factor 1 (the full load) it is the relative threshold's base
 /// (Coefficients::gamma_for) at every load step.

@@ -155,7 +155,8 @@ def check_value(value, fmt, text):
         return None if abs(shown - value) <= 5e-4 * abs(value) + 1e-300 else f"shows {text}, JSON {value!r}"
     expected = {"text": lambda: str(value), "list": lambda: ", ".join(map(str, value)),
                 "pass": lambda: "ok" if value is True else "EXCEEDED" if value is False else None,
-                "flag": lambda: text if value is True else None}[fmt]()
+                "flag": lambda: text if value is True else None,
+                "modelled": lambda: "modelled" if value is True else "not modelled" if value is False else None}[fmt]()
     return None if expected == text else f"shows {text!r}, JSON {value!r}"
 
 
@@ -182,14 +183,19 @@ def required(data):
     keys += ["/gate/checked"]
     for name, m in data["metrics"].items():
         esc = name.replace("~", "~0").replace("/", "~1")
-        if "limit" in m:
-            keys += [f"/metrics/{esc}/value", f"/metrics/{esc}/limit", f"/metrics/{esc}/passed"]
+        if "limit" in m:  # a component the rule set does not model is not gated: no verdict
+            keys += [f"/metrics/{esc}/value", f"/metrics/{esc}/limit"]
+            keys += [f"/metrics/{esc}/passed" if "passed" in m else f"/metrics/{esc}/modelled"]
+        if m.get("modelled") is False:
+            keys.append(f"/metrics/{esc}/modelled")
         keys += [f"/metrics/{esc}/{k}" for k, v in m.items() if isinstance(v, bool) and k != "passed" and v]
     if data.get("model") == "agent":  # every compared field's errors, the threshold in effect
         keys += ["/unresolved_reference_error", "/agent/threshold/gamma_in_effect"]
         for scope in ("body", "far"):
             for f in data["fields"]:
                 keys += [f"/metrics/{scope}.{f}.rel_l2/value", f"/metrics/{scope}.{f}.rel_l2/reference_error"]
+                if "agents_only" in data["metrics"][f"{scope}.{f}.rel_l2"]:
+                    keys.append(f"/metrics/{scope}.{f}.rel_l2/agents_only")
         keys += ["/agent/applied", "/agent/rigid_reaction", "/agent/lost", "/agent/rule_set"]
         keys += [f"/agent/coefficients/{c}" for c in data["agent"]["coefficients_used"]]
         keys += [f"/loads/{i}/force" for i in range(len(data["loads"]))]

@@ -144,6 +144,10 @@ class Compare(unittest.TestCase):
         self.assertLess(m["agent.equilibrium_dev"], 0.02)
         self.assertLess(m["line_x100y197p5_x100y2p5.sigma_y.rel_l2"], 0.7)  # the line under the load
         self.assertGreater(r["reference_errors"]["body.sigma_y.rel_l2"], 0)  # the reference says how converged it is
+        # the conserving rule set computes no shear (marked, not scored as its error) and adds no closed form
+        self.assertIn("body.tau_xy.rel_l2", r["not_modelled"])
+        self.assertTrue(all(".tau_xy." in n for n in r["not_modelled"]), r["not_modelled"])
+        self.assertEqual(r["agents_only"], {})
 
     def check_fields_against_csv(self, r, out):
         """The fields workbench.compare returns are, row for row, what the same run wrote to its CSVs

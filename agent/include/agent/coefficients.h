@@ -47,6 +47,12 @@ constexpr const char* rule_set_name(RuleSet r) {
 enum class Paths { Turning, Mirror };
 inline constexpr const char* kPathNames[] = {"turning", "mirror"};
 
+/// Whether the directional rule set's 2D stresses include the closed-form layers (Kirsch's shear
+/// round a hole, the elastic half-plane's layer on a bonded base; docs/agent-model.md, "Agents
+/// against closed forms") or leave them out: the agents alone. Named in kClosedFormNames, in this order.
+enum class ClosedForms { Added, LeftOut };
+inline constexpr const char* kClosedFormNames[] = {"added", "left_out"};
+
 /// Coefficients of the directional rule set. The defaults are the calibrated ones
 /// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
 struct DirectionalCoefficients {
@@ -66,6 +72,7 @@ struct DirectionalCoefficients {
   /// Turning paths: Gaussian window [m] of the local quadratic fit that takes d/d(depth) of the
   /// shear for the tie scan (docs/research/stress-components.md)
   double window_length = 5e-3;
+  ClosedForms closed_forms = ClosedForms::Added;  ///< 2D turning paths: the closed-form layers added, or the agents alone
 };
 
 /// Which threshold a transfer drops loads by (docs/agent-model.md, "The threshold"): the seed's
@@ -200,7 +207,7 @@ inline constexpr unsigned kAllRules = kSeedRules | kDirectionalRules;
 
 /// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector
 /// (read a row by name: coefficient_index, find_coefficient).
-inline constexpr std::array<CoefficientSpec, 15> kCoefficients{{
+inline constexpr std::array<CoefficientSpec, 16> kCoefficients{{
     row("alpha1", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)")
         .read_by(rule_bit(RuleSet::Patent)).range(0, 1).fit(0.0, 1.0)
         .value([](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }),
@@ -258,6 +265,10 @@ inline constexpr std::array<CoefficientSpec, 15> kCoefficients{{
         .read_by(kDirectionalRules).named(kPathNames, 2)
         .value([](const Coefficients& k) { return double(k.directional.paths); },
                [](Coefficients& k, double v) { k.directional.paths = Paths(int(v)); }),
+    row("closed_forms", "2D turning paths: \"added\" (Kirsch's shear round a hole, the half-plane's layer on a bonded base) or \"left_out\" (the agents alone)")
+        .read_by(kDirectionalRules).named(kClosedFormNames, 2)
+        .value([](const Coefficients& k) { return double(k.directional.closed_forms); },
+               [](Coefficients& k, double v) { k.directional.closed_forms = ClosedForms(int(v)); }),
 }};
 
 /// The place of the row named `name` in kCoefficients; throws std::invalid_argument for an unknown

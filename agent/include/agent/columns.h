@@ -124,6 +124,15 @@ class ColumnTransfer {
                                             const std::vector<double>& normal, double, const std::vector<EntryLoad>&) {
     return stress_components_with_shear(grid, normal, out.shear);
   }
+  /// sigma along the beam axis and the shear; not sigma along the load (the faces along the beam
+  /// axis carry nothing: 0, not modelled).
+  /// sigma along the beam axis and the shear in the beam-load plane (2D: every component but sigma_t).
+  static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>& loads) {
+    const unsigned along_load = loads.empty() ? 0u : 1u << unsigned(axis_of(loads.front().dir));
+    if (grid.dim == 2 || loads.empty()) return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
+    const ColumnPlan plan = plan_columns(grid, loads);
+    return {(1u << unsigned(plan.axis)) | (1u << unsigned(workbench::kXY + shear_pair(plan.axis, plan.across))), false};
+  }
 
  private:
   Material material_;

@@ -83,6 +83,10 @@ class CyclicTransfer {
                                             double, const std::vector<EntryLoad>&) {
     return normal_stress_components(grid, normal);
   }
+  /// It models the normal stresses; its shears are not computed (0: not modelled).
+  static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>&) {
+    return {normal_stress_bits(grid.dim), false};
+  }
 
  private:
   Material material_;

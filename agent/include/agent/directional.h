@@ -60,6 +60,13 @@ class DirectionalTransfer {
                                      double poisson, const std::vector<EntryLoad>& loads) const {
     return directional_stress_components(grid, normal, out.shear, out.balance, k_.directional, poisson, loads);
   }
+  /// Every component; in 2D with turning paths and closed_forms "added" the fields include the
+  /// closed-form layers (Kirsch's shear round a hole, the half-plane's layer on a bonded base).
+  static StressModel stress_model(const Grid& grid, const Coefficients& k, const std::vector<EntryLoad>&) {
+    const auto& d = k.directional;
+    return {normal_stress_bits(grid.dim) | shear_bits(grid.dim),
+            grid.dim == 2 && d.paths == Paths::Turning && d.closed_forms == ClosedForms::Added};
+  }
 
  private:
   Coefficients k_;

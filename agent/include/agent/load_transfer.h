@@ -56,6 +56,12 @@ decltype(auto) with_rule_type(RuleSet rules, const TransferReadings& readings, F
 /// RuleSet::Auto has none of its own (std::invalid_argument): ask the rule set it chose.
 int lateral_reach(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings = {});
 
+/// Which stress components the rule set's rule type models under `loads`, and whether its fields
+/// include a closed-form layer (its rule type's stress_model; agent/stress_components.h). Auto:
+/// std::invalid_argument (agent_study::stress_model unites the rule sets it chose).
+StressModel stress_model(const Grid& grid, RuleSet rules, const Coefficients& k, const TransferReadings& readings,
+                         const std::vector<EntryLoad>& loads);
+
 class LoadTransfer {
  public:
   /// Throws std::invalid_argument for a grid that is not set up, a material or coefficients

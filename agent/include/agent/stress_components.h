@@ -22,6 +22,25 @@ struct StressComponents {
 /// The shears in a slot of StressComponents::shear: 1 in 2D, 3 in 3D.
 constexpr int shear_count(int dim) { return dim == 3 ? 3 : 1; }
 
+/// What a rule type's stress components are (each rule type's static stress_model): which
+/// components it models, and whether its fields include a closed-form layer. A component it does
+/// not model (the columns' sigma across the beam, the seed's shears) is written as it is (0), but
+/// a comparison marks it "not modelled" rather than scoring it as the model's error. A rule set
+/// that combines rule types models the union of theirs (operator|).
+struct StressModel {
+  /// Bit workbench::kXX + i per normal stress, kXY + i per shear (workbench/symmetric_tensor.h order).
+  unsigned modelled = 0;
+  /// Its fields include a closed-form layer (2D directional, turning paths: Kirsch's shear round a
+  /// hole, the half-plane's layer on a bonded base), left out by closed_forms = "left_out".
+  bool closed_forms = false;
+  /// Whether stress slot `slot` (a workbench::SymmetricTensor component) is the model's own.
+  constexpr bool models(int slot) const { return (modelled >> unsigned(slot)) & 1u; }
+  constexpr StressModel operator|(const StressModel& o) const { return {modelled | o.modelled, closed_forms || o.closed_forms}; }
+};
+/// The bits of the normal stresses and of the shears of a `dim`-D grid.
+constexpr unsigned normal_stress_bits(int dim) { return dim == 3 ? 0b000111u : 0b000011u; }
+constexpr unsigned shear_bits(int dim) { return dim == 3 ? 0b111000u : 0b001000u; }
+
 /// The normal stresses alone (`normal`: agent_stresses', dim per slot), no shear: the seed's rule sets.
 StressComponents normal_stress_components(const Grid& grid, const std::vector<double>& normal);
 /// The normal stresses and a shear the transfer wrote (shear_count per slot): the columns rule set.

@@ -36,6 +36,10 @@ class LayerSweep {
                                             double, const std::vector<EntryLoad>&) {
     return normal_stress_components(grid, normal);
   }
+  /// It models the normal stresses; its shears are not computed (0: not modelled).
+  static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>&) {
+    return {normal_stress_bits(grid.dim), false};
+  }
 
   /// Lateral positions of a layer (u along l0, v along l1: agent::lateral_axes), inclusive.
   struct Box {

@@ -30,6 +30,8 @@ struct AgentCompareInput {
   ReferenceOptions reference;  ///< resolved for the mesh's dimension
   /// The same-body check's, said before the run and kept in summary.json.
   std::vector<std::string> warnings;
+  /// The stress components the rule set models, whether its fields include closed-form layers.
+  agent::StressModel stress_model;
 };
 
 /// Step 1: reads and checks the case (`options` already read): the study, its FEM problem, the

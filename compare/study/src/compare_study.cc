@@ -26,6 +26,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -99,11 +100,13 @@ std::vector<std::string> metric_names(const CompareOptions& options, const std::
 }
 
 AgentCompareInput agent_compare::read_input(const workbench::CaseFile& file, const CompareOptions& options) {
-  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}};
+  AgentCompareInput in{agent_study::load_agent_study(file), fem_reference::problem_from_case(file), {}, {}, {}, 0, {}, {}, {}};
   const auto& grid = in.study.mesh.grid;
   in.reference = reference_options(options, in.study);
   in.warnings = check_reference_body(file, in.study, in.reference);
   in.loads = load_frames(in.study.mesh, in.study.setup.loads);
+  const auto& study = in.study;
+  in.stress_model = agent_study::stress_model(study);
   // A line stops at air: one through no agents says nothing and is left out, or refused if the user drew it.
   for (auto& l : load_lines(grid, in.loads, options.depths))
     if (l.body_samples.size() >= 2) in.lines.push_back(std::move(l));
@@ -176,6 +179,45 @@ void add_scope(CompareOutcome& out, const std::string& scope, const ScopeSamples
     out.metrics.push_back({name + ".ratio_median_dev", std::abs(r.median - 1.0), "|median(agent / FEM) - 1|"});
     out.metrics.push_back({name + ".masked_fraction", double(r.masked_count) / double(std::max<std::size_t>(1, r.ratio.size())),
                            "share of entries where |FEM| < mask * max |FEM|"});
+  }
+}
+
+/// The agents alone at the full load (docs/compare.md, "Agents against closed forms"): the study's
+/// model with agent.closed_forms = "left_out", solved again; its fields on the grid.
+GridFields agents_alone(const agent_study::AgentStudy& study) {
+  auto k = study.coefficients;
+  k.directional.closed_forms = agent::ClosedForms::LeftOut;
+  auto model = agent_study::transfer_model(study, k, study.rules);
+  return agent_on_grid(study.mesh.grid, agent_study::evaluate(study, model, 1.0));
+}
+
+/// Step 7b: each field metric's agents_only, the same error of the agents alone (`alone`) against
+/// the reference, in every scope.
+void add_agents_only(CompareOutcome& out, const AgentCompareInput& in, const GridFields& alone,
+                     const GridFields& reference, double mask) {
+  const auto& grid = in.study.mesh.grid;
+  CompareOutcome apart;
+  const Sources sources{&alone, &reference, &reference};  // (add_scope reads an estimate: its errors unused)
+  add_field_scopes(apart, in, sources, mask);
+  for (const auto& line : in.lines) {
+    ScopeSamples s;
+    sample_line(grid, line, sources, s);
+    add_scope(apart, line.name, s, mask, grid.dim);
+  }
+  std::map<std::string, double> value;
+  for (const auto& m : apart.metrics) value[m.name] = m.value;
+  for (auto& m : out.metrics)
+    if (const auto it = value.find(m.name); it != value.end()) m.agents_only = it->second;
+}
+
+/// Step 7c: every metric of a stress component the rule set does not model (agent::StressModel)
+/// marked modelled = false, in every scope.
+void mark_unmodelled(CompareOutcome& out, const agent::StressModel& model, int dim) {
+  for (const auto& f : kFields) {
+    if (!f.in(dim) || f.per_node || f.slot >= kVonMises || model.models(f.slot)) continue;
+    const std::string middle = std::string(".") + f.name + ".";
+    for (auto& m : out.metrics)
+      if (m.name.find(middle) != std::string::npos) m.modelled = false;
   }
 }
 
@@ -382,12 +424,14 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
   std::mutex log_lock;
   workbench::LineLog agent_log(log, log_lock), fem_log(log, log_lock);
   std::vector<agent_study::AgentState> states;
+  GridFields alone_fields;  // with closed-form layers in the agents' fields, the agents alone
   double agent_seconds = 0;
   std::future<void> agent_run;
   if (fem_reference::mpi_rank() == 0)
     agent_run = std::async(std::launch::async, [&] {
       const auto t0 = std::chrono::steady_clock::now();
       states = run_agent(in.study, dir, agent_log);
+      if (in.stress_model.closed_forms) alone_fields = agents_alone(in.study);
       agent_seconds = seconds_since(t0);
       write_steps_csv(dir / "steps.csv", in.study, states);
       report::write_text(dir / "lines.json", lines_json(in.lines).dump(1) + "\n");
@@ -436,6 +480,8 @@ CompareOutcome run_agent_compare(const workbench::CaseFile& file, const CompareO
     add_field_scopes(outcome, in, {&agent_fields, &reference.fields, &reference.estimate_fields, staircase}, options.mask);
     for (std::size_t li = 0; li < in.lines.size(); ++li)
       add_scope(outcome, in.lines[li].name, samples[li], options.mask, grid.dim);
+    if (in.stress_model.closed_forms) add_agents_only(outcome, in, alone_fields, reference.fields, options.mask);
+    mark_unmodelled(outcome, in.stress_model, grid.dim);
     add_load_balance(outcome, agent_state.diagnostics, options.min_reaction_share, grid.agent_count());
     outcome.metrics.push_back({"fem.equilibrium_dev", report::fem_equilibrium_dev(reference.fem),
                                "|reactions + applied| / |applied| (FEM)"});

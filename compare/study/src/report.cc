@@ -82,8 +82,15 @@ bool unresolved(const Metric& m) {
   return is_rel_l2(m) && std::isfinite(m.reference_error) && m.reference_error >= kUnresolvedReferenceError;
 }
 
-/// Flagged "worse than zero" in the summaries: a resolved field the model predicts no better than 0.
-bool flagged_worse(const Metric& m) { return worse_than_zero(m) && !unresolved(m); }
+/// Flagged "worse than zero" in the summaries: a resolved field the model predicts no better than 0
+/// (a component the rule set does not model is not its error).
+bool flagged_worse(const Metric& m) { return m.modelled && worse_than_zero(m) && !unresolved(m); }
+
+/// The field of a metric's name ("far.sigma_y.rel_l2": "sigma_y"; a line's scope too).
+std::string field_of(const std::string& name) {
+  const auto last = name.rfind('.'), before = name.rfind('.', last - 1);
+  return name.substr(before + 1, last - before - 1);
+}
 
 }  // namespace
 
@@ -112,6 +119,56 @@ double fem_equilibrium_dev(const fem_reference::FemResult& fem) {
   return std::sqrt(imbalance / applied);
 }
 
+namespace {
+
+/// junit.xml: one test case per gated metric, a <failure> for each one over its limit, <skipped>
+/// for a metric of a component the rule set does not model.
+void write_junit(const fs::path& file, const std::string& case_name, const std::map<std::string, double>& gate,
+                 const std::vector<std::string>& better_than_zero, const CompareOutcome& outcome) {
+  std::ostringstream junit;
+  junit.precision(12);
+  // a gated metric of a component the rule set does not model is a skipped test case
+  std::size_t skipped = 0;
+  for (const auto& m : outcome.metrics)
+    if (!m.modelled)
+      skipped += gate.count(m.name) + (is_rel_l2(m) ? std::size_t(std::count(better_than_zero.begin(), better_than_zero.end(),
+                                                                              m.name.substr(0, m.name.size() - 7)))
+                                                    : 0);
+  junit << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n  <testsuite name=\"compare."
+        << xml_escape(case_name) << "\" tests=\"" << outcome.gated + skipped << "\" failures=\"" << outcome.failures.size()
+        << (skipped ? "\" skipped=\"" + std::to_string(skipped) : std::string()) << "\">\n";
+  for (const auto& [name, limit] : gate) {
+    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(), [&](const Metric& x) { return x.name == name; });
+    if (m == outcome.metrics.end()) throw Error("compare: gated metric " + name + " was not computed");
+    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(name) << "\">";
+    if (!m->modelled)
+      junit << "<skipped message=\"not modelled by the rule set\"/>";
+    else if (!(m->value <= limit))
+      junit << "<failure message=\"" << xml_escape(name) << " = " << m->value << " exceeds " << limit << " by "
+            << m->value - limit << "\"/>";
+    junit << "</testcase>\n";
+  }
+  for (const auto& field : better_than_zero) {
+    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
+                                [&](const Metric& x) { return x.name == field + ".rel_l2"; });
+    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(field) << ".better_than_zero\">";
+    if (!m->modelled)
+      junit << "<skipped message=\"not modelled by the rule set\"/>";
+    else if (worse_than_zero(*m))
+      junit << "<failure message=\"" << xml_escape(m->name) << " = " << m->value
+            << " is not below the zero model's " << kZeroModelRelL2 << ": worse than predicting zero\"/>";
+    junit << "</testcase>\n";
+  }
+  for (const auto& f : outcome.failures)
+    if (!f.refused.empty())
+      junit << "    <testcase classname=\"compare\" name=\"carry_check\"><failure message=\"" << xml_escape(f.describe())
+            << "\"/></testcase>\n";
+  junit << "  </testsuite>\n</testsuites>\n";
+  write_text(file, junit.str());
+}
+
+}  // namespace
+
 void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
             const std::map<std::string, double>& gate, const std::vector<std::string>& notes, CompareOutcome& outcome,
             std::ostream& log, const std::vector<std::string>& better_than_zero, BackgroundFigures* figures) {
@@ -127,7 +184,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   outcome.failures.clear();
   for (const auto& m : outcome.metrics) {
     auto it = gate.find(m.name);
-    if (it == gate.end()) continue;
+    if (it == gate.end() || !m.modelled) continue;  // a component the rule set does not model is not gated
     ++outcome.gated;
     if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second});
   }
@@ -135,6 +192,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
                                 [&](const Metric& x) { return x.name == field + ".rel_l2"; });
     if (m == outcome.metrics.end()) throw Error("compare: field " + field + " was not compared");
+    if (!m->modelled) continue;
     ++outcome.gated;
     if (worse_than_zero(*m)) outcome.failures.push_back({m->name, m->value, kZeroModelRelL2, true});
   }
@@ -148,8 +206,9 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     }
   // A field the model predicts no better than zero is said so, in the body and the far field.
   // A field the reference does not resolve in a scope is not judged, and the summary says which.
-  std::string worse, not_judged;
+  std::string worse, not_judged, not_modelled;
   for (const auto& m : outcome.metrics) {
+    if (!m.modelled && is_rel_l2(m) && m.name.rfind("far.", 0) == 0) not_modelled += (not_modelled.empty() ? "" : ", ") + field_of(m.name);
     if (flagged_worse(m) && (m.name.rfind("body.", 0) == 0 || m.name.rfind("far.", 0) == 0))
       worse += (worse.empty() ? "" : ", ") + m.name.substr(0, m.name.size() - 7);
     if (unresolved(m)) not_judged += (not_judged.empty() ? "" : ", ") + m.name.substr(0, m.name.size() - 7);
@@ -157,6 +216,9 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   if (!worse.empty())
     outcome.warnings.push_back("worse than predicting zero (relative L2 error >= 1, the zero model's): " + worse);
   std::vector<std::string> all_notes = notes;
+  if (!not_modelled.empty())
+    all_notes.push_back("not modelled by the rule set (written as 0; scored, but not judged against the zero model "
+                        "nor gated): " + not_modelled);
   if (!not_judged.empty())
     all_notes.push_back("not judged against the zero model (the reference's own error >= " +
                         [] { std::ostringstream v; v << kUnresolvedReferenceError; return v.str(); }() +
@@ -167,6 +229,8 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     nlohmann::json entry{{"value", m.value}, {"meaning", m.meaning}};
     if (std::isfinite(m.reference_error)) entry["reference_error"] = m.reference_error;
     if (std::isfinite(m.staircase_error)) entry["staircase_error"] = m.staircase_error;
+    if (std::isfinite(m.agents_only)) entry["agents_only"] = m.agents_only;
+    if (!m.modelled) entry["modelled"] = false;
     if (m.name.size() > 7 && m.name.compare(m.name.size() - 7, 7, ".rel_l2") == 0) {
       entry["zero_model"] = kZeroModelRelL2;
       entry["worse_than_zero"] = flagged_worse(m);
@@ -174,7 +238,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     }
     if (auto it = gate.find(m.name); it != gate.end()) {
       entry["limit"] = it->second;
-      entry["passed"] = m.value <= it->second;
+      if (m.modelled) entry["passed"] = m.value <= it->second;
     }
     json["metrics"][m.name] = entry;
   }
@@ -199,8 +263,10 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (std::isfinite(m.reference_error)) table << m.reference_error;
     else table << "";
     if (auto it = gate.find(m.name); it != gate.end())
-      table << std::setw(12) << it->second << (m.value <= it->second ? "  ok" : "  EXCEEDED");
+      table << std::setw(12) << it->second << (!m.modelled ? "  not gated" : m.value <= it->second ? "  ok" : "  EXCEEDED");
     if (std::isfinite(m.staircase_error)) table << "  staircase_error " << m.staircase_error;
+    if (std::isfinite(m.agents_only)) table << "  agents_only " << m.agents_only;
+    if (!m.modelled) table << "  NOT MODELLED";
     if (flagged_worse(m)) table << "  WORSE THAN ZERO";
     if (unresolved(m)) table << "  NOT RESOLVED BY THE REFERENCE";
     table << "\n";
@@ -208,35 +274,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
   write_text(dir / "summary.txt", table.str());
   log << table.str();
 
-  std::ostringstream junit;
-  junit.precision(12);
-  junit << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n  <testsuite name=\"compare."
-        << xml_escape(case_name) << "\" tests=\"" << outcome.gated << "\" failures=\"" << outcome.failures.size()
-        << "\">\n";
-  for (const auto& [name, limit] : gate) {
-    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(), [&](const Metric& x) { return x.name == name; });
-    if (m == outcome.metrics.end()) throw Error("compare: gated metric " + name + " was not computed");
-    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(name) << "\">";
-    if (!(m->value <= limit))
-      junit << "<failure message=\"" << xml_escape(name) << " = " << m->value << " exceeds " << limit << " by "
-            << m->value - limit << "\"/>";
-    junit << "</testcase>\n";
-  }
-  for (const auto& field : better_than_zero) {
-    const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
-                                [&](const Metric& x) { return x.name == field + ".rel_l2"; });
-    junit << "    <testcase classname=\"compare\" name=\"" << xml_escape(field) << ".better_than_zero\">";
-    if (worse_than_zero(*m))
-      junit << "<failure message=\"" << xml_escape(m->name) << " = " << m->value
-            << " is not below the zero model's " << kZeroModelRelL2 << ": worse than predicting zero\"/>";
-    junit << "</testcase>\n";
-  }
-  for (const auto& f : outcome.failures)
-    if (!f.refused.empty())
-      junit << "    <testcase classname=\"compare\" name=\"carry_check\"><failure message=\"" << xml_escape(f.describe())
-            << "\"/></testcase>\n";
-  junit << "  </testsuite>\n</testsuites>\n";
-  write_text(dir / "junit.xml", junit.str());
+  write_junit(dir / "junit.xml", case_name, gate, better_than_zero, outcome);
   if (figures) figures->render_report(log);
   else render_html(dir, log);
 }

@@ -30,6 +30,12 @@ struct Metric {
   /// Beside a reference on the true geometry ([compare.reference] mesh): the same error of FEM on
   /// the agents' own staircase mesh against it, the staircase's own share. NaN otherwise.
   double staircase_error = std::numeric_limits<double>::quiet_NaN();
+  /// Where the agents' fields include a closed-form layer (agent::StressModel::closed_forms): the
+  /// same error of the agents alone (agent.closed_forms = "left_out") against the reference. NaN otherwise.
+  double agents_only = std::numeric_limits<double>::quiet_NaN();
+  /// False for a metric of a stress component the rule set does not model (agent::StressModel):
+  /// scored, but neither flagged worse than zero nor gated (docs/compare.md, "Not modelled").
+  bool modelled = true;
 };
 
 /// The names of the metrics a study with these options produces (for checking the gate's keys):

@@ -131,7 +131,8 @@ class ColumnTransfer {
     const unsigned along_load = loads.empty() ? 0u : 1u << unsigned(axis_of(loads.front().dir));
     if (grid.dim == 2 || loads.empty()) return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
     const ColumnPlan plan = plan_columns(grid, loads);
-    return {(1u << unsigned(plan.axis)) | (1u << unsigned(workbench::kXY + shear_pair(plan.axis, plan.across))), false};
+    const unsigned first_shear = shear_bits(2);  // tau_xy's bit; the 3D shears follow in shear_pair order
+    return {(1u << unsigned(plan.axis)) | (first_shear << unsigned(shear_pair(plan.axis, plan.across))), false};
   }
 
  private:

@@ -91,6 +91,11 @@ TEST(AutoRuleSet, ChoosesIn3D) {
   const auto sa = solved(a), sc = solved(c);
   EXPECT_EQ(flat(sa.stress), flat(sc.stress));
   EXPECT_EQ(sa.diagnostics.rigid_reaction, 2.0);
+  // The slabs model sigma_x and tau_xy only: the rest is marked not modelled by a comparison.
+  const auto m = agent_study::stress_model(a);
+  for (int slot = 0; slot < workbench::kVoigtCount; ++slot)
+    EXPECT_EQ(m.models(slot), slot == workbench::kXX || slot == workbench::kXY) << slot;
+  EXPECT_FALSE(m.closed_forms);
   const std::string block = "[mesh]\nfile = \"" + kMeshes + "block3d.geo\"\n[mesh.parameters]\nh = 0.005\nlw = 0.01\n"
                             "[boundary]\nrigid = [\"base\"]\n[[load]]\ngroup = \"load\"\nforce = 2.0\n";
   EXPECT_TRUE(all_are(study_of("block.toml", block).load_rules, RuleSet::Directional));
@@ -150,6 +155,11 @@ TEST(InclinedLoad, UnderAutoIsTheSumOfItsComponentsEachCarriedByItsRuleSet) {
   for (std::size_t i = 0; i < st.displacement.size(); ++i)
     ASSERT_NEAR(st.displacement[i], sy.displacement[i] + sx.displacement[i], 1e-12 * 1e-6) << i;
   EXPECT_NEAR(st.diagnostics.applied, 2.8, 1e-12);  // magnitudes: 1.2 + 1.6
+  // Its stress model is the union: the march models every component and adds the closed forms.
+  const auto m = agent_study::stress_model(s);
+  for (int slot : {workbench::kXX, workbench::kYY, workbench::kXY}) EXPECT_TRUE(m.models(slot)) << slot;
+  EXPECT_TRUE(m.closed_forms);
+  EXPECT_FALSE(agent_study::stress_model(x).models(workbench::kXX));  // the columns alone: sigma_t = sigma_x
   EXPECT_NEAR(st.diagnostics.rigid_reaction / st.diagnostics.applied, 1.0, 1e-6);
 }
 

@@ -501,21 +501,37 @@ void bind_objective(py::module_& m) {
           py::arg("coefficients"), "Returns each case's relative errors (as above) at named coefficients");
 }
 
-}  // namespace
-
-PYBIND11_MODULE(workbench, m) {
-  m.doc() = "The deformation-model workbench from Python: agent model, FEM reference, comparison, calibration, "
-            "PBD model (docs/python.md)";
-  // Every call returns numpy arrays: without numpy, say so now, before any study runs and writes.
-  try {
-    py::module_::import("numpy");
-  } catch (py::error_already_set& e) {
-    throw py::import_error(std::string("workbench needs numpy, which this Python cannot import (") + e.what() +
-                           "): install Debian's python3-numpy, or use /usr/bin/python3 (docs/python.md)");
+/// workbench.coefficients(): every row of agent::kCoefficients as a dict.
+py::list coefficient_table() {
+  py::list out;
+  for (const auto& c : agent::kCoefficients) {
+    py::dict d;
+    d["name"] = c.name;
+    d["unit"] = c.unit;
+    d["meaning"] = c.meaning;
+    py::list rules;
+    for (agent::RuleSet r : agent::kRuleSets)
+      if (c.used_by(r)) rules.append(agent::rule_set_name(r));
+    d["rule_sets"] = rules;
+    d["default"] = c.default_value();
+    d["min"] = c.min;
+    d["max"] = c.max;
+    d["min_open"] = c.min_open;
+    d["max_open"] = c.max_open;
+    d["integer"] = c.integer;
+    d["fitted"] = c.fitted;
+    d["fit_min"] = c.fit_min;
+    d["fit_max"] = c.fit_max;
+    py::list choices;  // a named choice's names (its value is the index); empty for a number
+    for (int i = 0; i < c.choice_count; ++i) choices.append(c.choices[i]);
+    d["choices"] = choices;
+    out.append(d);
   }
-  py::register_exception<workbench::Error>(m, "Error", PyExc_RuntimeError);
-  fem_reference::configure_singleton_mpi();  // as the command line does: the same start-up, a session folder of its own
+  return out;
+}
 
+/// workbench.Case: a case file or a dict of tables.
+void bind_case(py::module_& m) {
   py::class_<Case>(m, "Case", "A study's case: a case file, or a dict with the same tables (docs/case-file.md)")
       .def(py::init([](const fs::path& path) {
              Case c{path, {}};
@@ -541,38 +557,20 @@ PYBIND11_MODULE(workbench, m) {
         std::ifstream in(c.path);
         return std::string(std::istreambuf_iterator<char>(in), {});
       }, "The case as TOML text");
+}
 
-  m.def("coefficients", [] {
-    py::list out;
-    for (const auto& c : agent::kCoefficients) {
-      py::dict d;
-      d["name"] = c.name;
-      d["unit"] = c.unit;
-      d["meaning"] = c.meaning;
-      py::list rules;
-      for (agent::RuleSet r : agent::kRuleSets)
-        if (c.used_by(r)) rules.append(agent::rule_set_name(r));
-      d["rule_sets"] = rules;
-      d["default"] = c.default_value();
-      d["min"] = c.min;
-      d["max"] = c.max;
-      d["min_open"] = c.min_open;
-      d["max_open"] = c.max_open;
-      d["integer"] = c.integer;
-      d["fitted"] = c.fitted;
-      d["fit_min"] = c.fit_min;
-      d["fit_max"] = c.fit_max;
-      py::list choices;  // a named choice's names (its value is the index); empty for a number
-      for (int i = 0; i < c.choice_count; ++i) choices.append(c.choices[i]);
-      d["choices"] = choices;
-      out.append(d);
-    }
-    return out;
-  }, "The table of the agent model's coefficients (agent/coefficients.h): name, unit, meaning, the rule sets "
-     "that use it, default, admissible range, whether a calibration fits it and its default bounds.");
+/// The tables the module reads its names from: coefficients, agent fields.
+void bind_tables(py::module_& m) {
+  m.def("coefficients", &coefficient_table,
+        "The table of the agent model's coefficients (agent/coefficients.h): name, unit, meaning, the rule sets "
+        "that use it, default, admissible range, whether a calibration fits it and its default bounds.");
   m.def("agent_fields", &workbench_python::state_fields_list,
         "The table of the agent model's fields (agent/state.h): name, unit, place, the columns per dimension, the "
         "VTU layout and the compared fields (compare::kFields) each gives.");
+}
+
+/// The studies, one per subcommand of the command line.
+void bind_studies(py::module_& m) {
   // Each call's docstring: its arguments, then every key of what it returns (docs/python.md has the table).
   m.def("run_agent", &run_agent, py::arg("case"), py::arg("output_dir") = py::none(), py::arg("load_factor") = 1.0,
         py::arg("progress") = py::none(),
@@ -643,6 +641,25 @@ PYBIND11_MODULE(workbench, m) {
         "Arguments: case (workbench.Case); progress (a callable given each progress line).\n\n"
         "Returns a dict: positions [m] (written frames x nodes x 3), times [s] (per written frame), "
         "rest_positions [m] (nodes x 3), pinned (node ids).");
+}
 
+}  // namespace
+
+PYBIND11_MODULE(workbench, m) {
+  m.doc() = "The deformation-model workbench from Python: agent model, FEM reference, comparison, calibration, "
+            "PBD model (docs/python.md)";
+  // Every call returns numpy arrays: without numpy, say so now, before any study runs and writes.
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    throw py::import_error(std::string("workbench needs numpy, which this Python cannot import (") + e.what() +
+                           "): install Debian's python3-numpy, or use /usr/bin/python3 (docs/python.md)");
+  }
+  py::register_exception<workbench::Error>(m, "Error", PyExc_RuntimeError);
+  fem_reference::configure_singleton_mpi();  // as the command line does: the same start-up, a session folder of its own
+
+  bind_case(m);
+  bind_tables(m);
+  bind_studies(m);
   bind_objective(m);
 }

@@ -208,16 +208,34 @@ void check_readings_fit_loads(const AgentStudy& study, const workbench::CaseTabl
 
 namespace {
 
+/// Per entry load of `study`, the rule set `carry` gives its load and marching direction.
+std::vector<agent::RuleSet> rules_per_entry_load(const AgentStudy& study, const std::vector<LoadCarry>& carry) {
+  std::vector<agent::RuleSet> out(study.loads.size(), study.rules);
+  for (const auto& c : carry)
+    for (std::size_t k = 0; k < study.loads.size(); ++k)
+      if (study.load_of[k] == c.load && study.loads[k].dir == c.inward) out[k] = c.rules;
+  return out;
+}
+
 /// Under "auto": each load's rule set (carry_check); a load no rule set carries is refused.
 void choose_rule_sets(AgentStudy& study) {
-  for (const auto& c : carry_check(study)) {
+  const auto carry = carry_check(study);
+  for (const auto& c : carry) {
     if (c.refused())
       throw Error(study.case_file.string() + ": " + study.setup.loads[c.load].key() +
                   ": no rule set carries it (agent.rule_set = \"auto\"): " + c.why);
-    for (std::size_t k = 0; k < study.loads.size(); ++k)
-      if (study.load_of[k] == c.load && study.loads[k].dir == c.inward) study.load_rules[k] = c.rules;
     study.choices.push_back(c.describe(study));
   }
+  study.load_rules = rules_per_entry_load(study, carry);
+}
+
+/// The entry loads whose rule set is `r` (`rules`: per entry load).
+std::vector<agent::EntryLoad> loads_carried_by(const AgentStudy& study, const std::vector<agent::RuleSet>& rules,
+                                               agent::RuleSet r) {
+  std::vector<agent::EntryLoad> out;
+  for (std::size_t k = 0; k < study.loads.size(); ++k)
+    if (rules[k] == r) out.push_back(study.loads[k]);
+  return out;
 }
 
 }  // namespace
@@ -313,12 +331,9 @@ AgentState evaluate(const AgentStudy& study, StudyModel& model, double factor) {
   try {
     if (model.parts.size() == 1) return agent::solve_state(model.parts[0], study.loads, study.readings, factor);
     AgentState total;
-    for (auto& part : model.parts) {
-      std::vector<agent::EntryLoad> loads;
-      for (std::size_t k = 0; k < study.loads.size(); ++k)
-        if (model.load_rules[k] == part.rules()) loads.push_back(study.loads[k]);
-      agent::superpose(total, agent::solve_state(part, loads, study.readings, factor));
-    }
+    for (auto& part : model.parts)
+      agent::superpose(total, agent::solve_state(part, loads_carried_by(study, model.load_rules, part.rules()),
+                                                 study.readings, factor));
     return total;
   } catch (const agent::CyclicCapReached& e) {  // the case's coefficients, not a bug: bad input
     throw TransferDidNotEnd(study.case_file.string() + ": agent.gamma: " + e.what() +
@@ -516,11 +531,9 @@ StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k,
     return model;
   }
   agent::check_coefficients(k, rules);  // auto's, whichever rule sets its loads take
-  model.load_rules = study.load_rules;
-  if (study.rules != agent::RuleSet::Auto)  // a calibration of "auto" on a case that names another rule set
-    for (const auto& c : carry_check(study, rules))
-      for (std::size_t i = 0; i < study.loads.size(); ++i)
-        if (study.load_of[i] == c.load && study.loads[i].dir == c.inward) model.load_rules[i] = c.rules;
+  // A calibration of "auto" on a case that names another rule set chooses as the case would have.
+  model.load_rules = study.rules == agent::RuleSet::Auto ? study.load_rules
+                                                         : rules_per_entry_load(study, carry_check(study, rules));
   for (const auto r : agent::kRuleSets)
     if (std::find(model.load_rules.begin(), model.load_rules.end(), r) != model.load_rules.end())
       model.parts.emplace_back(study.mesh.grid, material, k, r, study.readings);
@@ -530,9 +543,7 @@ StudyModel transfer_model(const AgentStudy& study, const agent::Coefficients& k,
 agent::StressModel stress_model(const AgentStudy& study) {
   agent::StressModel model;
   for (const auto r : agent::kRuleSets) {
-    std::vector<agent::EntryLoad> loads;
-    for (std::size_t k = 0; k < study.loads.size(); ++k)
-      if (study.load_rules[k] == r) loads.push_back(study.loads[k]);
+    const auto loads = loads_carried_by(study, study.load_rules, r);
     if (!loads.empty())
       model = model | agent::stress_model(study.mesh.grid, r, study.coefficients, study.readings, loads);
   }

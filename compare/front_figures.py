@@ -70,6 +70,9 @@ def draw(front, metric, title):
     fig, ax = plt.subplots(figsize=(7, 5))
     fast = 0
     for name, points in families(front["points"]).items():
+        points = [p for p in points if metric not in p.get("not_modelled", [])]  # a zero field: no point
+        if not points:
+            continue
         marker, colour = style(name, fast)
         fast += not name.startswith("FEM")
         errors = [p["errors"][metric] for p in points]

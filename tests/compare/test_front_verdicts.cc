@@ -117,3 +117,18 @@ TEST(FrontVerdicts, CrossoverSaysWhenTheFrontsShareNoErrors) {
   EXPECT_FALSE(c[0].fem_cheaper_below);
   EXPECT_EQ(c[0].note, "the two fronts share no range of errors");
 }
+
+TEST(FrontVerdicts, AFieldThePointDoesNotModelGetsNoVerdictAndDominatesNothing) {
+  // "agent mid" leaves the field at zero (its rule set does not model it): its error 10^-1.5 would
+  // dominate fem 1 and agent slow and have a 10^1.5 speed-up; unmodelled, it is on no front.
+  auto points = ladder();
+  for (auto& p : points)
+    if (p.label == "agent mid") p.not_modelled.insert(kMetric);
+  const auto all = front_verdicts(points, {kMetric}, {});
+  for (const auto& v : all) EXPECT_NE(v.point, "agent mid");
+  EXPECT_EQ(*verdict(all, "fem 1").dominated_by, "agent fine");  // 1 s and 0.0005: no longer agent mid
+  EXPECT_EQ(*verdict(all, "agent slow").dominated_by, "fem 1");   // 1 s and 0.1 against 2 s and 0.2
+  const auto c = front_crossovers(points, {kMetric}, {});
+  ASSERT_EQ(c.size(), 1u);  // the agents' family is judged on its modelled points only
+  EXPECT_EQ(c[0].rule_set, "directional");
+}

@@ -9,10 +9,10 @@ namespace compare {
 
 namespace {
 
-/// The point's error in `metric`, NaN when it has none.
+/// The point's error in `metric`; NaN (no verdict, on no front) where it has none or does not model the field.
 double error_of(const FrontPoint& p, const std::string& metric) {
   const auto it = p.errors.find(metric);
-  return it == p.errors.end() ? NAN : it->second;
+  return it == p.errors.end() || p.not_modelled.count(metric) ? NAN : it->second;
 }
 
 double floor_of(const std::map<std::string, double>& floors, const std::string& metric) {

@@ -58,6 +58,9 @@ using ScopeSamples = std::array<Samples, std::size(kFields)>;
 /// of kFields: the agent source's errors against the reference, each with the estimate's beside it
 /// (air counts in neither scope).
 void add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask);
+/// Whether the metric `name` ("far.sigma_y.rel_l2") scores a field `model` models in `dim`: false
+/// for a stress component its rule set leaves at zero (agent::StressModel), true for the rest.
+bool models_metric(const std::string& name, const agent::StressModel& model, int dim);
 /// Each source with where its samples go.
 inline const std::pair<const GridFields* Sources::*, std::vector<double> Samples::*> kSources[] = {
     {&Sources::agent, &Samples::agent},

@@ -213,15 +213,19 @@ void add_agents_only(CompareOutcome& out, const AgentCompareInput& in, const Gri
 /// Step 7c: every metric of a stress component the rule set does not model (agent::StressModel)
 /// marked modelled = false, in every scope.
 void mark_unmodelled(CompareOutcome& out, const agent::StressModel& model, int dim) {
-  for (const auto& f : kFields) {
-    if (!f.in(dim) || f.per_node || f.slot >= kVonMises || model.models(f.slot)) continue;
-    const std::string middle = std::string(".") + f.name + ".";
-    for (auto& m : out.metrics)
-      if (m.name.find(middle) != std::string::npos) m.modelled = false;
-  }
+  for (auto& m : out.metrics)
+    if (!models_metric(m.name, model, dim)) m.modelled = false;
 }
 
 }  // namespace
+
+bool agent_compare::models_metric(const std::string& name, const agent::StressModel& model, int dim) {
+  for (const auto& f : kFields)
+    if (f.in(dim) && !f.per_node && f.slot < kVonMises && !model.models(f.slot) &&
+        name.find(std::string(".") + f.name + ".") != std::string::npos)
+      return false;
+  return true;
+}
 
 void agent_compare::add_field_scopes(CompareOutcome& out, const AgentCompareInput& in, const Sources& sources, double mask) {
   const auto& mesh = in.study.mesh;

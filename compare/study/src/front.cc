@@ -91,6 +91,9 @@ FrontPoint agent_point(const FrontContext& c, double factor, agent::RuleSet rule
   p.work["packet_moves"] = double(state.diagnostics.packet_moves);
   const auto& grid = c.in.study.mesh.grid;
   score(c, agents_on_grid(grid, study.mesh.grid, agent_on_grid(study.mesh.grid, state), p.label), p, nullptr);
+  const auto modelled = agent_study::stress_model(study);
+  for (const auto& [name, error] : p.errors)
+    if (!agent_compare::models_metric(name, modelled, grid.dim)) p.not_modelled.insert(name);
   return p;
 }
 

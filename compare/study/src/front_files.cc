@@ -33,6 +33,13 @@ const FrontVerdict* case_verdict(const FrontOutcome& out, const std::string& met
   return nullptr;
 }
 
+/// Why the case's point has no verdict in `metric`.
+std::string no_verdict(const FrontOutcome& out, const std::string& metric) {
+  for (const auto& p : out.points)
+    if (p.label == out.case_point && p.not_modelled.count(metric)) return "no verdict: not modelled by its rule set";
+  return "no verdict";
+}
+
 /// Why the case's point misses a least speed-up `limit`, or empty when it reaches it.
 std::string speedup_shortfall(const FrontVerdict& v, double limit) {
   auto text = [](double x) { return workbench::toml_number(x); };
@@ -65,6 +72,7 @@ nlohmann::json point_json(const FrontPoint& p) {
                       {"seconds", {{"min", p.seconds_min}, {"median", p.seconds_median}}}, {"errors", p.errors}};
   if (p.model == "fem") j["degree"] = p.degree;
   if (p.model == "agent") j["rule_set"] = p.rule_set;
+  if (!p.not_modelled.empty()) j["not_modelled"] = p.not_modelled;
   return j;
 }
 
@@ -133,7 +141,7 @@ void log_summary(const FrontOutcome& out, const std::vector<std::string>& headli
   log << "\n";
   for (const auto& p : out.points) {
     log << "  " << p.label << ", " << 1e3 * p.seconds_min << ", " << 1e3 * p.seconds_median;
-    for (const auto& m : headline) log << ", " << p.errors.at(m);
+    for (const auto& m : headline) log << ", " << p.errors.at(m) << (p.not_modelled.count(m) ? " (not modelled)" : "");
     log << "\n";
   }
   for (const auto& m : headline)
@@ -165,13 +173,15 @@ void apply_gate(const schema::FrontGate& gate, FrontOutcome& out) {
   for (const auto& [metric, limit] : gate.min_speedup) {
     ++out.gated;
     const FrontVerdict* v = case_verdict(out, metric);
-    const std::string why = v ? speedup_shortfall(*v, limit) : "no verdict";
+    const std::string why = v ? speedup_shortfall(*v, limit) : no_verdict(out, metric);
     if (!why.empty()) out.failures.push_back("front.gate.min_speedup." + metric + ": " + out.case_point + ": " + why);
   }
   for (const auto& metric : gate.on_front) {
     ++out.gated;
     const FrontVerdict* v = case_verdict(out, metric);
-    if (!v || v->below_floor)
+    if (!v)
+      out.failures.push_back("front.gate.on_front " + metric + ": " + out.case_point + ": " + no_verdict(out, metric));
+    else if (v->below_floor)
       out.failures.push_back("front.gate.on_front " + metric + ": " + out.case_point + ": no verdict (below the reference's floor)");
     else if (v->dominated_by)
       out.failures.push_back("front.gate.on_front " + metric + ": " + out.case_point + " is dominated by " + *v->dominated_by);

@@ -9,6 +9,7 @@
 //   // verdicts[i].speedup: FEM time at the agent's error / the agent's time (null outside the ladder)
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct FrontPoint {
   std::map<std::string, double> work;  ///< machine-independent counts (agents, packet_moves, dofs, ...)
   double seconds_min = 0, seconds_median = 0;
   std::map<std::string, double> errors;
+  /// The metrics of `errors` that score a field the point's model does not compute (agents: a
+  /// stress component its rule set leaves at zero): kept in the files, given no verdict, left off
+  /// every front.
+  std::set<std::string> not_modelled;
 };
 
 /// The verdict on one point in one metric.

@@ -1,0 +1,124 @@
+// The column rule set at a clamp (agent/columns.h): the section spreads from the free end toward the
+// clamp at 45 degrees (an L-bracket's deeper root), and the clamp's layer of sigma across the beam
+// (Poisson's restraint by the bonded face, decaying as Papkovich-Fadle's end effect).
+#include <agent/columns.h>
+#include <agent/fields.h>
+#include <agent/load_transfer.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../support/agent_fixtures.h"
+
+using namespace agent;
+using test_support::kMinusX, test_support::kMinusY;
+
+namespace {
+
+const Material kSteel{206e9, 0.3};
+constexpr double kH = 5e-3, kThick = 2e-3;
+
+/// nx x ny agents of 5 mm, 2 mm thick, clamped at x = 0.
+Grid cantilever(int nx, int ny) {
+  Grid g = Grid::box(2, {nx, ny, 1}, Eigen::Vector3d(kH, kH, kH), kThick);
+  g.set_boundary(g.box_side(kMinusX), Boundary::Rigid);
+  return g;
+}
+
+/// An L clamped at its side: a foot of 20 x 4 agents, and above its first 4 columns an arm up to
+/// 12 agents (the rest of the box air).
+Grid l_bracket() {
+  Grid g = cantilever(20, 12);
+  for (int i = 4; i < 20; ++i)
+    for (int j = 4; j < 12; ++j) g.make_air(g.index(i, j, 0));
+  return g;
+}
+
+EntryLoad down(const Grid& g, int i, int top, double force) { return {g.index(i, top, 0), kMinusY, force}; }
+
+LoadTransfer solved(const Grid& g, const std::vector<EntryLoad>& loads) {
+  LoadTransfer m(g, kSteel, Coefficients{}, RuleSet::Columns);
+  m.solve(loads);
+  return m;
+}
+
+}  // namespace
+
+// The foot's section is its 4 agents; toward the clamp it grows by one agent a column (45 degrees):
+// columns 3, 2, 1, 0 hold rows 0-4, 0-5, 0-6, 0-7; the arm's agents above carry nothing. Each
+// column's stresses still balance its resultants (sum sigma dA = 0, sum sigma (y - y_c) dA = m,
+// sum tau dA = v), the arm's nodes move as the section's top edge, and a uniform beam's section is
+// every agent.
+TEST(ColumnsRoot, SectionSpreadsFromTheFreeEndAt45Degrees) {
+  const Grid g = l_bracket();
+  const std::vector<EntryLoad> loads{down(g, 19, 3, 2.0)};
+  Columns c = column_statics(g, loads);
+  for (std::size_t i = 0; i < 20; ++i) {
+    EXPECT_EQ(c.first_row[i], 0) << i;
+    EXPECT_EQ(c.last_row[i], i < 4 ? 7 - int(i) : 3) << i;
+  }
+  EXPECT_NEAR(c.centroid[0], 0.020, 1e-15);  // rows 0-7
+  EXPECT_NEAR(c.inertia[0], kThick * std::pow(0.040, 3) / 12, 1e-20);
+  EXPECT_NEAR(c.m[0], 2.0 * 0.095, 1e-15);  // the statics are the load's: P (x_l - x), x_l = 97.5 mm, x = 2.5 mm
+  const auto m = solved(g, loads);
+  const auto sigma = agent_stresses(g, m.face_forces());
+  for (int i = 0; i < 20; ++i) {
+    double n = 0, moment = 0, v = 0, agents = 0;
+    for (int j = 0; j < 12; ++j) {
+      const std::size_t cell = g.index(i, j, 0);
+      if (g.is_air(cell)) continue;
+      const double dA = kH * kThick, y = (j + 0.5) * kH;
+      if (j > c.last_row[std::size_t(i)]) {
+        EXPECT_EQ(sigma[cell * 2], 0.0) << i << ", " << j;
+        EXPECT_EQ(m.shear_stress()[cell], 0.0) << i << ", " << j;
+      }
+      agents += j <= c.last_row[std::size_t(i)];
+      n += sigma[cell * 2] * dA, moment += sigma[cell * 2] * (y - c.centroid[std::size_t(i)]) * dA, v += m.shear_stress()[cell] * dA;
+    }
+    EXPECT_NEAR(n, 0.0, 1e-12) << i;
+    // Each agent holds its centre's sigma: the sum misses the agents' own b h^3 / 12 of I.
+    const double own = agents * kThick * kH * kH * kH / 12;
+    EXPECT_NEAR(moment, c.m[std::size_t(i)] * (1 - own / c.inertia[std::size_t(i)]), 1e-12) << i;
+    EXPECT_NEAR(v, i == 19 ? -1.0 : -2.0, 1e-12) << i;  // the loaded column: half the load
+  }
+  // Column 0's section ends at node row 8: the nodes above it move as that edge.
+  for (int k = 0; k < 2; ++k)
+    for (int j = 9; j <= 12; ++j)
+      EXPECT_EQ(m.displacement()[g.node_index(0, j, 0) * 2 + k], m.displacement()[g.node_index(0, 8, 0) * 2 + k]) << j;
+  const Columns uniform = column_statics(cantilever(20, 6), {down(cantilever(20, 6), 19, 5, 1.0)});
+  for (std::size_t i = 0; i < 20; ++i) EXPECT_TRUE(uniform.first_row[i] == 0 && uniform.last_row[i] == 5) << i;
+}
+
+// At the clamp the bonded face holds eps_y = 0: sigma_y = nu sigma_x (plane stress), decaying as
+// exp(-d / l), l = H / 7.4977 (Papkovich-Fadle), faster near the free faces: l = (l0^-2 + f^-2)^-1/2,
+// f the agent's distance to the nearer free face; each agent holds the decay's mean over its length.
+// Odd about the centroid (as sigma_x); nothing between two supports.
+TEST(ColumnsRoot, ClampLayerIsPoissonsRestraintDecaying) {
+  const Grid g = cantilever(40, 8);
+  const auto m = solved(g, {down(g, 39, 7, 2.0)});
+  const auto sigma = agent_stresses(g, m.face_forces());
+  const double l0 = 0.040 / 7.4977, nu = 0.3;
+  for (int i : {0, 1, 2})
+    for (int j : {0, 2, 3}) {
+      const double f = (j + 0.5) * kH, l = 1 / std::sqrt(1 / (l0 * l0) + 1 / (f * f));
+      const double mean = l / kH * (std::exp(-i * kH / l) - std::exp(-(i + 1) * kH / l));
+      const std::size_t cell = g.index(i, j, 0), mirror = g.index(i, 7 - j, 0);
+      EXPECT_NEAR(sigma[cell * 2 + 1], nu * mean * sigma[cell * 2], 1e-12 * std::abs(sigma[cell * 2])) << i << ", " << j;
+      EXPECT_NEAR(sigma[mirror * 2 + 1], -sigma[cell * 2 + 1], 1e-9 * std::abs(sigma[cell * 2 + 1])) << i << ", " << j;
+    }
+  // At the clamp's column the layer is most of nu sigma_x inside (0.58 of it at the centroid's
+  // agents: mean of exp over 5 mm with l = 4.9 mm), far from it nothing.
+  EXPECT_GT(sigma[g.index(0, 3, 0) * 2 + 1] / sigma[g.index(0, 3, 0) * 2], 0.5 * nu);
+  for (int j = 0; j < 8; ++j) EXPECT_LT(std::abs(sigma[g.index(25, j, 0) * 2 + 1]), 1e-9 * std::abs(sigma[g.index(25, 0, 0) * 2]));
+  // The stress model: every component under a clamp.
+  const auto model = ColumnTransfer::stress_model(g, Coefficients{}, {down(g, 39, 7, 2.0)});
+  EXPECT_EQ(model.modelled, normal_stress_bits(2) | shear_bits(2));
+  // Between two supports: no layer, sigma_y not modelled.
+  Grid s = Grid::box(2, {41, 8, 1}, Eigen::Vector3d(kH, kH, kH), kThick);
+  s.set_boundary({{s.index(0, 0, 0), kMinusY}, {s.index(40, 0, 0), kMinusY}}, Boundary::Rigid);
+  const auto b = solved(s, {down(s, 20, 7, 2.0)});
+  const auto sb = agent_stresses(s, b.face_forces());
+  for (std::size_t cell = 0; cell < s.count(); ++cell) ASSERT_EQ(sb[cell * 2 + 1], 0.0) << cell;
+  EXPECT_EQ(ColumnTransfer::stress_model(s, Coefficients{}, {down(s, 20, 7, 2.0)}).modelled, (normal_stress_bits(2) & ~2u) | shear_bits(2));
+}

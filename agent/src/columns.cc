@@ -386,7 +386,7 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
 /// 3D eps_w = 0 too), so on its plane sigma_t = nu sigma_a (2D, plane stress), sigma_t = sigma_w =
 /// nu / (1 - nu) sigma_a (3D), and that restraint decays away from it as the strip's end effects
 /// do: exp(-d / l), l = H / 7.4977 (Papkovich-Fadle: the first antisymmetric root of sin 2k = -2k, H
-/// the clamp column's section depth along t), faster near a free face across that component's axis
+/// the clamp column's section depth along t; for sigma_w its width along w), faster near a free face across that component's axis
 /// (where it vanishes): l = 1 / sqrt(l^-2 + f^-2), f the agent centre's distance to the nearest free
 /// face along t (sigma_t) or w (sigma_w). Each agent takes the decay's mean over its length along
 /// a, as face forces on its faces across t (and w). The shears across (3D) are not in it.
@@ -398,14 +398,21 @@ void clamp_layer(const Grid& g, const Material& material, const Columns& c, cons
   const double nu = material.poisson, k = g.dim == 3 ? nu / (1 - nu) : nu;
   const double h = g.size[t], l0 = double(c.last_row[root] - c.first_row[root] + 1) * h / 7.4977;
   const std::size_t faces = 2 * std::size_t(g.dim);
-  // The mean over [d, d + ds] of exp(-x / l), l shortened by the distance f to a free face.
-  auto decay = [l0](double d, double ds, double f) {
-    const double l = 1 / std::sqrt(1 / (l0 * l0) + 1 / (f * f));
+  // 3D: sigma_w's restraint decays over the section's width along w as sigma_t's over its depth.
+  double lw = 0;
+  if (g.dim == 3) {
+    const auto w = std::minmax_element(ca.across.begin() + std::ptrdiff_t(ca.start[root]),
+                                       ca.across.begin() + std::ptrdiff_t(ca.start[root + 1]));
+    lw = double(*w.second - *w.first + 1) * g.size[wa] / 7.4977;
+  }
+  // The mean over [d, d + ds] of exp(-x / l), l (l0 or lw) shortened by the distance f to a free face.
+  auto decay = [](double l_axis, double d, double ds, double f) {
+    const double l = 1 / std::sqrt(1 / (l_axis * l_axis) + 1 / (f * f));
     return l / ds * (std::exp(-d / l) - std::exp(-(d + ds) / l));
   };
   for (std::size_t i = 0; i < std::size_t(n); ++i) {
     const double near = high ? c.plan.at[0] - g.plane(a, int(i) + 1) : g.plane(a, int(i)) - c.plan.at[0];
-    if (near > 40 * l0) continue;  // exp(-40): nothing left
+    if (near > 40 * std::max(l0, lw)) continue;  // exp(-40): nothing left
     const std::size_t first = ca.start[i], last = ca.start[i + 1] - 1;  // the column's agents, sorted along t
     const bool low_free = c.first_row[i] == ca.rows[first], high_free = c.last_row[i] == ca.rows[last];
     int w0 = 0, w1 = 0;  // 3D: the column's extent along w
@@ -424,10 +431,10 @@ void clamp_layer(const Grid& g, const Material& material, const Columns& c, cons
         out.faces[cell * faces + std::size_t(direction(axis, false))] = out.faces[cell * faces + std::size_t(direction(axis, true))] =
             -k * sigma_a * mean * g.face_area(axis);
       };
-      write(t, decay(near, c.width[i], ft));
+      write(t, decay(l0, near, c.width[i], ft));
       if (g.dim == 3) {
         const int col = ca.across[q];
-        write(wa, decay(near, c.width[i], std::min(col - w0 + 0.5, w1 - col + 0.5) * g.size[wa]));
+        write(wa, decay(lw, near, c.width[i], std::min(col - w0 + 0.5, w1 - col + 0.5) * g.size[wa]));
       }
     }
   }

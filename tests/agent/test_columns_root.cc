@@ -122,3 +122,33 @@ TEST(ColumnsRoot, ClampLayerIsPoissonsRestraintDecaying) {
   for (std::size_t cell = 0; cell < s.count(); ++cell) ASSERT_EQ(sb[cell * 2 + 1], 0.0) << cell;
   EXPECT_EQ(ColumnTransfer::stress_model(s, Coefficients{}, {down(s, 20, 7, 2.0)}).modelled, (normal_stress_bits(2) & ~2u) | shear_bits(2));
 }
+
+// In 3D the bonded clamp holds eps_y = eps_z = 0: on its plane sigma_y = sigma_z = nu / (1 - nu)
+// sigma_x, each decaying over the section's extent along its own axis (a section 20 mm deep along
+// y, 40 mm wide along z: l = 20 / 7.4977 and 40 / 7.4977 mm), faster near the faces across it.
+TEST(ColumnsRoot, ClampLayerIn3DHoldsBothLateralStrains) {
+  Grid g = Grid::box(3, {20, 4, 8}, Eigen::Vector3d(kH, kH, kH), 0.0);
+  g.set_boundary(g.box_side(kMinusX), Boundary::Rigid);
+  std::vector<EntryLoad> loads;
+  for (int k = 0; k < 8; ++k) loads.push_back({g.index(19, 3, k), kMinusY, 0.25});
+  const auto m = solved(g, loads);
+  const auto sigma = agent_stresses(g, m.face_forces());
+  const double ly = 0.020 / 7.4977, lz = 0.040 / 7.4977, ratio = 0.3 / 0.7;
+  auto mean = [](double l0, double f, int i) {
+    const double l = 1 / std::sqrt(1 / (l0 * l0) + 1 / (f * f));
+    return l / kH * (std::exp(-i * kH / l) - std::exp(-(i + 1) * kH / l));
+  };
+  for (int i : {0, 1})
+    for (int j : {0, 1})
+      for (int k : {0, 3}) {
+        const std::size_t c = g.index(i, j, k);
+        const double sx = sigma[c * 3];
+        EXPECT_NEAR(sigma[c * 3 + 1], ratio * mean(ly, (j + 0.5) * kH, i) * sx, 1e-12 * std::abs(sx)) << i << j << k;
+        EXPECT_NEAR(sigma[c * 3 + 2], ratio * mean(lz, (k + 0.5) * kH, i) * sx, 1e-12 * std::abs(sx)) << i << j << k;
+        // Odd about the centroid (y) and even across the width (z), as sigma_x.
+        EXPECT_NEAR(sigma[g.index(i, 3 - j, k) * 3 + 1], -sigma[c * 3 + 1], 1e-9 * std::abs(sx));
+        EXPECT_NEAR(sigma[g.index(i, j, 7 - k) * 3 + 2], sigma[c * 3 + 2], 1e-9 * std::abs(sx));
+      }
+  const auto model = ColumnTransfer::stress_model(g, Coefficients{}, loads);
+  EXPECT_EQ(model.modelled, normal_stress_bits(3) | shear_bits(2));  // tau_xy; not tau_yz, tau_xz
+}

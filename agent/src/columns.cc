@@ -440,6 +440,39 @@ void clamp_layer(const Grid& g, const Material& material, const Columns& c, cons
   }
 }
 
+/// The loads' layer under a clamp (2D): a load enters its agent's face and pushes along t into the
+/// section, which passes it to the columns' shear over the depth: each load's sigma_t is -F / (b
+/// s) P(e) within s = ds + 2 d along a (spread at 45 degrees from the agent's face, clipped to the
+/// body; each agent by the share of its length inside), d the depth below the loaded face, P(e) = (2 - 3 e + e^3) / 4 the profile of a beam loaded
+/// on one face (1 there, 0 on the far face; e = 2 d / D - 1, D the column's section depth from the
+/// loaded face), added to what the faces across t hold. Only a push on a boundary face across t (a
+/// load along a face, as an inclined load's part, has none). Between supports and in 3D: not built.
+void load_layer(const Grid& g, const Columns& c, const ColumnAgents& ca, const std::vector<EntryLoad>& loads, TransferResults& out) {
+  if (c.plan.holding != Holding::Clamp || g.dim != 2) return;
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double h = g.size[t], b = g.thickness, lo = g.plane(a, 0), hi = g.plane(a, n);
+  const std::size_t faces = 2 * std::size_t(g.dim);
+  for (const auto& l : loads) {
+    if (g.has_neighbour(l.cell, opposite(l.dir))) continue;  // a traction along a face (a shear), not a push on it
+    const int i0 = g.coords(l.cell)[a], down = is_positive(l.dir) ? 1 : -1;  // rows along the push
+    const double entry = g.centre(l.cell)[t] - down * 0.5 * h;              // the loaded face along t
+    const double s0 = g.plane(a, i0), s1 = g.plane(a, i0 + 1);
+    for (std::size_t i = 0; i < std::size_t(n); ++i) {
+      const double far = down > 0 ? g.plane(t, c.last_row[i] + 1) : g.plane(t, c.first_row[i]);
+      const double depth = (far - entry) * down;  // the section ahead of the loaded face
+      for (std::size_t q = ca.start[i]; q < ca.start[i + 1] && depth > 0; ++q) {
+        const std::size_t cell = ca.agents[q];
+        const double d = (g.centre(cell)[t] - entry) * down, from = std::max(lo, s0 - d), to = std::min(hi, s1 + d);
+        // The share of the agent's length inside the spread (a row's sigma_t integrates to F P(e)).
+        const double inside = std::min(to, g.plane(a, int(i) + 1)) - std::max(from, g.plane(a, int(i))), e = 2 * d / depth - 1;
+        if (d <= 0 || inside <= 0 || !c.in_section(i, ca.rows[q])) continue;
+        const double sigma = -l.force / (b * (to - from)) * (2 - 3 * e + e * e * e) / 4 * inside / c.width[i];
+        for (bool side : {false, true}) out.faces[cell * faces + std::size_t(direction(t, side))] -= sigma * g.face_area(t);
+      }
+    }
+  }
+}
+
 /// The plane sections' march over the node lines (planes along a), held by the clamp or the
 /// supports: rotation theta, axial displacement U and deflection W at the reference level r0.
 struct Sections {
@@ -537,6 +570,7 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
   const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
   clamp_layer(g, material, c, ca, out);
+  load_layer(g, c, ca, loads, out);
   d.agent_updates += ca.agents.size();
   // Generation: columns from the nearest loaded column, in the columns that carry something.
   std::vector<int> reach(std::size_t(n), n + 1);

@@ -1,6 +1,7 @@
 // The column rule set at a clamp (agent/columns.h): the section spreads from the free end toward the
-// clamp at 45 degrees (an L-bracket's deeper root), and the clamp's layer of sigma across the beam
-// (Poisson's restraint by the bonded face, decaying as Papkovich-Fadle's end effect).
+// clamp at 45 degrees (an L-bracket's deeper root), the clamp's layer of sigma across the beam
+// (Poisson's restraint by the bonded face, decaying as Papkovich-Fadle's end effect) and the loads'
+// layer (a push on a face spreading into the section).
 #include <agent/columns.h>
 #include <agent/fields.h>
 #include <agent/load_transfer.h>
@@ -151,4 +152,38 @@ TEST(ColumnsRoot, ClampLayerIn3DHoldsBothLateralStrains) {
       }
   const auto model = ColumnTransfer::stress_model(g, Coefficients{}, loads);
   EXPECT_EQ(model.modelled, normal_stress_bits(3) | shear_bits(2));  // tau_xy; not tau_yz, tau_xz
+}
+
+// A push on the top face spreads into the section at 45 degrees and is passed to the shear over the
+// depth: each row's sigma_y integrates to -P (2 - 3 e + e^3) / 4, e = 2 d / H - 1 (d the row's depth
+// below the loaded face: P at the top, 0 on the free underside), at the tip (clipped by the free
+// end) as in the middle of the span, where it is even about the load (to the clamp's layer's tail,
+// 0.1 Pa of 1.3 kPa); a traction along a face (an
+// inclined load's part along x on the top agents) has no such layer.
+TEST(ColumnsRoot, LoadLayerSpreadsThePushOverTheDepth) {
+  const Grid g = cantilever(40, 8);
+  for (int i0 : {39, 20}) {
+    const auto m = solved(g, {down(g, i0, 7, 2.0)});
+    const auto sigma = agent_stresses(g, m.face_forces());
+    for (int j = 0; j < 8; ++j) {
+      double row = 0;
+      for (int i = 10; i < 40; ++i) row += sigma[g.index(i, j, 0) * 2 + 1] * kH * kThick;  // beyond the clamp's layer
+      const double e = 2 * ((8 - j - 0.5) * kH) / 0.04 - 1;  // the row's centre 0.5 - 7.5 agents below the top
+      EXPECT_NEAR(row, -2.0 * (2 - 3 * e + e * e * e) / 4, 1e-4) << i0 << ", " << j;  // the clamp's layer's tail: 1e-5
+      if (i0 == 20)
+        for (int k = 1; k < 8; ++k)
+          EXPECT_NEAR(sigma[g.index(20 - k, j, 0) * 2 + 1], sigma[g.index(20 + k, j, 0) * 2 + 1], 0.1) << k << ", " << j;
+    }
+  }
+  // A plate 40 x 100 mm clamped at its base, 2 N along +x on a top agent: in the middle of the top
+  // (an inclined load's part along the face: no face across x behind it) no layer, the top row's
+  // sigma_x ~ 0 (the clamp's layer is gone 97.5 mm up, Navier's sigma_y is 0 at the loaded column);
+  // on the corner agent (its -x face free: a push on it) the layer, 2 N over 7.5 mm x 2 mm there.
+  Grid plate = Grid::box(2, {8, 20, 1}, Eigen::Vector3d(kH, kH, kH), kThick);
+  plate.set_boundary(plate.box_side(kMinusY), Boundary::Rigid);
+  const auto along = agent_stresses(plate, solved(plate, {{plate.index(4, 19, 0), test_support::kPlusX, 2.0}}).face_forces());
+  for (int i = 0; i < 8; ++i) EXPECT_LT(std::abs(along[plate.index(i, 19, 0) * 2]), 1.0) << i;
+  const auto push = agent_stresses(plate, solved(plate, {{plate.index(0, 19, 0), test_support::kPlusX, 2.0}}).face_forces());
+  const double e = 2 * (0.5 * kH) / 0.04 - 1;
+  EXPECT_NEAR(push[plate.index(0, 19, 0) * 2], -2.0 / (kThick * 1.5 * kH) * (2 - 3 * e + e * e * e) / 4, 1.0);
 }

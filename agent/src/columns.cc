@@ -450,7 +450,7 @@ void clamp_layer(const Grid& g, const Material& material, const Columns& c, cons
 void load_layer(const Grid& g, const Columns& c, const ColumnAgents& ca, const std::vector<EntryLoad>& loads, TransferResults& out) {
   if (c.plan.holding != Holding::Clamp || g.dim != 2) return;
   const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
-  const double h = g.size[t], b = g.thickness, lo = g.plane(a, 0), hi = g.plane(a, n);
+  const double h = g.size[t], b = g.thickness, lo = g.plane(a, 0), hi = g.plane(a, n), reach = g.plane(t, g.cells[t]) - g.plane(t, 0);
   const std::size_t faces = 2 * std::size_t(g.dim);
   for (const auto& l : loads) {
     if (g.has_neighbour(l.cell, opposite(l.dir))) continue;  // a traction along a face (a shear), not a push on it
@@ -458,6 +458,7 @@ void load_layer(const Grid& g, const Columns& c, const ColumnAgents& ca, const s
     const double entry = g.centre(l.cell)[t] - down * 0.5 * h;              // the loaded face along t
     const double s0 = g.plane(a, i0), s1 = g.plane(a, i0 + 1);
     for (std::size_t i = 0; i < std::size_t(n); ++i) {
+      if (g.plane(a, int(i) + 1) < s0 - reach || g.plane(a, int(i)) > s1 + reach) continue;  // beyond any spread
       const double far = down > 0 ? g.plane(t, c.last_row[i] + 1) : g.plane(t, c.first_row[i]);
       const double depth = (far - entry) * down;  // the section ahead of the loaded face
       for (std::size_t q = ca.start[i]; q < ca.start[i + 1] && depth > 0; ++q) {

@@ -92,7 +92,8 @@ void add_bonded_thrust(Columns& columns);
 
 /// The fields of the columns into `out` (every slot of the grid; out.faces, generation and shear
 /// sized for it): per agent sigma_a = n / A + m (t - centroid) / I as compressive face forces on its
-/// two faces across a (sigma_t = sigma_w = 0: its other faces carry nothing), tau_at = v Q / (I b)
+/// two faces across a (between supports sigma_t = sigma_w = 0: its other faces carry nothing; at a
+/// clamp the clamp's layer, in 2D also the loads' layer, on its faces across t and w), tau_at = v Q / (I b)
 /// in out.shear's a-t slot (Q the first moment of what lies above each level of agents, averaged
 /// over their height: a column's shears integrate to v; b the section's width there: the
 /// thickness in 2D, the level's agents times their edge in 3D; the other shears 0); per node

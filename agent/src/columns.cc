@@ -76,6 +76,14 @@ int beam_axis_3d(const Grid& g, int t) {
 
 }  // namespace
 
+bool clamped(const Grid& g, const std::vector<EntryLoad>& loads) {
+  try {
+    return plan_columns(g, loads).holding == Holding::Clamp;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
 std::string describe(const ColumnPlan& p) {
   const char a = char('x' + p.axis);
   std::ostringstream s;
@@ -157,16 +165,54 @@ ColumnPlan plan_columns(const Grid& g, const std::vector<EntryLoad>& loads) {
   return p;
 }
 
+namespace {
+
+/// Each column's section rows (Columns::first_row, last_row): its agents' extent along t; under a
+/// clamp narrowed, from the column farthest from it toward it, to the previous column's section
+/// widened by the column's width each way (45 degrees).
+void section_rows(const Grid& g, Columns& c) {
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  c.first_row.assign(std::size_t(n), g.cells[t]), c.last_row.assign(std::size_t(n), -1);
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell)) {
+      const auto p = g.coords(cell);
+      const std::size_t i = std::size_t(p[a]);
+      c.first_row[i] = std::min(c.first_row[i], p[t]), c.last_row[i] = std::max(c.last_row[i], p[t]);
+    }
+  if (c.plan.holding != Holding::Clamp) return;
+  const bool from_low = is_positive(c.plan.clamp_side);  // the clamp at the high end: spread from column 0
+  double lo = 0, hi = 0;                                  // the section's extent in rows, spreading
+  for (int k = 0; k < n; ++k) {
+    const std::size_t i = std::size_t(from_low ? k : n - 1 - k);
+    const double spread = (g.plane(a, int(i) + 1) - g.plane(a, int(i))) / g.size[t];
+    lo = k == 0 ? c.first_row[i] : std::max(double(c.first_row[i]), lo - spread);
+    hi = k == 0 ? c.last_row[i] : std::min(double(c.last_row[i]), hi + spread);
+    c.first_row[i] = int(std::ceil(lo - 1e-9)), c.last_row[i] = int(std::floor(hi + 1e-9));
+  }
+  // A column whose agents all lie beyond the spread (a beam that turns back on itself): all of them.
+  std::vector<char> held(std::size_t(n), 0);
+  for (std::size_t cell = 0; cell < g.count(); ++cell)
+    if (!g.is_air(cell) && c.in_section(std::size_t(g.coords(cell)[a]), g.coords(cell)[t])) held[std::size_t(g.coords(cell)[a])] = 1;
+  for (std::size_t cell = 0; cell < g.count(); ++cell) {
+    const std::size_t i = std::size_t(g.coords(cell)[a]);
+    if (held[i] || g.is_air(cell)) continue;
+    c.first_row[i] = std::min(c.first_row[i], g.coords(cell)[t]), c.last_row[i] = std::max(c.last_row[i], g.coords(cell)[t]);
+  }
+}
+
+}  // namespace
+
 Columns column_statics(const Grid& g, const std::vector<EntryLoad>& loads) {
   Columns c;
   c.plan = plan_columns(g, loads);
   const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a];
   const double h = g.size[t], w = agent_width(g, wa);
+  section_rows(g, c);
   // Sections: sums over each column's agents, positions from the box's lower side (less round-off).
   std::vector<double> count(std::size_t(n), 0.0), sum(std::size_t(n), 0.0), sum2(std::size_t(n), 0.0);
   std::vector<double> sum_w(g.dim == 3 ? std::size_t(n) : 0, 0.0);
   for (std::size_t cell = 0; cell < g.count(); ++cell)
-    if (!g.is_air(cell)) {
+    if (!g.is_air(cell) && c.in_section(std::size_t(g.coords(cell)[a]), g.coords(cell)[t])) {
       const std::size_t i = std::size_t(g.coords(cell)[a]);
       const double r = g.centre(cell)[t] - g.origin[t];
       count[i] += 1, sum[i] += r, sum2[i] += r * r;
@@ -308,6 +354,10 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
     for (std::size_t end = ca.start[i + 1]; end != ca.start[i];) {
       std::size_t begin = end - 1;
       while (begin != ca.start[i] && ca.rows[begin - 1] == ca.rows[end - 1]) --begin;
+      if (!c.in_section(i, ca.rows[begin])) {  // beyond the section: carries nothing
+        end = begin;
+        continue;
+      }
       const double b = double(end - begin) * w;  // the section's width at this level
       const double r = g.centre(ca.agents[begin])[t];
       // The first moment of what lies above each level, Q, averaged over the agents' height: the
@@ -330,6 +380,98 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
     shear_strain[i] = energy / G;
   }
   return shear_strain;
+}
+
+/// The clamp's layer: the bonded clamp holds the section's strains across the beam (eps_t = 0, in
+/// 3D eps_w = 0 too), so on its plane sigma_t = nu sigma_a (2D, plane stress), sigma_t = sigma_w =
+/// nu / (1 - nu) sigma_a (3D), and that restraint decays away from it as the strip's end effects
+/// do: exp(-d / l), l = H / 7.4977 (Papkovich-Fadle: the first antisymmetric root of sin 2k = -2k, H
+/// the clamp column's section depth along t; for sigma_w its width along w), faster near a free face across that component's axis
+/// (where it vanishes): l = 1 / sqrt(l^-2 + f^-2), f the agent centre's distance to the nearest free
+/// face along t (sigma_t) or w (sigma_w). Each agent takes the decay's mean over its length along
+/// a, as face forces on its faces across t (and w). The shears across (3D) are not in it.
+void clamp_layer(const Grid& g, const Material& material, const Columns& c, const ColumnAgents& ca, TransferResults& out) {
+  if (c.plan.holding != Holding::Clamp) return;
+  const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a];
+  const bool high = is_positive(c.plan.clamp_side);  // the clamp at the body's high end along a
+  const std::size_t root = high ? std::size_t(n) - 1 : 0;
+  const double nu = material.poisson, k = g.dim == 3 ? nu / (1 - nu) : nu;
+  const double h = g.size[t], l0 = double(c.last_row[root] - c.first_row[root] + 1) * h / 7.4977;
+  const std::size_t faces = 2 * std::size_t(g.dim);
+  // 3D: sigma_w's restraint decays over the section's width along w as sigma_t's over its depth.
+  double lw = 0;
+  if (g.dim == 3) {
+    const auto w = std::minmax_element(ca.across.begin() + std::ptrdiff_t(ca.start[root]),
+                                       ca.across.begin() + std::ptrdiff_t(ca.start[root + 1]));
+    lw = double(*w.second - *w.first + 1) * g.size[wa] / 7.4977;
+  }
+  // The mean over [d, d + ds] of exp(-x / l), l (l0 or lw) shortened by the distance f to a free face.
+  auto decay = [](double l_axis, double d, double ds, double f) {
+    const double l = 1 / std::sqrt(1 / (l_axis * l_axis) + 1 / (f * f));
+    return l / ds * (std::exp(-d / l) - std::exp(-(d + ds) / l));
+  };
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const double near = high ? c.plan.at[0] - g.plane(a, int(i) + 1) : g.plane(a, int(i)) - c.plan.at[0];
+    if (near > 40 * std::max(l0, lw)) continue;  // exp(-40): nothing left
+    const std::size_t first = ca.start[i], last = ca.start[i + 1] - 1;  // the column's agents, sorted along t
+    const bool low_free = c.first_row[i] == ca.rows[first], high_free = c.last_row[i] == ca.rows[last];
+    int w0 = 0, w1 = 0;  // 3D: the column's extent along w
+    if (g.dim == 3) {
+      w0 = *std::min_element(ca.across.begin() + std::ptrdiff_t(first), ca.across.begin() + std::ptrdiff_t(last) + 1);
+      w1 = *std::max_element(ca.across.begin() + std::ptrdiff_t(first), ca.across.begin() + std::ptrdiff_t(last) + 1);
+    }
+    for (std::size_t q = first; q <= last; ++q) {
+      const int row = ca.rows[q];
+      if (!c.in_section(i, row)) continue;
+      const double ft = std::min(low_free ? (row - c.first_row[i] + 0.5) * h : HUGE_VAL,
+                                 high_free ? (c.last_row[i] - row + 0.5) * h : HUGE_VAL);
+      const std::size_t cell = ca.agents[q];
+      const double sigma_a = -out.faces[cell * faces + std::size_t(direction(a, false))] / g.face_area(a);
+      auto write = [&](int axis, double mean) {
+        out.faces[cell * faces + std::size_t(direction(axis, false))] = out.faces[cell * faces + std::size_t(direction(axis, true))] =
+            -k * sigma_a * mean * g.face_area(axis);
+      };
+      write(t, decay(l0, near, c.width[i], ft));
+      if (g.dim == 3) {
+        const int col = ca.across[q];
+        write(wa, decay(lw, near, c.width[i], std::min(col - w0 + 0.5, w1 - col + 0.5) * g.size[wa]));
+      }
+    }
+  }
+}
+
+/// The loads' layer under a clamp (2D): a load enters its agent's face and pushes along t into the
+/// section, which passes it to the columns' shear over the depth: each load's sigma_t is -F / (b
+/// s) P(e) within s = ds + 2 d along a (spread at 45 degrees from the agent's face, clipped to the
+/// body; each agent by the share of its length inside), d the depth below the loaded face, P(e) = (2 - 3 e + e^3) / 4 the profile of a beam loaded
+/// on one face (1 there, 0 on the far face; e = 2 d / D - 1, D the column's section depth from the
+/// loaded face), added to what the faces across t hold. Only a push on a boundary face across t (a
+/// load along a face, as an inclined load's part, has none). Between supports and in 3D: not built.
+void load_layer(const Grid& g, const Columns& c, const ColumnAgents& ca, const std::vector<EntryLoad>& loads, TransferResults& out) {
+  if (c.plan.holding != Holding::Clamp || g.dim != 2) return;
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
+  const double h = g.size[t], b = g.thickness, lo = g.plane(a, 0), hi = g.plane(a, n), reach = g.plane(t, g.cells[t]) - g.plane(t, 0);
+  const std::size_t faces = 2 * std::size_t(g.dim);
+  for (const auto& l : loads) {
+    if (g.has_neighbour(l.cell, opposite(l.dir))) continue;  // a traction along a face (a shear), not a push on it
+    const int i0 = g.coords(l.cell)[a], down = is_positive(l.dir) ? 1 : -1;  // rows along the push
+    const double entry = g.centre(l.cell)[t] - down * 0.5 * h;              // the loaded face along t
+    const double s0 = g.plane(a, i0), s1 = g.plane(a, i0 + 1);
+    for (std::size_t i = 0; i < std::size_t(n); ++i) {
+      if (g.plane(a, int(i) + 1) < s0 - reach || g.plane(a, int(i)) > s1 + reach) continue;  // beyond any spread
+      const double far = down > 0 ? g.plane(t, c.last_row[i] + 1) : g.plane(t, c.first_row[i]);
+      const double depth = (far - entry) * down;  // the section ahead of the loaded face
+      for (std::size_t q = ca.start[i]; q < ca.start[i + 1] && depth > 0; ++q) {
+        const std::size_t cell = ca.agents[q];
+        const double d = (g.centre(cell)[t] - entry) * down, from = std::max(lo, s0 - d), to = std::min(hi, s1 + d);
+        // The share of the agent's length inside the spread (a row's sigma_t integrates to F P(e)).
+        const double inside = std::min(to, g.plane(a, int(i) + 1)) - std::max(from, g.plane(a, int(i))), e = 2 * d / depth - 1;
+        if (d <= 0 || inside <= 0 || !c.in_section(i, ca.rows[q])) continue;
+        const double sigma = -l.force / (b * (to - from)) * (2 - 3 * e + e * e * e) / 4 * inside / c.width[i];
+        for (bool side : {false, true}) out.faces[cell * faces + std::size_t(direction(t, side))] -= sigma * g.face_area(t);
+      }
+    }
+  }
 }
 
 /// The plane sections' march over the node lines (planes along a), held by the clamp or the
@@ -389,10 +531,12 @@ void node_displacements(const Grid& g, const Material& material, const Columns& 
         for (int dj = 0; dj < 2; ++dj)
           for (int dk = 0; dk < 2; ++dk) {
             const int line = int(i) + dj, across = row + dk;
+            // A node beyond the section moves as the section's nearest edge (the field stays continuous).
+            const int held = std::clamp(across, c.first_row[i], c.last_row[i] + 1);
             std::array<int, 3> p{0, 0, 0};
             p[a] = line, p[t] = across, p[wa] = col + dl;
             const std::size_t node = g.node_index(p[0], p[1], p[2]);
-            const double r = g.plane(t, across), rc = c.centroid[i];
+            const double r = g.plane(t, held), rc = c.centroid[i];
             const double s = dim == 3 ? g.plane(wa, p[wa]) - c.centroid_w[i] : 0.0;
             const double pt = -nu / E * (c.n[i] / c.area[i] * (r - r0) +
                                          c.m[i] / (2 * c.inertia[i]) * ((r - rc) * (r - rc) - (r0 - rc) * (r0 - rc) - s * s));
@@ -426,6 +570,8 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   auto& d = out.diagnostics;
   const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
   const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
+  clamp_layer(g, material, c, ca, out);
+  load_layer(g, c, ca, loads, out);
   d.agent_updates += ca.agents.size();
   // Generation: columns from the nearest loaded column, in the columns that carry something.
   std::vector<int> reach(std::size_t(n), n + 1);

@@ -50,6 +50,9 @@ struct ColumnPlan {
 /// which the supports lie apart.
 ColumnPlan plan_columns(const Grid& grid, const std::vector<EntryLoad>& loads);
 
+/// Whether the columns carry `loads` to a clamp (false: to supports, or not at all).
+bool clamped(const Grid& grid, const std::vector<EntryLoad>& loads);
+
 /// How a plan carries its loads, in words: "bending: columns along x to the clamp at x = 0 mm".
 std::string describe(const ColumnPlan& plan);
 
@@ -62,6 +65,12 @@ struct Columns {
   std::vector<double> centre, width;            ///< per column, along a [m]
   std::vector<double> area, centroid, inertia;  ///< per column [m^2], along t [m], [m^4] (about w)
   std::vector<double> centroid_w;               ///< 3D: per column, the centroid along w [m]; 2D: empty
+  /// Per column, the rows along t (agent coordinates) of its section: a clamped beam's section
+  /// spreads from the free end toward the clamp at 45 degrees (by one column's width a column, each
+  /// way: Saint-Venant's spread into a deeper part, as an L-bracket's upright arm above its foot);
+  /// the agents beyond it carry nothing. Supports: every agent of the column.
+  std::vector<int> first_row, last_row;
+  bool in_section(std::size_t column, int row) const { return row >= first_row[column] && row <= last_row[column]; }
   std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
   /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
   std::array<double, 2> reactions{};
@@ -83,7 +92,8 @@ void add_bonded_thrust(Columns& columns);
 
 /// The fields of the columns into `out` (every slot of the grid; out.faces, generation and shear
 /// sized for it): per agent sigma_a = n / A + m (t - centroid) / I as compressive face forces on its
-/// two faces across a (sigma_t = sigma_w = 0: its other faces carry nothing), tau_at = v Q / (I b)
+/// two faces across a (between supports sigma_t = sigma_w = 0: its other faces carry nothing; at a
+/// clamp the clamp's layer, in 2D also the loads' layer, on its faces across t and w), tau_at = v Q / (I b)
 /// in out.shear's a-t slot (Q the first moment of what lies above each level of agents, averaged
 /// over their height: a column's shears integrate to v; b the section's width there: the
 /// thickness in 2D, the level's agents times their edge in 3D; the other shears 0); per node
@@ -124,15 +134,16 @@ class ColumnTransfer {
                                             const std::vector<double>& normal, double, const std::vector<EntryLoad>&) {
     return stress_components_with_shear(grid, normal, out.shear);
   }
-  /// sigma along the beam axis and the shear; not sigma along the load (the faces along the beam
-  /// axis carry nothing: 0, not modelled).
-  /// sigma along the beam axis and the shear in the beam-load plane (2D: every component but sigma_t).
+  /// sigma along the beam axis and the shear in the beam-load plane; under a clamp also the normal
+  /// stresses across the beam (the clamp's layer; between supports they are 0, not modelled).
   static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>& loads) {
     const unsigned along_load = loads.empty() ? 0u : 1u << unsigned(axis_of(loads.front().dir));
-    if (grid.dim == 2 || loads.empty()) return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
+    if (loads.empty()) return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
+    if (grid.dim == 2) return {(normal_stress_bits(2) & ~(clamped(grid, loads) ? 0u : along_load)) | shear_bits(2), false};
     const ColumnPlan plan = plan_columns(grid, loads);
     const unsigned first_shear = shear_bits(2);  // tau_xy's bit; the 3D shears follow in shear_pair order
-    return {(1u << unsigned(plan.axis)) | (first_shear << unsigned(shear_pair(plan.axis, plan.across))), false};
+    const unsigned normal = plan.holding == Holding::Clamp ? normal_stress_bits(3) : 1u << unsigned(plan.axis);
+    return {normal | (first_shear << unsigned(shear_pair(plan.axis, plan.across))), false};
   }
 
  private:

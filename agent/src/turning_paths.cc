@@ -32,6 +32,8 @@ constexpr double kMinSpreadAgents = 0.3;
 constexpr double kSpreadReach = 6;
 /// An image's cdf below this is dropped: round-off of a direction's force (its shares sum to 1).
 constexpr double kNegligibleCdf = 1e-18;
+/// 1 / sqrt(2 pi): the standard normal density at 0.
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 /// A turn whose target lies on the wrong side of the load: this many agents, i.e. straight on.
 constexpr double kStraightTurn = 1e-9;
 
@@ -190,6 +192,8 @@ class TurningPaths {
       const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
       const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
       const double exits = deposit(p, p.mass[dir] / total, slope, from, to, dim == 2);
+      if (dim == 3 && spread > kMinSpreadAgents * p.size)  // (at the smallest spread it does not widen)
+        add_widening(p, p.mass[dir] / total, x, spread, edge_lo, edge_hi, from, to, depth_m, f.row);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
       p.from = std::min(p.from, from);
       p.to = std::max(p.to, to);
@@ -212,6 +216,35 @@ class TurningPaths {
     if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
     return left;
+  }
+
+  // 3D: the shear of the Gaussian's widening (docs/agent-model.md, "Deposit"). Its variance
+  // diffusion_length x depth grows with depth, so its mass moves sideways at dx / d(depth) =
+  // (x - centre) / (2 depth), which the path's slope does not carry: over agent [a, b] that is
+  // int (x - c) N(x; c, sd) dx / (2 depth) = sd (pdf((a - c) / sd) - pdf((b - c) / sd)) / (2 depth),
+  // for the Gaussian and its two images (each widens about its own centre, so nothing crosses a
+  // run's end). An agent takes the mean of its two faces' 1 / (2 depth); the loaded face carries no
+  // shear (the entry row's upper face). Added to the axis's shear as `scale` x that slope.
+  void add_widening(AxisPaths& p, double scale, double x, double spread, double edge_lo, double edge_hi, int from,
+                    int to, double depth, double row) {
+    const double top = depth - 0.5 * row, bottom = depth + 0.5 * row;
+    const double rate = 0.5 * ((top > 0.5 * row ? 0.5 / top : 0.0) + 0.5 / bottom);  // entry row: top = 0
+    const double* pos = pos_.at[p.axis].data();
+    const double centres[3] = {x, 2 * edge_lo - x, 2 * edge_hi - x};
+    auto edge_pdfs = [&](double edge) {  // sum over the centres of sd pdf((edge - c) / sd)
+      double sum = 0;
+      for (double c : centres) {
+        const double z = (edge - c) / spread;
+        sum += std::exp(-0.5 * z * z);
+      }
+      return kInvSqrt2Pi * spread * sum;
+    };
+    double lower = edge_pdfs(pos[from] * p.size);
+    for (int i = from; i <= to; ++i) {  // agents of a run are one agent long: i's upper edge is i + 1's lower
+      const double upper = edge_pdfs((pos[i] + 1) * p.size);
+      p.shear[i] += scale * rate * (lower - upper);
+      lower = upper;
+    }
   }
 
   // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and

@@ -305,6 +305,38 @@ TEST(Turning, TheLocalLayerIn3DIsItsClosedFormOnAUniformPressure) {
       }
 }
 
+TEST(Turning, AWideningDepositCarriesItsShearIn3D) {
+  // 3D: a row's Gaussian of variance diffusion_length x depth (L d) moves its mass sideways at
+  // (x - centre) / (2 d), so its shear's first moment about the load line, sum of tau_xy A (x - x0)
+  // over a row, is F L / 2 at every depth (F sigma^2 / (2 d)); the path's own shear does not depend
+  // on L. Two diffusion lengths differ by F (L1 - L2) / 2 in that moment, times c = (d / top + d /
+  // bottom) / 2 (an agent takes the mean of its faces' 1 / (2 depth)): 1 N, L 2 and 1 mm: 0.5 N mm.
+  const int n = 61, ny = 8;
+  const double h = 1e-3, F = 1.0;
+  Grid g = Grid::box(3, {n, ny, n}, Eigen::Vector3d(h, h, h));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  const std::vector<EntryLoad> loads{{g.index(n / 2, ny - 1, n / 2), direction(1, false), F}};
+  auto moments = [&](double diffusion) {
+    Coefficients k;
+    k.gamma = 0;
+    k.directional.diffusion_length = diffusion;
+    LoadTransfer m(g, kSteel, k, RuleSet::Directional);
+    m.solve(loads);
+    std::vector<double> moment(ny, 0.0);
+    for (int j = 0; j < ny; ++j)
+      for (int kz = 0; kz < n; ++kz)
+        for (int i = 0; i < n; ++i)
+          moment[j] += m.shear_stress()[3 * g.index(i, j, kz)] * h * h * (i - n / 2) * h;
+    return moment;
+  };
+  const auto wide = moments(2e-3), narrow = moments(1e-3);
+  for (int j = 1; j < ny - 1; ++j) {  // depth index ny - 1 - j below the loaded face
+    const double top = ny - 1 - j, bottom = top + 1, centre = top + 0.5;
+    const double expected = F * (2e-3 - 1e-3) / 2 * 0.5 * (centre / top + centre / bottom);
+    EXPECT_NEAR(std::abs(wide[j] - narrow[j]), expected, 0.02 * expected) << "row " << j;
+  }
+}
+
 TEST(Turning, EachRunOnTheBaseHasItsOwnFreeEnds) {
   // The base split by a notch of air in its lowest rows: each run on it is a half-plane of its own
   // width with free ends. A pressure on the left run only leaves the right run's columns without

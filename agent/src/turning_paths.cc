@@ -5,8 +5,9 @@
 // depth), its tails mirrored at the ends of the row's run of agents and normalised over the run, so
 // each row carries the direction's force exactly. In 3D a packet is a pair of directions, one per
 // lateral axis, its weight and its deposit the product of both axes': a row's force is the product
-// of one distribution per axis (of the runs through the entry's lateral lines). What leaves through
-// a row's exit faces (or lands on air) leaves the load; the rest goes on.
+// of one distribution per axis (of the runs through the entry's lateral lines), and its shear per
+// axis the path's slope plus (3D) the Gaussian's widening. What leaves through a row's exit faces
+// (or lands on air) leaves the load; the rest goes on.
 #include "directional_march.h"
 
 #include <agent/exact_functions.h>

@@ -231,21 +231,24 @@ class TurningPaths {
     const double top = depth - 0.5 * row, bottom = depth + 0.5 * row;
     const double rate = 0.5 * ((top > 0.5 * row ? 0.5 / top : 0.0) + 0.5 / bottom);  // entry row: top = 0
     const double* pos = pos_.at[p.axis].data();
-    const double centres[3] = {x, 2 * edge_lo - x, 2 * edge_hi - x};
-    auto edge_pdfs = [&](double edge) {  // sum over the centres of sd pdf((edge - c) / sd)
-      double sum = 0;
-      for (double c : centres) {
-        const double z = (edge - c) / spread;
-        sum += std::exp(-0.5 * z * z);
-      }
-      return kInvSqrt2Pi * spread * sum;
-    };
-    double lower = edge_pdfs(pos[from] * p.size);
-    for (int i = from; i <= to; ++i) {  // agents of a run are one agent long: i's upper edge is i + 1's lower
-      const double upper = edge_pdfs((pos[i] + 1) * p.size);
-      p.shear[i] += scale * rate * (lower - upper);
-      lower = upper;
+    const double first = pos[from] * p.size, last = (pos[to] + 1) * p.size;  // a run: one agent per size
+    // the Gaussian and the images within kSpreadReach of the agents (beyond, exp(-18) of its peak)
+    double centres[3] = {x, 0, 0};
+    int images = 1;
+    if (first - (2 * edge_lo - x) < kSpreadReach * spread) centres[images++] = 2 * edge_lo - x;
+    if ((2 * edge_hi - x) - last < kSpreadReach * spread) centres[images++] = 2 * edge_hi - x;
+    // sd pdf at the edges first + j size, summed over the centres: exp(-z^2 / 2) at z_j = z_0 + j dz
+    // by the recurrence e_j+1 = e_j r_j, r_j+1 = r_j exp(-dz^2) (three exponentials per centre)
+    const int count = to - from + 1;
+    const double dz = p.size / spread;
+    edges_.assign(std::size_t(count) + 1, 0.0);
+    for (int c = 0; c < images; ++c) {
+      const double z0 = (first - centres[c]) / spread, q = std::exp(-dz * dz);
+      double e = std::exp(-0.5 * z0 * z0), r = std::exp(-z0 * dz - 0.5 * dz * dz);
+      for (int j = 0; j <= count; ++j, e *= r, r *= q) edges_[std::size_t(j)] += e;
     }
+    const double factor = scale * rate * kInvSqrt2Pi * spread;
+    for (int j = 0; j < count; ++j) p.shear[from + j] += factor * (edges_[std::size_t(j)] - edges_[std::size_t(j) + 1]);
   }
 
   // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and
@@ -359,6 +362,7 @@ class TurningPaths {
   Sinks& out_;
   std::vector<double> row_force_;
   std::vector<double> shares_;  // per agent of a direction's window
+  std::vector<double> edges_;   // 3D, per edge of a direction's window: its widening's density there
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

@@ -5,8 +5,9 @@
 // depth), its tails mirrored at the ends of the row's run of agents and normalised over the run, so
 // each row carries the direction's force exactly. In 3D a packet is a pair of directions, one per
 // lateral axis, its weight and its deposit the product of both axes': a row's force is the product
-// of one distribution per axis (of the runs through the entry's lateral lines). What leaves through
-// a row's exit faces (or lands on air) leaves the load; the rest goes on.
+// of one distribution per axis (of the runs through the entry's lateral lines), and its shear per
+// axis the path's slope plus (3D) the Gaussian's widening. What leaves through a row's exit faces
+// (or lands on air) leaves the load; the rest goes on.
 #include "directional_march.h"
 
 #include <agent/exact_functions.h>
@@ -32,6 +33,8 @@ constexpr double kMinSpreadAgents = 0.3;
 constexpr double kSpreadReach = 6;
 /// An image's cdf below this is dropped: round-off of a direction's force (its shares sum to 1).
 constexpr double kNegligibleCdf = 1e-18;
+/// 1 / sqrt(2 pi): the standard normal density at 0.
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 /// A turn whose target lies on the wrong side of the load: this many agents, i.e. straight on.
 constexpr double kStraightTurn = 1e-9;
 
@@ -190,6 +193,8 @@ class TurningPaths {
       const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
       const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
       const double exits = deposit(p, p.mass[dir] / total, slope, from, to, dim == 2);
+      if (dim == 3 && spread > kMinSpreadAgents * p.size)  // (at the smallest spread it does not widen)
+        add_widening(p, p.mass[dir] / total, x, spread, edge_lo, edge_hi, from, to, depth_m, f.row);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
       p.from = std::min(p.from, from);
       p.to = std::max(p.to, to);
@@ -212,6 +217,38 @@ class TurningPaths {
     if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
     return left;
+  }
+
+  // 3D: the shear of the Gaussian's widening (docs/agent-model.md, "Deposit"). Its variance
+  // diffusion_length x depth grows with depth, so its mass moves sideways at dx / d(depth) =
+  // (x - centre) / (2 depth), which the path's slope does not carry: over agent [a, b] that is
+  // int (x - c) N(x; c, sd) dx / (2 depth) = sd (pdf((a - c) / sd) - pdf((b - c) / sd)) / (2 depth),
+  // for the Gaussian and its two images (each widens about its own centre, so nothing crosses a
+  // run's end). An agent takes the mean of its two faces' 1 / (2 depth); the loaded face carries no
+  // shear (the entry row's upper face). Added to the axis's shear as `scale` x that slope.
+  void add_widening(AxisPaths& p, double scale, double x, double spread, double edge_lo, double edge_hi, int from,
+                    int to, double depth, double row) {
+    const double top = depth - 0.5 * row, bottom = depth + 0.5 * row;
+    const double rate = 0.5 * ((top > 0.5 * row ? 0.5 / top : 0.0) + 0.5 / bottom);  // entry row: top = 0
+    const double* pos = pos_.at[p.axis].data();
+    const double first = pos[from] * p.size, last = (pos[to] + 1) * p.size;  // a run: one agent per size
+    // the Gaussian and the images within kSpreadReach of the agents (beyond, exp(-18) of its peak)
+    double centres[3] = {x, 0, 0};
+    int images = 1;
+    if (first - (2 * edge_lo - x) < kSpreadReach * spread) centres[images++] = 2 * edge_lo - x;
+    if ((2 * edge_hi - x) - last < kSpreadReach * spread) centres[images++] = 2 * edge_hi - x;
+    // sd pdf at the edges first + j size, summed over the centres: exp(-z^2 / 2) at z_j = z_0 + j dz
+    // by the recurrence e_j+1 = e_j r_j, r_j+1 = r_j exp(-dz^2) (three exponentials per centre)
+    const int count = to - from + 1;
+    const double dz = p.size / spread;
+    edges_.assign(std::size_t(count) + 1, 0.0);
+    for (int c = 0; c < images; ++c) {
+      const double z0 = (first - centres[c]) / spread, q = std::exp(-dz * dz);
+      double e = std::exp(-0.5 * z0 * z0), r = std::exp(-z0 * dz - 0.5 * dz * dz);
+      for (int j = 0; j <= count; ++j, e *= r, r *= q) edges_[std::size_t(j)] += e;
+    }
+    const double factor = scale * rate * kInvSqrt2Pi * spread;
+    for (int j = 0; j < count; ++j) p.shear[from + j] += factor * (edges_[std::size_t(j)] - edges_[std::size_t(j) + 1]);
   }
 
   // Fills shares_ (agents from..to) with each agent's share of a Gaussian of `spread` about x and
@@ -325,6 +362,7 @@ class TurningPaths {
   Sinks& out_;
   std::vector<double> row_force_;
   std::vector<double> shares_;  // per agent of a direction's window
+  std::vector<double> edges_;   // 3D, per edge of a direction's window: its widening's density there
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

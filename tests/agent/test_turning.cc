@@ -273,6 +273,70 @@ TEST(Turning, TheBasesLayerIsTheHalfPlanesAnswerToItsRestraint) {
   EXPECT_GT(largest_tau_error, 0.0);
 }
 
+TEST(Turning, TheLocalLayerIn3DIsItsClosedFormOnAUniformPressure) {
+  // 3D, a 6 x 4 x 6 block of 4 mm agents on a rigid base, sigma_y = p = -1000 Pa at every agent, no
+  // shear: sigma_x and sigma_z are the local layer alone, nu / (1 - nu) p max(0, 1 - y / ell)
+  // (1 - exp(-d_side / y)), ell = 0.25 x the pressure's width sqrt(12 variance) = 0.25 h sqrt(35)
+  // (six equal agents: variance h^2 (36 - 1) / 12) = 5.916 mm, so only the bottom layer (y = 2 mm)
+  // has one. By hand at the corner agent (d_side = 2 mm): 3 / 7 x -1000 x (1 - 2 / 5.916) x (1 -
+  // exp(-1)) = -179.325 Pa; at d_side = 6 and 10 mm -269.564 and -281.776 Pa. Its shear by
+  // horizontal equilibrium from the top: 0 above, h / 2 d sigma_x / dx in the bottom layer.
+  const int n = 6, ny = 4;
+  const double h = 4e-3, p = -1000;
+  Grid g = Grid::box(3, {n, ny, n}, Eigen::Vector3d(h, h, h));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  std::vector<double> normal(g.count() * 3, 0.0), no_shear(g.count() * 3, 0.0), no_balance(2 * (n + ny + n), 0.0);
+  for (std::size_t c = 0; c < g.count(); ++c) normal[3 * c + 1] = p;
+  const auto s = directional_stress_components(g, normal, no_shear, no_balance, DirectionalCoefficients{}, 0.3,
+                                               {{g.index(n / 2, ny - 1, n / 2), direction(1, false), 1.0}});
+  const double by_hand[3] = {-179.32491724732648, -269.56385605943717, -281.77636840254553};
+  auto layer = [&](int i, int j) { return j > 0 ? 0.0 : by_hand[std::min(i, n - 1 - i)]; };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t c = g.index(i, j, k);
+        EXPECT_NEAR(s.sigma[3 * c], layer(i, j), 1e-9) << i << "," << j << "," << k;
+        EXPECT_NEAR(s.sigma[3 * c + 2], layer(k, j), 1e-9) << i << "," << j << "," << k;
+        EXPECT_EQ(s.sigma[3 * c + 1], p);  // sigma_y: the march's
+        const int lo = std::max(0, i - 1), hi = std::min(n - 1, i + 1);
+        const double slope = (layer(hi, j) - layer(lo, j)) / ((hi - lo) * h);
+        EXPECT_NEAR(s.shear[3 * c], 0.5 * h * slope, 1e-9) << i << "," << j << "," << k;  // tau_xy
+        EXPECT_EQ(s.shear[3 * c + 2], 0.0);  // tau_xz: no layer writes it
+      }
+}
+
+TEST(Turning, AWideningDepositCarriesItsShearIn3D) {
+  // 3D: a row's Gaussian of variance diffusion_length x depth (L d) moves its mass sideways at
+  // (x - centre) / (2 d), so its shear's first moment about the load line, sum of tau_xy A (x - x0)
+  // over a row, is F L / 2 at every depth (F sigma^2 / (2 d)); the path's own shear does not depend
+  // on L. Two diffusion lengths differ by F (L1 - L2) / 2 in that moment, times c = (d / top + d /
+  // bottom) / 2 (an agent takes the mean of its faces' 1 / (2 depth)): 1 N, L 2 and 1 mm: 0.5 N mm.
+  const int n = 61, ny = 8;
+  const double h = 1e-3, F = 1.0;
+  Grid g = Grid::box(3, {n, ny, n}, Eigen::Vector3d(h, h, h));
+  g.set_boundary(g.box_side(kMinusY), Boundary::Rigid);
+  const std::vector<EntryLoad> loads{{g.index(n / 2, ny - 1, n / 2), direction(1, false), F}};
+  auto moments = [&](double diffusion) {
+    Coefficients k;
+    k.gamma = 0;
+    k.directional.diffusion_length = diffusion;
+    LoadTransfer m(g, kSteel, k, RuleSet::Directional);
+    m.solve(loads);
+    std::vector<double> moment(ny, 0.0);
+    for (int j = 0; j < ny; ++j)
+      for (int kz = 0; kz < n; ++kz)
+        for (int i = 0; i < n; ++i)
+          moment[j] += m.shear_stress()[3 * g.index(i, j, kz)] * h * h * (i - n / 2) * h;
+    return moment;
+  };
+  const auto wide = moments(2e-3), narrow = moments(1e-3);
+  for (int j = 1; j < ny - 1; ++j) {  // depth index ny - 1 - j below the loaded face
+    const double top = ny - 1 - j, bottom = top + 1, centre = top + 0.5;
+    const double expected = F * (2e-3 - 1e-3) / 2 * 0.5 * (centre / top + centre / bottom);
+    EXPECT_NEAR(std::abs(wide[j] - narrow[j]), expected, 0.02 * expected) << "row " << j;
+  }
+}
+
 TEST(Turning, EachRunOnTheBaseHasItsOwnFreeEnds) {
   // The base split by a notch of air in its lowest rows: each run on it is a half-plane of its own
   // width with free ends. A pressure on the left run only leaves the right run's columns without

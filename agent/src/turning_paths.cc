@@ -7,7 +7,10 @@
 // lateral axis, its weight and its deposit the product of both axes': a row's force is the product
 // of one distribution per axis (of the runs through the entry's lateral lines), and its shear per
 // axis the path's slope plus (3D) the Gaussian's widening. What leaves through a row's exit faces
-// (or lands on air) leaves the load; the rest goes on.
+// (or lands on air) leaves the load; the rest goes on. 2D with near_side = image: both halves of
+// the fan map onto the wider side's width, a path that would cross the nearer side folds back as
+// its image, and the deposit's images at the run's ends carry the negated slope
+// (docs/agent-model.md, "Loads near a side").
 #include "directional_march.h"
 
 #include <agent/exact_functions.h>
@@ -42,6 +45,7 @@ constexpr double kStraightTurn = 1e-9;
 struct AxisPaths {
   int axis = 0, entry = 0;
   double size = 1, x0 = 0;
+  double fold_lo = 0, fold_hi = 0;  // 2D: the entry run's ends, where a path's image folds back
   std::vector<double> turn, mass;   // 2D: each direction's force; 3D: its weight (x the load's rest)
   std::vector<double> force, shear; // a row's: sum over directions of mass x share (x slope)
   int from = 0, to = -1;            // the agents they cover
@@ -56,6 +60,7 @@ class TurningPaths {
 
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
+    image_ = dim == 2 && k_.near_side == NearSide::Image;
     row_force_.assign(f.layer_size, 0.0);  // the packets' force through each agent of a row
     const double body_depth = depth_of_body(f, f.entry[f.a]);
     std::array<AxisPaths, 2> axes;
@@ -131,7 +136,13 @@ class TurningPaths {
     p.x0 = (pos[p.entry] + 0.5) * p.size;
     int lo = 0, hi = 0;
     run_of(f, f.entry[f.a], which, f.eu, f.ev, lo, hi);
-    const double width_low = p.x0 - pos[lo] * p.size, width_high = (pos[hi] + 1) * p.size - p.x0;
+    double width_low = p.x0 - pos[lo] * p.size, width_high = (pos[hi] + 1) * p.size - p.x0;
+    p.fold_lo = pos[lo] * p.size;
+    p.fold_hi = (pos[hi] + 1) * p.size;
+    // near_side = image: both halves of the fan map onto the wider side's width; a path that would
+    // cross the nearer side is folded back into the body as its image (distribute). Far below, the
+    // force then spreads over the whole width, and the row's balance makes it beam statics' line.
+    if (image_) width_low = width_high = std::max(width_low, width_high);
     double below = 0;  // the fan's weight of the directions before k
     for (int dir = 0; dir < k_.directions; ++dir) {
       const double s = fan_.slope[dir], q = below + 0.5 * fan_.weight[dir];
@@ -176,7 +187,11 @@ class TurningPaths {
       if (p.mass[dir] == 0) continue;
       const double s = fan_.slope[dir], L = p.turn[dir], t = std::tanh(s * depth_m / L);
       double x = p.x0 + L * t;
-      const double slope = s * (1 - t * t);
+      double slope = s * (1 - t * t);
+      if (image_ && (x < p.fold_lo || x > p.fold_hi)) {  // the image's path, folded back
+        x = x < p.fold_lo ? 2 * p.fold_lo - x : 2 * p.fold_hi - x;
+        slope = -slope;
+      }
       if (dim == 2) {
         int iu = pos_.slot_at(p.axis, x / p.size);
         if (f.air(here(iu, 0))) iu = nearest_agent(f, layer, iu);
@@ -204,15 +219,18 @@ class TurningPaths {
 
   // Adds a direction's force (`scale` x shares_) and shear (x `slope`) to agents from..to of the
   // row; with `exits`, returns what leaves through their exit faces (leaving_).
+  // near_side = image: the shares' part from the run ends' images carries the negated slope (the
+  // image's shear cancels the path's at a free side).
   double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits) {
     const double* share = shares_.data() - from;
+    const double* image = image_ ? images_.data() - from : nullptr;
     double* force = p.force.data();
     double* shear = p.shear.data();
     double left = 0;
     for (int i = from; i <= to; ++i) {
       const double m = share[i] * scale;
       force[i] += m;
-      shear[i] += m * slope;
+      shear[i] += image_ ? (share[i] - 2 * image[i]) * scale * slope : m * slope;
     }
     if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
@@ -281,10 +299,12 @@ class TurningPaths {
     }
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
     // the agents from there on are skipped.
+    if (image_) images_.assign(std::size_t(count), 0.0);
     double below = cdf(z_low);
     for (int j = 1; j <= count && below < 1.0; ++j) {
       const double next = cdf(z_low + j * step);
       shares_[j - 1] += next - below;
+      if (image_) images_[j - 1] += next - below;
       below = next;
     }
     // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
@@ -294,9 +314,13 @@ class TurningPaths {
     for (; j >= 0 && above >= kNegligibleCdf; --j) {
       const double next = cdf(z_high + j * step);
       shares_[j] += above - next;
+      if (image_) images_[j] += above - next;
       above = next;
     }
-    if (j >= 0) shares_[j] += above;
+    if (j >= 0) {
+      shares_[j] += above;
+      if (image_) images_[j] += above;
+    }
     double partial[4] = {0, 0, 0, 0};  // four sums, so that the adds do not wait on each other
     int i = 0;
     for (; i + 4 <= count; i += 4)
@@ -305,6 +329,7 @@ class TurningPaths {
     double total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
+      if (image_) std::fill(images_.begin(), images_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
     }
     return total;
@@ -363,6 +388,8 @@ class TurningPaths {
   std::vector<double> row_force_;
   std::vector<double> shares_;  // per agent of a direction's window
   std::vector<double> edges_;   // 3D, per edge of a direction's window: its widening's density there
+  std::vector<double> images_;  // 2D: the part of shares_ from the run ends' images
+  bool image_ = false;          // near_side = image, in 2D (set by march)
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

@@ -537,3 +537,60 @@ TEST(Turning, ABlockCentredLoadIsBalancedAndSymmetricInBothLateralAxes) {
   }
   EXPECT_GT(txz_max, 0.01 * txy_max);
 }
+
+TEST(Turning, TheNearSidesImageSpreadsTheLoadAsBeamStaticsFarBelow) {
+  // near_side = image (docs/agent-model.md, "Loads near a side"): a load 3 agents from the side of
+  // a square plate reaches the base as beam statics' linear pressure, P / W (1 + 12 e (x - W / 2) /
+  // W^2), e the load's offset from the middle (FEM's base pressure on the seed plate is that line to
+  // a few %). With each half of the fan on its own side's width the near side's half piles up there.
+  const int n = 24;
+  const Grid g = steel_plate(n, n);
+  const double load = 2.0, width = n * 5e-3, x0 = 3.5 * 5e-3;
+  auto rms_off_the_line = [&](NearSide near_side) {
+    Coefficients k;
+    k.gamma = 0;
+    k.directional.near_side = near_side;
+    const auto f = solve(g, k, {{g.index(3, n - 1, 0), direction(1, false), load}});
+    const auto& d = f.model.diagnostics();
+    EXPECT_NEAR(d.rigid_reaction, load, 1e-13 * load);  // the load balance stays exact
+    EXPECT_EQ(d.passed_out, 0.0);
+    for (int j = 0; j < n; ++j) {
+      double through = 0;
+      for (int i = 0; i < n; ++i) through += face(f.model, i, j, kPlusY);
+      EXPECT_NEAR(through, load, 1e-13 * load) << "row " << j;
+    }
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+      const double x = (i + 0.5) * 5e-3;
+      const double line = load / n * (1 + 12 * (x0 - width / 2) * (x - width / 2) / (width * width));
+      sum += std::pow(face(f.model, i, 0, kMinusY) - line, 2);
+    }
+    return std::sqrt(sum / n) / (load / n);  // in units of the mean force per agent
+  };
+  EXPECT_LT(rms_off_the_line(NearSide::Image), 0.07);  // the numpy prototype: 0.049
+  EXPECT_GT(rms_off_the_line(NearSide::Side), 0.3);    // 0.337
+}
+
+TEST(Turning, TheNearSidesImageLeavesACentredLoadsForceAndKeepsItsSymmetry) {
+  // A load on the middle agent of an odd plate: both sides have the same width, so the image maps
+  // the fan as before and no path crosses a side: the force through every face is the same to the
+  // bit. Only the shear differs (the Gaussians' images at the sides carry the negated slope), and
+  // it stays antisymmetric, sigma_x and sigma_y symmetric.
+  const int nx = 21, ny = 16;
+  const Grid g = steel_plate(nx, ny);
+  Coefficients side, image;
+  image.directional.near_side = NearSide::Image;
+  const std::vector<EntryLoad> loads{{g.index(10, ny - 1, 0), direction(1, false), 2.0}};
+  const auto a = solve(g, side, loads), b = solve(g, image, loads);
+  EXPECT_EQ(a.model.face_forces(), b.model.face_forces());
+  EXPECT_NE(a.stress.shear, b.stress.shear);
+  const double sx_max = largest_magnitude(b.stress.sigma, 2, 0), tau_max = largest_magnitude(b.stress.shear, 1, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0), m = g.index(nx - 1 - i, j, 0);
+      EXPECT_NEAR(b.stress.sigma[2 * c], b.stress.sigma[2 * m], 1e-9 * sx_max) << i << "," << j;
+      EXPECT_NEAR(b.stress.shear[c], -b.stress.shear[m], 1e-9 * tau_max) << i << "," << j;
+    }
+  EXPECT_STREQ(find_coefficient("near_side")->choice_name(double(NearSide::Image)), "image");
+  EXPECT_EQ(Coefficients{}.directional.near_side, NearSide::Side);
+}

@@ -53,6 +53,13 @@ inline constexpr const char* kPathNames[] = {"turning", "mirror"};
 enum class ClosedForms { Added, LeftOut };
 inline constexpr const char* kClosedFormNames[] = {"added", "left_out"};
 
+/// 2D turning paths near a free side (docs/agent-model.md, "Loads near a side"): each half of the
+/// fan mapped onto the body's width on its own side, or both onto the wider side's width with the
+/// paths that would cross the nearer side folded back as their image (its shear negated: a free
+/// side holds none). Named in kNearSideNames, in this order.
+enum class NearSide { Side, Image };
+inline constexpr const char* kNearSideNames[] = {"side", "image"};
+
 /// Coefficients of the directional rule set. The defaults are the calibrated ones
 /// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
 struct DirectionalCoefficients {
@@ -73,6 +80,7 @@ struct DirectionalCoefficients {
   /// shear for the tie scan (docs/research/stress-components.md)
   double window_length = 5e-3;
   ClosedForms closed_forms = ClosedForms::Added;  ///< 2D turning paths: the closed-form layers added, or the agents alone
+  NearSide near_side = NearSide::Side;  ///< 2D turning paths: the near side's packets on its own width, or the fan's image
 };
 
 /// Which threshold a transfer drops loads by (docs/agent-model.md, "The threshold"): the seed's
@@ -207,7 +215,7 @@ inline constexpr unsigned kAllRules = kSeedRules | kDirectionalRules;
 
 /// Every coefficient. The fitted ones come first, in the order of a calibration's parameter vector
 /// (read a row by name: coefficient_index, find_coefficient).
-inline constexpr std::array<CoefficientSpec, 16> kCoefficients{{
+inline constexpr std::array<CoefficientSpec, 17> kCoefficients{{
     row("alpha1", "entry coefficient: the entry agent takes alpha1 of the load (seed: P1 = alpha1 P0)")
         .read_by(rule_bit(RuleSet::Patent)).range(0, 1).fit(0.0, 1.0)
         .value([](const Coefficients& k) { return k.alpha1; }, [](Coefficients& k, double v) { k.alpha1 = v; }),
@@ -269,6 +277,10 @@ inline constexpr std::array<CoefficientSpec, 16> kCoefficients{{
         .read_by(kDirectionalRules).named(kClosedFormNames, 2)
         .value([](const Coefficients& k) { return double(k.directional.closed_forms); },
                [](Coefficients& k, double v) { k.directional.closed_forms = ClosedForms(int(v)); }),
+    row("near_side", "2D turning paths: \"side\" (each half of the fan on its own side's width) or \"image\" (on the wider side's, folded back at the nearer side)")
+        .read_by(kDirectionalRules).named(kNearSideNames, 2)
+        .value([](const Coefficients& k) { return double(k.directional.near_side); },
+               [](Coefficients& k, double v) { k.directional.near_side = NearSide(int(v)); }),
 }};
 
 /// The place of the row named `name` in kCoefficients; throws std::invalid_argument for an unknown

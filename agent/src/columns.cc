@@ -194,9 +194,9 @@ void section_rows(const Grid& g, Columns& c) {
   for (std::size_t cell = 0; cell < g.count(); ++cell)
     if (!g.is_air(cell) && c.in_section(std::size_t(g.coords(cell)[a]), g.coords(cell)[t])) held[std::size_t(g.coords(cell)[a])] = 1;
   for (std::size_t cell = 0; cell < g.count(); ++cell) {
+    if (g.is_air(cell)) continue;  // (first: a tiled grid's air slots may lie beyond the box)
     const std::size_t i = std::size_t(g.coords(cell)[a]);
-    if (held[i] || g.is_air(cell)) continue;
-    c.first_row[i] = std::min(c.first_row[i], g.coords(cell)[t]), c.last_row[i] = std::max(c.last_row[i], g.coords(cell)[t]);
+    if (!held[i]) c.first_row[i] = std::min(c.first_row[i], g.coords(cell)[t]), c.last_row[i] = std::max(c.last_row[i], g.coords(cell)[t]);
   }
 }
 

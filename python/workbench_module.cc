@@ -627,7 +627,7 @@ void bind_studies(py::module_& m) {
         py::list rows;
         for (const auto& r : table.rows)
           rows.append(py::dict(py::arg("folder") = r.folder, py::arg("parameters") = r.parameters,
-                               py::arg("metrics") = r.metrics));
+                               py::arg("metrics") = r.metrics, py::arg("not_modelled") = r.not_modelled));
         return py::dict(py::arg("parameters") = table.parameters, py::arg("metrics") = table.metrics,
                         py::arg("rows") = rows);
       },
@@ -635,7 +635,7 @@ void bind_studies(py::module_& m) {
       "`workbench summarize`: the summaries of compare and calibrate output folders as one table.\n\n"
       "Arguments: folders (a list of output folders).\n\nReturns a dict: `parameters` "
       "(the case keys that differ between the folders), `metrics` (every name), `rows` (per folder: `folder`, "
-      "`parameters`, `metrics`).");
+      "`parameters`, `metrics`, `not_modelled`: the metrics of components its rule set does not model).");
   m.def("run_pbd", &run_pbd, py::arg("case"), py::arg("progress") = py::none(),
         "The PBD model, stepped as `workbench pbd` does; writes nothing.\n\n"
         "Arguments: case (workbench.Case); progress (a callable given each progress line).\n\n"

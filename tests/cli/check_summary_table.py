@@ -1,6 +1,7 @@
 """Checks a `workbench summarize` table against the summaries of its folders: every metric of each
 folder's summary.json is in its row with the same number, every other metric cell of the row is
-empty, the parameter columns are exactly the ones expected, and the JSON table says the same.
+empty, the `not_modelled` cell names exactly the metrics summary.json gives `"modelled": false`, the
+parameter columns are exactly the ones expected, and the JSON table says the same.
 
     check_summary_table.py TABLE.csv TABLE.json PARAMETER [PARAMETER ...]
 """
@@ -16,12 +17,15 @@ def main():
         reader = csv.DictReader(f)
         columns, rows = reader.fieldnames, list(reader)
     problems = []
-    metric_columns = [c for c in columns[1:] if c not in parameters]
-    if columns[0] != "folder" or columns[1:1 + len(parameters)] != sorted(parameters):
-        problems.append(f"columns {columns[:1 + len(parameters)]}, expected folder and {sorted(parameters)}")
+    metric_columns = [c for c in columns[1:] if c not in parameters and c != "not_modelled"]
+    if columns[:2 + len(parameters)] != ["folder"] + sorted(parameters) + ["not_modelled"]:
+        problems.append(f"columns {columns[:2 + len(parameters)]}, expected folder, {sorted(parameters)}, not_modelled")
     for row in rows:
         summary = json.load(open(os.path.join(row["folder"], "summary.json")))
         metrics = {name: m["value"] for name, m in summary["metrics"].items()}
+        not_modelled = sorted(name for name, m in summary["metrics"].items() if m.get("modelled") is False)
+        if row["not_modelled"].split() != not_modelled:
+            problems.append(f"{row['folder']}: not_modelled {row['not_modelled']!r}, summary.json {not_modelled}")
         for name in metric_columns:
             cell = row[name]
             if name in metrics and (cell == "" or float(cell) != metrics[name]):
@@ -38,6 +42,8 @@ def main():
         for name in metric_columns:
             if (row[name] == "") != (name not in jrow["metrics"]) or (row[name] and float(row[name]) != jrow["metrics"][name]):
                 problems.append(f"JSON {jrow['folder']}: {name}")
+        if row["not_modelled"].split() != jrow["not_modelled"]:
+            problems.append(f"JSON {jrow['folder']}: not_modelled {jrow['not_modelled']}, CSV {row['not_modelled']!r}")
         for p in parameters:
             if row[p] != jrow["parameters"].get(p, ""):
                 problems.append(f"JSON {jrow['folder']}: {p} = {jrow['parameters'].get(p)!r}, CSV {row[p]!r}")

@@ -3,8 +3,8 @@
 # with the load off centre it is refined until its own body error is under the tolerance, and the
 # summary says which level and error (the same number as the body metric's reference_error); where
 # the memory limit stops it, summary.json, summary.txt, the page's data and the log say that the
-# reference limits the judgement; a case that sets refine keeps its level; the tolerance is refused
-# where no ladder runs. Usage: reference_3d.sh WORKBENCH_BINARY SOURCE_DIR
+# reference limits the judgement; calibration solves the same reference and says the same; a case
+# that sets refine keeps its level; the tolerance is refused where no ladder runs. Usage: reference_3d.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 
 # 5 x 4 x 4 cubes of 2 mm, the 4 mm patch at x = 4 mm (off centre), Q2 on the agents' mesh 2,673
@@ -86,6 +86,29 @@ and c['own_error'] == s['metrics']['body.sigma_y.rel_l2']['reference_error']"
 [ "$(sed -n '/reference level 1/,$p' "$work/level2.log" | grep -c "error estimate")" -eq 0 ]
 check level2_estimate_kept $? "$(grep -E 'reference|estimate' "$work/level2.log")"
 
+# 1c. Calibration solves the same reference (compare/reference.h's solve_reference): the same
+# levels and own errors as compare's, its log's lines, and its errors before the fit (the case's own
+# coefficients) compare's body norms, every field, to the last bit.
+printf '%s\n' '[calibrate]' 'rule_set = "conserving"' 'starts = 1' 'max_evaluations = 4' 'keep_load = false' \
+  '[[calibrate.case]]' "file = \"$work/converges.toml\"" >"$work/calibrate.toml"
+"$bin" calibrate "$work/calibrate.toml" -o "$work/calibrate" >"$work/calibrate.log" 2>&1
+rc=$?
+check calibrate_exit "$rc" "exit $rc: $(tail -3 "$work/calibrate.log")"
+/usr/bin/python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))['cases']['converges']
+s = json.load(open(sys.argv[2]))
+a, b = r['reference']['convergence'], s['reference']['convergence']
+levels = lambda c: [(l['refine'], l['dofs'], l['own_error']) for l in c['levels']]
+ok = levels(a) == levels(b) and [l[:2] for l in levels(a)] == [(0, 2673), (1, 18207)] and a['converged']
+ok = ok and r['reference']['refine'] == 1 and r['reference']['dofs'] == 18207 and a['own_error'] == b['own_error'] < 0.05
+differ = [f for f, e in r['before'].items() if e != s['metrics'][f'body.{f}.rel_l2']['value']]
+print('levels', levels(a), levels(b), 'differ', differ) if not ok or differ else None
+sys.exit(0 if ok and not differ and len(r['before']) == 11 else 1)" "$work/calibrate/report.json" "$work/converges/summary.json"
+check calibrate_same_reference $? "see above"
+grep -q "compare: reference level 1 (FEM Q2, the agents' mesh refined 1 time, 18207 DoFs, .* s): its own error in the body's sigma_y .* <= 0.05: converged" "$work/calibrate.log"
+check calibrate_log $? "$(grep 'reference' "$work/calibrate.log")"
+
 # 1b. On 2 MPI ranks every rank takes the same decision: the same levels, each said once, the same
 # own errors to 1e-8.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -141,6 +164,17 @@ check memory_summary_txt $? "$(head -5 "$work/memory/summary.txt")"
 grep -q "compare: warning: the reference limits the judgement: its own error in the body's sigma_y is .* above the tolerance 0.03" "$work/memory.log" &&
   grep -q "compare: reference level 0 .*: stopping" "$work/memory.log"
 check memory_log $? "$(grep 'reference' "$work/memory.log")"
+# Calibration says so too: report.json's reference, report.txt's warnings.
+printf '%s\n' '[calibrate]' 'rule_set = "conserving"' 'starts = 1' 'max_evaluations = 2' 'keep_load = false' \
+  '[[calibrate.case]]' "file = \"$work/memory.toml\"" >"$work/calibrate_memory.toml"
+WORKBENCH_MEMORY_LIMIT=0.25 "$bin" calibrate "$work/calibrate_memory.toml" -o "$work/calibrate_memory" >"$work/calibrate_memory.log" 2>&1
+rc=$?
+check calibrate_memory_exit "$rc" "exit $rc: $(tail -3 "$work/calibrate_memory.log")"
+summary_check calibrate_memory_limits "$work/memory/summary.json" "
+c == {**json.load(open('$work/calibrate_memory/report.json'))['cases']['memory']['reference']['convergence'],
+      'levels': c['levels']} and c['limits_judgement']"
+grep -q "^calibrate: WARNING: memory: the reference limits the judgement: its own error in the body's sigma_y is .* above the tolerance 0.03" "$work/calibrate_memory/report.txt"
+check calibrate_memory_report_txt $? "$(grep WARNING "$work/calibrate_memory/report.txt")"
 # The page: the warning and the convergence row, every value its summary's (headless Chromium).
 [ "$(grep -c "the reference limits the judgement" "$work/memory/report.html")" -eq 2 ]
 check memory_page_says_so $? "$(grep -c "limits the judgement" "$work/memory/report.html") mentions"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `workbench summarize`: the table holds, per folder, every metric of its summary.json (the same
-# numbers) and the case keys that differ between the folders' cases; a row without a metric has
-# an empty cell; a missing folder or one without a summary is one line with exit 2.
+# numbers), the metrics its rule set does not model (marked as summary.json marks them) and the case
+# keys that differ between the folders' cases; a row without a metric has an empty cell; a missing folder or one without a summary is one line with exit 2.
 # Usage: summarize.sh WORKBENCH_BINARY SOURCE_DIR
 . "$(dirname "$0")/common.sh"
 
@@ -36,6 +36,22 @@ assert [r["agent.rule_set"] for r in rows] == ["conserving", "patent", ""], [r["
 assert rows[2]["pbd.frames"] != "" and rows[0]["pbd.frames"] == "" and "mesh.parameters.h" in rows[0], rows[2]
 PY
 check empty_cells $? "see above"
+# A component the rule set does not model is marked, as compare's summary marks it: both plate rule
+# sets leave the shear out (its value 1, the zero model's), the PBD strip has nothing of the kind;
+# a modelled metric is not marked.
+/usr/bin/python3 - "$work/table.csv" "$work/table.json" <<'PY'
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+marked = [r["not_modelled"].split() for r in rows]
+for names, row in zip(marked[:2], rows):
+    assert {"far.tau_xy.rel_l2", "body.tau_xy.rel_l2"} <= set(names), names
+    assert all(".tau_xy." in n for n in names), names
+    assert float(row["far.tau_xy.rel_l2"]) == 1.0, row["far.tau_xy.rel_l2"]
+    assert float(row["far.sigma_y.rel_l2"]) < 1 and "far.sigma_y.rel_l2" not in names, names
+assert marked[2] == [], marked[2]
+assert [r["not_modelled"] for r in json.load(open(sys.argv[2]))["rows"]] == marked
+PY
+check not_modelled_marked $? "see above"
 
 # The Python module gives the same table (when it is built).
 if [ -d "$(dirname "$bin")/../python" ]; then
@@ -64,7 +80,8 @@ def numbers(j, prefix=""):
         elif isinstance(v, (int, float)) and not isinstance(v, bool):
             yield prefix + k, v
 expected = dict(numbers(json.load(open(sys.argv[2]))))
-assert set(row) - {"folder"} == set(expected), sorted(set(row) ^ set(expected))
+assert set(row) - {"folder", "not_modelled"} == set(expected), sorted(set(row) ^ set(expected))
+assert row["not_modelled"] == "", row["not_modelled"]  # a calibration's report.json marks none
 assert all(float(row[k]) == v for k, v in expected.items()), [k for k, v in expected.items() if float(row[k]) != v]
 assert "fitted.alpha2" in expected and "objective.fitted" in expected, sorted(expected)
 PY

@@ -166,14 +166,16 @@ CalibrationCase load_calibration_case(const workbench::CaseFile& case_file, cons
     c.study.readings = *readings;
     agent_study::check_readings_fit_loads(c.study, *readings_key);
   }
-  auto problem = fem_reference::problem_from_case(case_file);
-  // The case's own reference ([compare.reference], the converged default as in `workbench compare`).
-  const auto reference = reference_options(compare_options, c.study);
-  for (const auto& w : check_reference_body(case_file, c.study, reference)) log << c.name << ": warning: " << w << "\n";
-  log << c.name << ": solving the reference (" << reference.describe() << ") once\n" << std::flush;
-  const auto fem = fem_reference::solve_fem(reference_problem(problem, reference, c.study.mesh.grid));
-  std::array<std::size_t, 2> outside{};
-  c.reference = reference_on_grid(reference, c.study.mesh, fem, case_file.path().string(), outside);
+  const auto problem = fem_reference::problem_from_case(case_file);
+  // The case's own reference ([compare.reference]; the 3D default converged), solved as `workbench
+  // compare` solves it, without its files.
+  const auto options = reference_options(compare_options, c.study);
+  for (const auto& w : check_reference_body(case_file, c.study, options)) log << c.name << ": warning: " << w << "\n";
+  log << c.name << ": solving the reference once\n" << std::flush;
+  auto reference = solve_reference(problem, options, c.study.mesh, {}, log);
+  c.reference = std::move(reference.fields);
+  c.reference_level = level_json(reference);
+  c.reference_limits = reference.limits_judgement();
   return c;
 }
 
@@ -269,11 +271,15 @@ void add_warnings(const std::string& name, const Score& b, const Score& a, std::
                        " of the applied load after the fit");
 }
 
-/// The warnings of the fit, fitted cases then held-out ones.
-std::vector<std::string> fit_warnings(const std::vector<CalibrationCase>& cases, const CalibrationResult& result) {
+/// The warnings of the fit, fitted cases then held-out ones, then the references that limit the judgement.
+std::vector<std::string> fit_warnings(const std::vector<CalibrationCase>& cases, const std::vector<CalibrationCase>& held,
+                                      const CalibrationResult& result) {
   std::vector<std::string> warnings;
   for (std::size_t i = 0; i < cases.size(); ++i) add_warnings(cases[i].name, result.before[i], result.after[i], warnings);
   for (const auto& h : result.held_out) add_warnings(h.name + " (held out)", h.before, h.after, warnings);
+  for (const auto* list : {&cases, &held})
+    for (const auto& c : *list)
+      if (!c.reference_limits.empty()) warnings.push_back("calibrate: WARNING: " + c.name + ": " + c.reference_limits);
   return warnings;
 }
 
@@ -464,11 +470,13 @@ nlohmann::json report_json(const workbench::CaseFile& file, const Found& found) 
   for (std::size_t i = 0; i < cases.size(); ++i) {
     j["cases"][cases[i].name] = case_json(result.before[i], result.after[i], cases[i].study.mesh.grid.dim);
     j["cases"][cases[i].name]["threshold"] = threshold_json(cases[i], result, o.weights);
+    j["cases"][cases[i].name]["reference"] = cases[i].reference_level;
   }
   for (std::size_t i = 0; i < held.size(); ++i) {
     const auto& h = result.held_out[i];
     j["held_out"][h.name] = case_json(h.before, h.after, h.dim);
     j["held_out"][h.name]["threshold"] = threshold_json(held[i], result, o.weights);
+    j["held_out"][h.name]["reference"] = held[i].reference_level;
   }
   j["keep_load"] = o.weights.keep_load;
   j["warnings"] = warnings;
@@ -520,7 +528,7 @@ CalibrationResult run_calibration(const workbench::CaseFile& file, const fs::pat
   if (plan.cross_validate && cases.size() >= 2) found.folds = cross_validate(cases, o, result, log);
   score_held_out(held, o, result);
   found.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  found.warnings = fit_warnings(cases, result);
+  found.warnings = fit_warnings(cases, held, result);
   const std::string report = report_text(file, found);
   // The files, written once (rank 0 under MPI).
   fem_reference::mpi_on_root([&] {

@@ -313,16 +313,12 @@ nlohmann::json summary_header(const workbench::CaseFile& file, const AgentCompar
   json["fem"] = {{"solver", fem.solver}, {"iterations", fem.iterations}, {"residual", fem.residual},
                  {"backward_error", fem.backward_error ? nlohmann::json(*fem.backward_error) : nlohmann::json()},
                  {"dofs", fem.n_dofs}, {"degree", fem.degree}, {"model", fem.model}};
-  json["reference"] = {{"description", reference.options.describe()},
-                       {"degree", reference.options.degree},
-                       {"refine", reference.options.refine},
-                       {"dofs", fem.n_dofs},
-                       {"estimate", reference.estimate.describe()},
-                       {"estimate_dofs", reference.estimate_dofs},
-                       {"estimate_seconds", reference.estimate_seconds},
-                       {"reference_error", "each error metric's reference_error: the same norm of the estimate "
-                                           "level against the reference"}};
-  if (!reference.levels.empty()) json["reference"]["convergence"] = convergence_json(reference);  // the 3D default
+  json["reference"] = level_json(reference);
+  json["reference"].update({{"estimate", reference.estimate.describe()},
+                            {"estimate_dofs", reference.estimate_dofs},
+                            {"estimate_seconds", reference.estimate_seconds},
+                            {"reference_error", "each error metric's reference_error: the same norm of the "
+                                                "estimate level against the reference"}});
   if (reference.staircase_fields)
     json["reference"]["staircase"] = {
         {"dofs", reference.staircase_dofs},

@@ -100,7 +100,13 @@ Reference solve_level(const fem_reference::FemProblem& problem, const ReferenceO
     reference.options.coarser_level = true;
     reference.options.coarser_share = options.algebraic_share;
   }
-  r.fem = report::run_fem(reference, dir, log, r.seconds);
+  if (dir.empty()) {  // no files (the calibration's references)
+    const auto start = std::chrono::steady_clock::now();
+    r.fem = fem_reference::solve_fem(reference, {}, &log);
+    r.seconds = report::seconds_since(start);
+  } else {
+    r.fem = report::run_fem(reference, dir, log, r.seconds);
+  }
   r.fields = reference_on_grid(options, mesh, r.fem, problem.name, r.outside);
   return r;
 }
@@ -216,6 +222,15 @@ void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, c
     r.staircase_fields = fem_on_grid(mesh, staircase, problem.name);
     r.staircase_dofs = staircase.n_dofs;
   }
+}
+
+nlohmann::json level_json(const Reference& r) {
+  nlohmann::json json{{"description", r.options.describe()},
+                      {"degree", r.options.degree},
+                      {"refine", r.options.refine},
+                      {"dofs", r.fem.n_dofs}};
+  if (!r.levels.empty()) json["convergence"] = convergence_json(r);  // the 3D default
+  return json;
 }
 
 nlohmann::json convergence_json(const Reference& r) {

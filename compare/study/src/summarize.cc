@@ -96,8 +96,10 @@ SummaryRow read_row(const fs::path& dir) {
   const fs::path case_path = case_of(dir);
   if (comparison) {
     const auto metrics = read_json(dir / "summary.json").value("metrics", nlohmann::json::object());
-    for (const auto& [name, metric] : metrics.items())
+    for (const auto& [name, metric] : metrics.items()) {
       if (metric.contains("value") && metric["value"].is_number()) row.metrics[name] = metric["value"].get<double>();
+      if (metric.contains("modelled") && metric["modelled"] == false) row.not_modelled.push_back(name);  // sorted
+    }
   } else {
     flatten(read_json(dir / "report.json"), "", row.metrics);
   }
@@ -163,6 +165,7 @@ void write_summary_csv(const SummaryTable& table, const fs::path& file, bool ove
     auto csv = workbench::open_csv(temporary);
     csv << "folder";
     for (const auto& p : table.parameters) csv << "," << csv_field(p);
+    csv << ",not_modelled";
     for (const auto& m : table.metrics) csv << "," << csv_field(m);
     csv << "\n";
     for (const auto& row : table.rows) {
@@ -171,6 +174,9 @@ void write_summary_csv(const SummaryTable& table, const fs::path& file, bool ove
         const auto it = row.parameters.find(p);
         csv << "," << (it == row.parameters.end() ? std::string() : csv_field(it->second));
       }
+      std::string not_modelled;
+      for (const auto& m : row.not_modelled) not_modelled += (not_modelled.empty() ? "" : " ") + m;
+      csv << "," << csv_field(not_modelled);
       for (const auto& m : table.metrics) {
         const auto it = row.metrics.find(m);
         csv << "," << (it == row.metrics.end() ? std::optional<double>() : std::optional<double>(it->second));
@@ -185,7 +191,8 @@ void write_summary_json(const SummaryTable& table, const fs::path& file, bool ov
   refuse_existing(file, overwrite);
   nlohmann::json json{{"parameters", table.parameters}, {"metrics", table.metrics}, {"rows", nlohmann::json::array()}};
   for (const auto& row : table.rows)
-    json["rows"].push_back({{"folder", row.folder}, {"parameters", row.parameters}, {"metrics", row.metrics}});
+    json["rows"].push_back({{"folder", row.folder}, {"parameters", row.parameters}, {"metrics", row.metrics},
+                            {"not_modelled", row.not_modelled}});
   workbench::replace_file(file, json.dump(2) + "\n");
 }
 

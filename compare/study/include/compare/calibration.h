@@ -59,6 +59,10 @@ struct CalibrationCase {
   std::string name;
   agent_study::AgentStudy study;
   GridFields reference;
+  /// The reference's level as summary.json's `reference` gives it (level_json: for the converging
+  /// 3D default its convergence), and Reference::limits_judgement() (empty where it converged).
+  nlohmann::json reference_level;
+  std::string reference_limits;
   double weight = 1.0;
 };
 

@@ -92,7 +92,8 @@ struct Reference {
 /// With options.converges (the 3D default) it solves level after level, each with its estimate,
 /// from options.refine on until the body_own_error is at most options.tolerance, the next level's
 /// memory estimate does not fit or kMaxRefine is reached; the last level's files are in dir/fem.
-/// Every rank takes the same decisions (the error is rank 0's, summed over the ranks).
+/// Every rank takes the same decisions (the error is rank 0's, summed over the ranks). An empty
+/// `dir`: no files (the calibration's references, compare/calibration_study.h).
 Reference solve_reference(const fem_reference::FemProblem& problem, const ReferenceOptions& options,
                           const agent::ImportedMesh& mesh, const std::filesystem::path& dir, std::ostream& log);
 
@@ -107,5 +108,9 @@ void estimate_reference_error(Reference& r, fem_reference::FemProblem problem, c
 /// summary.json's reference.convergence of a converging default: the tolerance, the field judged,
 /// each level and its own error, whether it converged, and if not why it stopped.
 nlohmann::json convergence_json(const Reference& r);
+
+/// summary.json's reference level: its description, degree, refine and DoFs, and the converging
+/// default's convergence (convergence_json); calibration's report.json has the same per case.
+nlohmann::json level_json(const Reference& r);
 
 }  // namespace compare

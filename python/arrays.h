@@ -1,6 +1,6 @@
 #pragma once
 // numpy arrays from the C++ results' vectors, without copies (python/workbench_module.cc,
-// python/compared_fields.cc).
+// python/bind_studies.cc, python/compared_fields.cc).
 #include <agent/state.h>
 #include <compare/compare_study.h>
 

@@ -2,9 +2,12 @@
 #include <agent/fields.h>
 #include <agent/slots.h>
 
+#include <Eigen/Sparse>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 namespace agent {
@@ -22,6 +25,47 @@ void for_each_rigid_face(const Grid& grid, F&& f) {
     for (int side = 0; side < 2 * grid.dim; ++side)
       if ((flags >> side) & 1 && !grid.has_neighbour(cell, side)) f(cell, side);
   }
+}
+
+/// 2D: u_l on the nodes (n_l + 1 across, n_a + 1 along the march counted from the rigid face; row
+/// 0, the face, held at 0) closest in least squares to the increments the strains give:
+/// `across[k * (n_l + 1) + i]` from node (i, k) to (i + 1, k) (eps_l h_l; rows k >= 1), `up[k * (n_l +
+/// 1) + i]` from (i, k) to (i, k + 1) ((gamma - du_a/dl) h_a), whose squares weigh r (h_l / h_a)^2
+/// against the first's (`aspect` = h_l / h_a). It minimises the grid's form of the
+/// integral of (du_l/dl - eps_l)^2 + r (du_l/da - gamma + du_a/dl)^2: each edge weighs the area it
+/// stands for (half on the box's sides and the free face), r = (1 + nu^2) / (4 (1 + nu)^2), the
+/// ratio of the variances one Pa of error in each stress gives eps_l and gamma (docs/agent-model.md,
+/// "Displacement"). Returns u[k * (n_l + 1) + i]; a sparse Cholesky solve (the grid's Laplacian).
+std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>& across, const std::vector<double>& up,
+                                    double nu, double aspect) {
+  const int row = n_l + 1;
+  const double rho = (1 + nu * nu) / (4 * (1 + nu) * (1 + nu)) * aspect * aspect;
+  const auto unknown = [&](int i, int k) { return (k - 1) * row + i; };  // rows 1..n_a
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(std::size_t(row) * n_a);
+  // An edge from node p to node q (-1: the held face) with weight w wanting u_q - u_p = increment.
+  auto edge = [&](int p, int q, double w, double increment) {
+    entries.emplace_back(q, q, w);
+    rhs[q] += w * increment;
+    if (p < 0) return;
+    entries.emplace_back(p, p, w);
+    entries.emplace_back(p, q, -w);
+    entries.emplace_back(q, p, -w);
+    rhs[p] -= w * increment;
+  };
+  for (int k = 1; k <= n_a; ++k)
+    for (int i = 0; i < n_l; ++i) edge(unknown(i, k), unknown(i + 1, k), k == n_a ? 0.5 : 1.0, across[std::size_t(k) * row + i]);
+  for (int k = 0; k < n_a; ++k)
+    for (int i = 0; i <= n_l; ++i)
+      edge(k == 0 ? -1 : unknown(i, k), unknown(i, k + 1), i == 0 || i == n_l ? 0.5 * rho : rho, up[std::size_t(k) * row + i]);
+  Eigen::SparseMatrix<double> normal(rhs.size(), rhs.size());
+  normal.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+  if (solver.info() != Eigen::Success) throw std::runtime_error("the lateral displacement's least-squares solve failed");
+  const Eigen::VectorXd u = solver.solve(rhs);
+  std::vector<double> out(std::size_t(row) * (n_a + 1), 0.0);
+  for (std::size_t n = 0; n < std::size_t(u.size()); ++n) out[row + n] = u[n];
+  return out;
 }
 }  // namespace
 
@@ -284,6 +328,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
     // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at the nodes of
     // its edges along a; a node takes the mean of the columns beside it.
     std::vector<double> march(std::size_t(n_l + 1) * (n_a + 1) * o_nodes, 0.0), line(march.size(), 0.0);
+    std::vector<double> up(dim == 2 ? march.size() : 0, 0.0), across(up.size(), 0.0);  // 2D's increments
     auto at = [&](int i, int k, int j) { return std::size_t(i) + std::size_t(n_l + 1) * (k + std::size_t(n_a + 1) * j); };
     auto share = [](int index, int count) { return index == 0 || index == count ? 1.0 : 0.5; };  // of a node
     // u_a on the face across l at column i at mid-height of agent k (the mean of its nodes), per k:
@@ -305,7 +350,13 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
         double carried = 0;
         for (int k = 0; k < n_a; ++k) {
           const double dua_dl = (mid_high[k] - mid_low[k]) / h_l;
-          carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
+          const double rise = (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
+          if (dim == 2) {  // 2D: each node's mean of the columns beside it, for closest_lateral
+            up[at(i, k, 0)] += share(i, n_l) * rise;
+            up[at(i + 1, k, 0)] += share(i + 1, n_l) * rise;
+            continue;
+          }
+          carried += rise;
           for (int dj = 0; dj < o_sides; ++dj) {
             const double w_o = share(j + dj, n_o);  // 1 in 2D: a single line
             march[at(i, k + 1, j + dj)] += share(i, n_l) * w_o * carried;
@@ -315,7 +366,8 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
       }
     }
     // eps_l integrated along each line of nodes along l (a node line's strain: the mean of the agent
-    // lines beside it), the line's constant the mean over it of the marches.
+    // lines beside it), the line's constant the mean over it of the marches (3D; 2D takes the field
+    // closest to both increments, below).
     for (int j = 0; j < o_nodes; ++j)
       for (int k = 0; k <= n_a; ++k) {
         const int below = std::max(k - 1, 0), above = std::min(k, n_a - 1);
@@ -327,13 +379,20 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
               dim == 3 ? 0.25 * (strains[3 * agent(i, below, before) + l] + strains[3 * agent(i, above, before) + l] +
                                  strains[3 * agent(i, below, after) + l] + strains[3 * agent(i, above, after) + l])
                        : 0.5 * (strains[3 * agent(i, below, 0) + l] + strains[3 * agent(i, above, 0) + l]);
+          if (dim == 2) across[at(i, k, 0)] = strain * h_l;  // (the line below is 3D's)
           carried += strain * h_l;
           line[at(i + 1, k, j)] = carried;
         }
+        if (dim == 2) continue;
         for (int i = 0; i <= n_l; ++i) offset += march[at(i, k, j)] - line[at(i, k, j)];
         offset /= n_l + 1;
         for (int i = 0; i <= n_l; ++i) u[node(i, k, j) * dim + l] = line[at(i, k, j)] + offset;
       }
+    if (dim == 2) {
+      const auto closest = closest_lateral(n_l, n_a, across, up, material.poisson, h_l / h_a);
+      for (int k = 0; k <= n_a; ++k)
+        for (int i = 0; i <= n_l; ++i) u[node(i, k, 0) * dim + l] = closest[at(i, k, 0)];
+    }
   }
   return u;
 }

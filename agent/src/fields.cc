@@ -2,17 +2,16 @@
 #include <agent/fields.h>
 #include <agent/slots.h>
 
-#include <Eigen/Sparse>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <stdexcept>
 #include <utility>
 
 namespace agent {
 
 namespace {
+constexpr double kPi = 3.14159265358979323846;
+
 /// Calls f(cell, side) for every rigid boundary face, in Grid::boundary_faces' order. Only the
 /// agents with a rigid bit are looked at: listing every boundary face to keep the rigid ones cost
 /// a fifth of the patent rule set's whole solve.
@@ -31,40 +30,66 @@ void for_each_rigid_face(const Grid& grid, F&& f) {
 /// 0, the face, held at 0) closest in least squares to the increments the strains give:
 /// `across[k * (n_l + 1) + i]` from node (i, k) to (i + 1, k) (eps_l h_l; rows k >= 1), `up[k * (n_l +
 /// 1) + i]` from (i, k) to (i, k + 1) ((gamma - du_a/dl) h_a), whose squares weigh r (h_l / h_a)^2
-/// against the first's (`aspect` = h_l / h_a). It minimises the grid's form of the
-/// integral of (du_l/dl - eps_l)^2 + r (du_l/da - gamma + du_a/dl)^2: each edge weighs the area it
-/// stands for (half on the box's sides and the free face), r = (1 + nu^2) / (4 (1 + nu)^2), the
-/// ratio of the variances one Pa of error in each stress gives eps_l and gamma (docs/agent-model.md,
-/// "Displacement"). Returns u[k * (n_l + 1) + i]; a sparse Cholesky solve (the grid's Laplacian).
+/// against the first's (`aspect` = h_l / h_a). It minimises the grid's form of the integral of
+/// (du_l/dl - eps_l)^2 + r (du_l/da - gamma + du_a/dl)^2: each edge weighs the area it stands for
+/// (half on the box's sides and the free face), r = (1 + nu^2) / (4 (1 + nu)^2), the ratio of the
+/// variances one Pa of error in each stress gives eps_l and gamma (docs/agent-model.md,
+/// "Displacement"). Returns u[k * (n_l + 1) + i]. Solved exactly: with the sides' half weights the
+/// normal equations' rows split into the cosine modes cos(pi m i / n_l) (each row's Laplacian over
+/// the sides' weights has them as eigenvectors, eigenvalue 2 - 2 cos(pi m / n_l)), and each mode is
+/// one tridiagonal solve along the march.
 std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>& across, const std::vector<double>& up,
                                     double nu, double aspect) {
-  const int row = n_l + 1;
+  const int n = n_l, row = n_l + 1;
   const double rho = (1 + nu * nu) / (4 * (1 + nu) * (1 + nu)) * aspect * aspect;
-  const auto unknown = [&](int i, int k) { return (k - 1) * row + i; };  // rows 1..n_a
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(std::size_t(row) * n_a);
-  // An edge from node p to node q (-1: the held face) with weight w wanting u_q - u_p = increment.
-  auto edge = [&](int p, int q, double w, double increment) {
-    entries.emplace_back(q, q, w);
-    rhs[q] += w * increment;
-    if (p < 0) return;
-    entries.emplace_back(p, p, w);
-    entries.emplace_back(p, q, -w);
-    entries.emplace_back(q, p, -w);
-    rhs[p] -= w * increment;
-  };
+  auto side_weight = [&](int i) { return i == 0 || i == n ? 0.5 : 1.0; };
+  auto row_weight = [&](int k) { return k == n_a ? 0.5 : 1.0; };
+  // The normal equations' right-hand side per node row k = 1..n_a (stored at k - 1): divided by the
+  // sides' weights it is the modes' equation's, and the forward transform multiplies them back.
+  std::vector<double> f(std::size_t(row) * n_a), modes(f.size(), 0.0), out(std::size_t(row) * (n_a + 1), 0.0);
   for (int k = 1; k <= n_a; ++k)
-    for (int i = 0; i < n_l; ++i) edge(unknown(i, k), unknown(i + 1, k), k == n_a ? 0.5 : 1.0, across[std::size_t(k) * row + i]);
-  for (int k = 0; k < n_a; ++k)
-    for (int i = 0; i <= n_l; ++i)
-      edge(k == 0 ? -1 : unknown(i, k), unknown(i, k + 1), i == 0 || i == n_l ? 0.5 * rho : rho, up[std::size_t(k) * row + i]);
-  Eigen::SparseMatrix<double> normal(rhs.size(), rhs.size());
-  normal.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
-  if (solver.info() != Eigen::Success) throw std::runtime_error("the lateral displacement's least-squares solve failed");
-  const Eigen::VectorXd u = solver.solve(rhs);
-  std::vector<double> out(std::size_t(row) * (n_a + 1), 0.0);
-  for (std::size_t n = 0; n < std::size_t(u.size()); ++n) out[row + n] = u[n];
+    for (int i = 0; i <= n; ++i) {
+      const double* a = &across[std::size_t(k) * row];
+      const double along = (i > 0 ? a[i - 1] : 0.0) - (i < n ? a[i] : 0.0);
+      const double rise = up[std::size_t(k - 1) * row + i] - (k < n_a ? up[std::size_t(k) * row + i] : 0.0);
+      f[std::size_t(k - 1) * row + i] = row_weight(k) * along + side_weight(i) * rho * rise;
+    }
+  // cosine[i * row + m] = cos(pi m i / n) (symmetric); mode m of row k: sum_i side_weight(i) cos(...) f
+  // / norm(m), the weights already in f. Both transforms as row-by-row sums of the table's rows.
+  std::vector<double> turn(2 * std::size_t(n)), cosine(std::size_t(row) * row);  // turn[q] = cos(pi q / n)
+  for (std::size_t q = 0; q < turn.size(); ++q) turn[q] = std::cos(kPi * double(q) / n);
+  for (std::size_t i = 0; i <= std::size_t(n); ++i)
+    for (std::size_t m = 0; m <= std::size_t(n); ++m) cosine[i * row + m] = turn[m * i % turn.size()];
+  for (int k = 0; k < n_a; ++k) {
+    double* to = &modes[std::size_t(k) * row];
+    for (int i = 0; i <= n; ++i) {
+      const double weight = f[std::size_t(k) * row + i];
+      const double* table = &cosine[std::size_t(i) * row];
+      for (int m = 0; m <= n; ++m) to[m] += weight * table[m];
+    }
+    for (int m = 0; m <= n; ++m) to[m] /= m == 0 || m == n ? n : 0.5 * n;
+  }
+  std::vector<double> c(std::size_t(n_a), 0.0);  // the sweep's upper coefficients
+  for (int m = 0; m <= n; ++m) {
+    // (row_weight(k) mu + rho Ly) x = modes along k, Ly the march's Laplacian held at row 0: Thomas.
+    const double mu = 2 - 2 * cosine[row + m];
+    double previous = 0;
+    for (int k = 0; k < n_a; ++k) {
+      const double diagonal = row_weight(k + 1) * mu + (k + 1 < n_a ? 2 * rho : rho) + (k > 0 ? rho * c[k - 1] : 0.0);
+      c[k] = -rho / diagonal;
+      previous = (modes[std::size_t(k) * row + m] + (k > 0 ? rho * previous : 0.0)) / diagonal;
+      modes[std::size_t(k) * row + m] = previous;
+    }
+    for (int k = n_a - 2; k >= 0; --k) modes[std::size_t(k) * row + m] -= c[k] * modes[std::size_t(k + 1) * row + m];
+  }
+  for (int k = 0; k < n_a; ++k) {
+    double* to = &out[std::size_t(k + 1) * row];
+    for (int m = 0; m <= n; ++m) {
+      const double amplitude = modes[std::size_t(k) * row + m];
+      const double* table = &cosine[std::size_t(m) * row];
+      for (int i = 0; i <= n; ++i) to[i] += amplitude * table[i];
+    }
+  }
   return out;
 }
 }  // namespace

@@ -10,6 +10,8 @@
 namespace agent {
 
 namespace {
+constexpr double kPi = 3.14159265358979323846;
+
 /// Calls f(cell, side) for every rigid boundary face, in Grid::boundary_faces' order. Only the
 /// agents with a rigid bit are looked at: listing every boundary face to keep the rigid ones cost
 /// a fifth of the patent rule set's whole solve.
@@ -22,6 +24,73 @@ void for_each_rigid_face(const Grid& grid, F&& f) {
     for (int side = 0; side < 2 * grid.dim; ++side)
       if ((flags >> side) & 1 && !grid.has_neighbour(cell, side)) f(cell, side);
   }
+}
+
+/// 2D: u_l on the nodes (n_l + 1 across, n_a + 1 along the march counted from the rigid face; row
+/// 0, the face, held at 0) closest in least squares to the increments the strains give:
+/// `across[k * (n_l + 1) + i]` from node (i, k) to (i + 1, k) (eps_l h_l; rows k >= 1), `up[k * (n_l +
+/// 1) + i]` from (i, k) to (i, k + 1) ((gamma - du_a/dl) h_a), whose squares weigh r (h_l / h_a)^2
+/// against the first's (`aspect` = h_l / h_a). It minimises the grid's form of the integral of
+/// (du_l/dl - eps_l)^2 + r (du_l/da - gamma + du_a/dl)^2: each edge weighs the area it stands for
+/// (half on the box's sides and the free face), r = (1 + nu^2) / (4 (1 + nu)^2), the ratio of the
+/// variances one Pa of error in each stress gives eps_l and gamma (docs/agent-model.md,
+/// "Displacement"). Returns u[k * (n_l + 1) + i]. Solved exactly: with the sides' half weights the
+/// normal equations' rows split into the cosine modes cos(pi m i / n_l) (each row's Laplacian over
+/// the sides' weights has them as eigenvectors, eigenvalue 2 - 2 cos(pi m / n_l)), and each mode is
+/// one tridiagonal solve along the march.
+std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>& across, const std::vector<double>& up,
+                                    double nu, double aspect) {
+  const int n = n_l, row = n_l + 1;
+  const double rho = (1 + nu * nu) / (4 * (1 + nu) * (1 + nu)) * aspect * aspect;
+  auto side_weight = [&](int i) { return i == 0 || i == n ? 0.5 : 1.0; };
+  auto row_weight = [&](int k) { return k == n_a ? 0.5 : 1.0; };
+  // The normal equations' right-hand side per node row k = 1..n_a (stored at k - 1): divided by the
+  // sides' weights it is the modes' equation's, and the forward transform multiplies them back.
+  std::vector<double> f(std::size_t(row) * n_a), modes(f.size(), 0.0), out(std::size_t(row) * (n_a + 1), 0.0);
+  for (int k = 1; k <= n_a; ++k)
+    for (int i = 0; i <= n; ++i) {
+      const double* a = &across[std::size_t(k) * row];
+      const double along = (i > 0 ? a[i - 1] : 0.0) - (i < n ? a[i] : 0.0);
+      const double rise = up[std::size_t(k - 1) * row + i] - (k < n_a ? up[std::size_t(k) * row + i] : 0.0);
+      f[std::size_t(k - 1) * row + i] = row_weight(k) * along + side_weight(i) * rho * rise;
+    }
+  // cosine[i * row + m] = cos(pi m i / n) (symmetric); mode m of row k: sum_i side_weight(i) cos(...) f
+  // / norm(m), the weights already in f. Both transforms as row-by-row sums of the table's rows.
+  std::vector<double> turn(2 * std::size_t(n)), cosine(std::size_t(row) * row);  // turn[q] = cos(pi q / n)
+  for (std::size_t q = 0; q < turn.size(); ++q) turn[q] = std::cos(kPi * double(q) / n);
+  for (std::size_t i = 0; i <= std::size_t(n); ++i)
+    for (std::size_t m = 0; m <= std::size_t(n); ++m) cosine[i * row + m] = turn[m * i % turn.size()];
+  for (int k = 0; k < n_a; ++k) {
+    double* to = &modes[std::size_t(k) * row];
+    for (int i = 0; i <= n; ++i) {
+      const double weight = f[std::size_t(k) * row + i];
+      const double* table = &cosine[std::size_t(i) * row];
+      for (int m = 0; m <= n; ++m) to[m] += weight * table[m];
+    }
+    for (int m = 0; m <= n; ++m) to[m] /= m == 0 || m == n ? n : 0.5 * n;
+  }
+  std::vector<double> c(std::size_t(n_a), 0.0);  // the sweep's upper coefficients
+  for (int m = 0; m <= n; ++m) {
+    // (row_weight(k) mu + rho Ly) x = modes along k, Ly the march's Laplacian held at row 0: Thomas.
+    const double mu = 2 - 2 * cosine[row + m];
+    double previous = 0;
+    for (int k = 0; k < n_a; ++k) {
+      const double diagonal = row_weight(k + 1) * mu + (k + 1 < n_a ? 2 * rho : rho) + (k > 0 ? rho * c[k - 1] : 0.0);
+      c[k] = -rho / diagonal;
+      previous = (modes[std::size_t(k) * row + m] + (k > 0 ? rho * previous : 0.0)) / diagonal;
+      modes[std::size_t(k) * row + m] = previous;
+    }
+    for (int k = n_a - 2; k >= 0; --k) modes[std::size_t(k) * row + m] -= c[k] * modes[std::size_t(k + 1) * row + m];
+  }
+  for (int k = 0; k < n_a; ++k) {
+    double* to = &out[std::size_t(k + 1) * row];
+    for (int m = 0; m <= n; ++m) {
+      const double amplitude = modes[std::size_t(k) * row + m];
+      const double* table = &cosine[std::size_t(m) * row];
+      for (int i = 0; i <= n; ++i) to[i] += amplitude * table[i];
+    }
+  }
+  return out;
 }
 }  // namespace
 
@@ -284,6 +353,7 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
     // Each column of agents marched from the rigid face: du_l/da = gamma - du_a/dl, at the nodes of
     // its edges along a; a node takes the mean of the columns beside it.
     std::vector<double> march(std::size_t(n_l + 1) * (n_a + 1) * o_nodes, 0.0), line(march.size(), 0.0);
+    std::vector<double> up(dim == 2 ? march.size() : 0, 0.0), across(up.size(), 0.0);  // 2D's increments
     auto at = [&](int i, int k, int j) { return std::size_t(i) + std::size_t(n_l + 1) * (k + std::size_t(n_a + 1) * j); };
     auto share = [](int index, int count) { return index == 0 || index == count ? 1.0 : 0.5; };  // of a node
     // u_a on the face across l at column i at mid-height of agent k (the mean of its nodes), per k:
@@ -305,7 +375,13 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
         double carried = 0;
         for (int k = 0; k < n_a; ++k) {
           const double dua_dl = (mid_high[k] - mid_low[k]) / h_l;
-          carried += (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
+          const double rise = (shear[agent(i, k, j) * shears + component] / shear_modulus - dua_dl) * h_a;
+          if (dim == 2) {  // 2D: each node's mean of the columns beside it, for closest_lateral
+            up[at(i, k, 0)] += share(i, n_l) * rise;
+            up[at(i + 1, k, 0)] += share(i + 1, n_l) * rise;
+            continue;
+          }
+          carried += rise;
           for (int dj = 0; dj < o_sides; ++dj) {
             const double w_o = share(j + dj, n_o);  // 1 in 2D: a single line
             march[at(i, k + 1, j + dj)] += share(i, n_l) * w_o * carried;
@@ -315,7 +391,8 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
       }
     }
     // eps_l integrated along each line of nodes along l (a node line's strain: the mean of the agent
-    // lines beside it), the line's constant the mean over it of the marches.
+    // lines beside it), the line's constant the mean over it of the marches (3D; 2D takes the field
+    // closest to both increments, below).
     for (int j = 0; j < o_nodes; ++j)
       for (int k = 0; k <= n_a; ++k) {
         const int below = std::max(k - 1, 0), above = std::min(k, n_a - 1);
@@ -327,13 +404,20 @@ std::vector<double> node_displacements_marched(const Grid& grid, const std::vect
               dim == 3 ? 0.25 * (strains[3 * agent(i, below, before) + l] + strains[3 * agent(i, above, before) + l] +
                                  strains[3 * agent(i, below, after) + l] + strains[3 * agent(i, above, after) + l])
                        : 0.5 * (strains[3 * agent(i, below, 0) + l] + strains[3 * agent(i, above, 0) + l]);
+          if (dim == 2) across[at(i, k, 0)] = strain * h_l;  // (the line below is 3D's)
           carried += strain * h_l;
           line[at(i + 1, k, j)] = carried;
         }
+        if (dim == 2) continue;
         for (int i = 0; i <= n_l; ++i) offset += march[at(i, k, j)] - line[at(i, k, j)];
         offset /= n_l + 1;
         for (int i = 0; i <= n_l; ++i) u[node(i, k, j) * dim + l] = line[at(i, k, j)] + offset;
       }
+    if (dim == 2) {
+      const auto closest = closest_lateral(n_l, n_a, across, up, material.poisson, h_l / h_a);
+      for (int k = 0; k <= n_a; ++k)
+        for (int i = 0; i <= n_l; ++i) u[node(i, k, 0) * dim + l] = closest[at(i, k, 0)];
+    }
   }
   return u;
 }

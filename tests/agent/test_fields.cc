@@ -106,15 +106,45 @@ TEST(AgentFields, TheMarchAcrossGivesLinearFieldsTheirClosedForms) {
   //   u_l = eps_l (x_l - the line's centre) + gamma y  (l = x, and z in 3D: the line's constant the
   //         mean of the columns' marches du_l/dy = gamma - du_y/dx_l = gamma),
   // whatever the load's position: the march reads no datum across. The lines' centres: x = 1.5 m,
-  // z = 4 m; tau_yz = -G gamma / 2.
+  // z = 4 m; tau_yz = -G gamma / 2. In 2D eps_x = 0: the base holds u_x = 0, so a uniform eps_x is
+  // not a field the plate can take, and 2D's u_x is the field closest to both increments (the next
+  // test); every field the base allows comes out as it is.
   const Material m{200e9, 0.25};
   const double G = m.young / (2 * (1 + m.poisson)), gamma = 4e-4;
-  for (int dim : {2, 3})
+  for (int dim : {2, 3}) {
+    const double eps_x = dim == 3 ? 1e-3 : 0.0;
     check_march(
-        dim, m, [](const Eigen::Vector3d&) { return Eigen::Vector3d(1e-3, -2e-3, 3e-3); }, G * gamma, -0.5 * G * gamma,
+        dim, m, [&](const Eigen::Vector3d&) { return Eigen::Vector3d(eps_x, -2e-3, 3e-3); }, G * gamma, -0.5 * G * gamma,
         [&](const Eigen::Vector3d& p) {
-          return Eigen::Vector3d(1e-3 * (p.x() - 1.5) + gamma * p.y(), -2e-3 * p.y(), 3e-3 * (p.z() - 4) - 0.5 * gamma * p.y());
+          return Eigen::Vector3d(eps_x * (p.x() - 1.5) + gamma * p.y(), -2e-3 * p.y(), 3e-3 * (p.z() - 4) - 0.5 * gamma * p.y());
         });
+  }
+}
+
+TEST(AgentFields, TheLateralDisplacementIn2DIsTheFieldClosestToBothIncrements) {
+  // Two agents of 0.5 x 0.25 m side by side on a rigid base, eps_x = e uniform, no other strain:
+  // the row says the ends move apart by e h_x each, the columns (held at the base, gamma = 0,
+  // u_y = 0) say they do not move. With the top nodes u_0, u_1, u_2 the grid's least squares is
+  //   (u_1 - u_0 - e h_x)^2 / 2 + (u_2 - u_1 - e h_x)^2 / 2 + rho (u_0^2 / 2 + u_1^2 + u_2^2 / 2)
+  // (the free top's and the sides' edges weigh half), rho = r (h_x / h_y)^2 = 4 r, r = (1 + nu^2)
+  // / (4 (1 + nu)^2); by symmetry u_1 = 0 and u_2 = -u_0 = e h_x / (1 + rho). The march before it
+  // (the row's line, its constant the columns' mean) gave e h_x.
+  const Material m{200e9, 0.25};
+  Grid g = Grid::box(2, {2, 1, 1}, Eigen::Vector3d(0.5, 0.25, 1));
+  g.set_boundary(g.box_side(2), Boundary::Rigid);
+  const double e = 1e-3, r = (1 + 0.25 * 0.25) / (4 * 1.25 * 1.25);  // r = 0.17
+  const std::vector<double> eps{e, 0, 0, e, 0, 0}, shear{0, 0};
+  const std::vector<EntryLoad> loads{{g.index(0, 0, 0), direction(1, false), 1.0}};
+  const auto u = node_displacements_marched(g, eps, shear, m, choose_datums(g, loads), 1);
+  const double side = 0.5 * e / (1 + 4 * r);  // 2.97619e-4 m
+  EXPECT_NEAR(side, 2.97619e-4, 1e-9);
+  EXPECT_NEAR(u[g.node_index(0, 1, 0) * 2], -side, 1e-17);
+  EXPECT_NEAR(u[g.node_index(1, 1, 0) * 2], 0.0, 1e-17);
+  EXPECT_NEAR(u[g.node_index(2, 1, 0) * 2], side, 1e-17);
+  for (int i = 0; i <= 2; ++i) {
+    EXPECT_EQ(u[g.node_index(i, 0, 0) * 2], 0.0);  // the base holds it
+    EXPECT_EQ(u[g.node_index(i, 1, 0) * 2 + 1], 0.0);  // no eps_y, no u_y
+  }
 }
 
 TEST(AgentFields, TheMarchGivesABendingFieldItsClosedFormOnTheSidesToo) {

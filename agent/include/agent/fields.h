@@ -47,8 +47,9 @@ std::vector<double> node_displacements(const Grid& grid, const std::vector<doubl
 /// With a shear (StressComponents::shear: tau_xy per slot in 2D; xy, yz, xz in 3D [Pa])
 /// and loads marching along `march_axis` onto a rigid face: u along the march as
 /// node_displacements gives it (zero at the rigid face), each u across it (u_l, l a lateral axis)
-/// integrated along each line of nodes along l, the line's constant the mean over the line of the
-/// marches from the rigid face, du_l/da = gamma_al - du_a/dl (docs/agent-model.md,
+/// from eps_l along l and du_l/da = gamma_al - du_a/dl along the march: in 3D integrated along each
+/// line of nodes along l, the line's constant the mean over the line of the marches from the rigid
+/// face; in 2D the field closest to both in least squares, zero on the face (docs/agent-model.md,
 /// "Displacement"). Other grids (tiled, air in the box, a datum along the march that is not a
 /// whole side of the box): node_displacements as it is.
 std::vector<double> node_displacements_marched(const Grid& grid, const std::vector<double>& strains,

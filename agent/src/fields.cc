@@ -2,8 +2,11 @@
 #include <agent/fields.h>
 #include <agent/slots.h>
 
+#include <unsupported/Eigen/FFT>
+
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <map>
 #include <utility>
 
@@ -11,6 +14,25 @@ namespace agent {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+/// The cosine transform y_m = sum_{i=0..n} w_i x_i cos(pi m i / n), w = 1/2 at both ends (DCT-I),
+/// by a real FFT of the even extension (Eigen's FFT): n log n, not the (n + 1)^2 of the sums.
+class CosineTransform {
+ public:
+  explicit CosineTransform(int n) : n_(n), even_(2 * std::size_t(n)) {}
+  void apply(const double* x, double* y) {
+    for (int i = 0; i <= n_; ++i) even_[std::size_t(i)] = x[i];
+    for (int i = 1; i < n_; ++i) even_[2 * std::size_t(n_) - std::size_t(i)] = x[i];
+    fft_.fwd(spectrum_, even_);
+    for (int m = 0; m <= n_; ++m) y[m] = 0.5 * spectrum_[std::size_t(m)].real();
+  }
+
+ private:
+  int n_;
+  std::vector<double> even_;
+  std::vector<std::complex<double>> spectrum_;
+  Eigen::FFT<double> fft_;
+};
 
 /// Calls f(cell, side) for every rigid boundary face, in Grid::boundary_faces' order. Only the
 /// agents with a rigid bit are looked at: listing every boundary face to keep the rigid ones cost
@@ -54,25 +76,20 @@ std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>&
       const double rise = up[std::size_t(k - 1) * row + i] - (k < n_a ? up[std::size_t(k) * row + i] : 0.0);
       f[std::size_t(k - 1) * row + i] = row_weight(k) * along + side_weight(i) * rho * rise;
     }
-  // cosine[i * row + m] = cos(pi m i / n) (symmetric); mode m of row k: sum_i side_weight(i) cos(...) f
-  // / norm(m), the weights already in f. Both transforms as row-by-row sums of the table's rows.
-  std::vector<double> turn(2 * std::size_t(n)), cosine(std::size_t(row) * row);  // turn[q] = cos(pi q / n)
-  for (std::size_t q = 0; q < turn.size(); ++q) turn[q] = std::cos(kPi * double(q) / n);
-  for (std::size_t i = 0; i <= std::size_t(n); ++i)
-    for (std::size_t m = 0; m <= std::size_t(n); ++m) cosine[i * row + m] = turn[m * i % turn.size()];
+  // Mode m of row k: sum_i side_weight(i) cos(pi m i / n) (f / side_weight) / norm(m), the weights
+  // already in f: a cosine transform of f / side_weight.
+  CosineTransform cosines(n);
+  std::vector<double> scratch(static_cast<std::size_t>(row));
   for (int k = 0; k < n_a; ++k) {
+    for (int i = 0; i <= n; ++i) scratch[std::size_t(i)] = f[std::size_t(k) * row + i] / side_weight(i);
     double* to = &modes[std::size_t(k) * row];
-    for (int i = 0; i <= n; ++i) {
-      const double weight = f[std::size_t(k) * row + i];
-      const double* table = &cosine[std::size_t(i) * row];
-      for (int m = 0; m <= n; ++m) to[m] += weight * table[m];
-    }
+    cosines.apply(scratch.data(), to);
     for (int m = 0; m <= n; ++m) to[m] /= m == 0 || m == n ? n : 0.5 * n;
   }
   std::vector<double> c(std::size_t(n_a), 0.0);  // the sweep's upper coefficients
   for (int m = 0; m <= n; ++m) {
     // (row_weight(k) mu + rho Ly) x = modes along k, Ly the march's Laplacian held at row 0: Thomas.
-    const double mu = 2 - 2 * cosine[row + m];
+    const double mu = 2 - 2 * std::cos(kPi * m / n);
     double previous = 0;
     for (int k = 0; k < n_a; ++k) {
       const double diagonal = row_weight(k + 1) * mu + (k + 1 < n_a ? 2 * rho : rho) + (k > 0 ? rho * c[k - 1] : 0.0);
@@ -82,13 +99,9 @@ std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>&
     }
     for (int k = n_a - 2; k >= 0; --k) modes[std::size_t(k) * row + m] -= c[k] * modes[std::size_t(k + 1) * row + m];
   }
-  for (int k = 0; k < n_a; ++k) {
-    double* to = &out[std::size_t(k + 1) * row];
-    for (int m = 0; m <= n; ++m) {
-      const double amplitude = modes[std::size_t(k) * row + m];
-      const double* table = &cosine[std::size_t(m) * row];
-      for (int i = 0; i <= n; ++i) to[i] += amplitude * table[i];
-    }
+  for (int k = 0; k < n_a; ++k) {  // u_i = sum_m amplitude_m cos(pi m i / n): the transform of amplitude / weight
+    for (int m = 0; m <= n; ++m) scratch[std::size_t(m)] = modes[std::size_t(k) * row + m] / side_weight(m);
+    cosines.apply(scratch.data(), &out[std::size_t(k + 1) * row]);
   }
   return out;
 }

@@ -16,7 +16,7 @@ namespace agent {
 /// the clamp column's section depth along t; for sigma_w its width along w), faster near a free face across that component's axis
 /// (where it vanishes): l = 1 / sqrt(l^-2 + f^-2), f the agent centre's distance to the nearest free
 /// face along t (sigma_t) or w (sigma_w). Each agent takes the decay's mean over its length along
-/// a, as face forces on its faces across t (and w). The shears across (3D) are not in it.
+/// a, as face forces on its faces across t (and w). Its shears across (3D): clamp_shears.
 void clamp_layer(const Grid& g, const Material& material, const Columns& c, const ColumnAgents& ca, TransferResults& out) {
   if (c.plan.holding != Holding::Clamp) return;
   const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a];
@@ -63,6 +63,51 @@ void clamp_layer(const Grid& g, const Material& material, const Columns& c, cons
         const int col = ca.across[q];
         write(wa, decay(lw, near, c.width[i], std::min(col - w0 + 0.5, w1 - col + 0.5) * g.size[wa]));
       }
+    }
+  }
+}
+
+/// The clamp's shears (3D): the layer's sigma_w and sigma_t vary across the section, so the
+/// equilibrium across the beam needs d tau_aw / da = -d sigma_w / dw and d tau_at / da = -d sigma_t
+/// / dt beside what the columns carry; integrated along a from the free end (zero there) toward the
+/// clamp, each derivative across an agent its two faces' difference (a face between two agents of
+/// the section holds their mean, a free face 0: so each level's and each row's derivatives sum to 0
+/// and the section's shears still integrate to v across t and to 0 across w). tau_aw is set, tau_at
+/// added to Jourawski's.
+void clamp_shears(const Grid& g, const Columns& c, const ColumnAgents& ca, TransferResults& out) {
+  if (c.plan.holding != Holding::Clamp || g.dim != 3) return;
+  const int a = c.plan.axis, t = c.plan.across, wa = c.plan.width_axis(), n = g.cells[a];
+  const bool high = is_positive(c.plan.clamp_side);
+  const std::size_t faces = 6, shears = std::size_t(shear_count(3));
+  const std::size_t at = std::size_t(shear_pair(a, t)), aw = std::size_t(shear_pair(a, wa));
+  auto sigma = [&](std::size_t cell, int axis) {
+    return -out.faces[cell * faces + std::size_t(direction(axis, false))] / g.face_area(axis);
+  };
+  // d sigma_axis / d axis across `cell` (of column i, at `row`): its faces' difference over its length
+  auto derivative = [&](std::size_t cell, int axis, std::size_t i, int row) {
+    const double own = sigma(cell, axis);
+    double face[2] = {0, 0};
+    for (int up = 0; up < 2; ++up) {
+      const std::size_t next = g.neighbour(cell, direction(axis, up == 1));
+      const int next_row = axis == t ? row + (up == 1 ? 1 : -1) : row;
+      if (next != Grid::npos && !g.is_air(next) && c.in_section(i, next_row)) face[up] = 0.5 * (own + sigma(next, axis));
+    }
+    return (face[1] - face[0]) / g.size[axis];
+  };
+  const std::size_t lines = std::size_t(g.cells[t]) * std::size_t(g.cells[wa]);
+  std::vector<double> sum_w(lines, 0.0), sum_t(lines, 0.0);  // per line along a, the integrals so far
+  const double sign = high ? -1.0 : 1.0;                       // scanned from the free end toward the clamp
+  for (int step = 0; step < n; ++step) {
+    const std::size_t i = std::size_t(high ? step : n - 1 - step);
+    const double h_a = c.width[i];
+    for (std::size_t q = ca.start[i]; q < ca.start[i + 1]; ++q) {
+      const int row = ca.rows[q];
+      if (!c.in_section(i, row)) continue;
+      const std::size_t cell = ca.agents[q], line = std::size_t(row) * std::size_t(g.cells[wa]) + std::size_t(ca.across[q]);
+      const double dw = derivative(cell, wa, i, row), dt = derivative(cell, t, i, row);
+      out.shear[cell * shears + aw] = sign * (sum_w[line] + 0.5 * dw * h_a);
+      out.shear[cell * shears + at] += sign * (sum_t[line] + 0.5 * dt * h_a);
+      sum_w[line] += dw * h_a, sum_t[line] += dt * h_a;
     }
   }
 }

@@ -21,6 +21,10 @@ struct ColumnAgents {
 /// away from it; nothing unless the columns are held by a clamp.
 void clamp_layer(const Grid& g, const Material& material, const Columns& c, const ColumnAgents& ca, TransferResults& out);
 
+/// The clamp's shears across the beam (3D): tau_aw and an addition to tau_at from the clamp's layer
+/// by equilibrium, zero at the free end; nothing between supports or in 2D.
+void clamp_shears(const Grid& g, const Columns& c, const ColumnAgents& ca, TransferResults& out);
+
 /// The loads' layer under a clamp (2D): each push on a face across t spread into the section;
 /// nothing between supports or in 3D.
 void load_layer(const Grid& g, const Columns& c, const ColumnAgents& ca, const std::vector<EntryLoad>& loads, TransferResults& out);

@@ -474,6 +474,7 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
   const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
   clamp_layer(g, material, c, ca, out);
+  clamp_shears(g, c, ca, out);
   load_layer(g, c, ca, loads, out);
   d.agent_updates += ca.agents.size();
   // Generation: columns from the nearest loaded column, in the columns that carry something.

@@ -135,7 +135,8 @@ class ColumnTransfer {
     return stress_components_with_shear(grid, normal, out.shear);
   }
   /// sigma along the beam axis and the shear in the beam-load plane; under a clamp also the normal
-  /// stresses across the beam (the clamp's layer; between supports they are 0, not modelled).
+  /// stresses across the beam (the clamp's layer) and in 3D tau_aw (the clamp's shear); between
+  /// supports they are 0, not modelled.
   static StressModel stress_model(const Grid& grid, const Coefficients&, const std::vector<EntryLoad>& loads) {
     const unsigned along_load = loads.empty() ? 0u : 1u << unsigned(axis_of(loads.front().dir));
     if (loads.empty()) return {(normal_stress_bits(grid.dim) & ~along_load) | shear_bits(grid.dim), false};
@@ -143,7 +144,8 @@ class ColumnTransfer {
     const ColumnPlan plan = plan_columns(grid, loads);
     const unsigned first_shear = shear_bits(2);  // tau_xy's bit; the 3D shears follow in shear_pair order
     const unsigned normal = plan.holding == Holding::Clamp ? normal_stress_bits(3) : 1u << unsigned(plan.axis);
-    return {normal | (first_shear << unsigned(shear_pair(plan.axis, plan.across))), false};
+    const unsigned clamp_shear = plan.holding == Holding::Clamp ? first_shear << unsigned(shear_pair(plan.axis, plan.width_axis())) : 0u;
+    return {normal | clamp_shear | (first_shear << unsigned(shear_pair(plan.axis, plan.across))), false};
   }
 
  private:

@@ -66,23 +66,19 @@ std::vector<double> closest_lateral(int n_l, int n_a, const std::vector<double>&
   const double rho = (1 + nu * nu) / (4 * (1 + nu) * (1 + nu)) * aspect * aspect;
   auto side_weight = [&](int i) { return i == 0 || i == n ? 0.5 : 1.0; };
   auto row_weight = [&](int k) { return k == n_a ? 0.5 : 1.0; };
-  // The normal equations' right-hand side per node row k = 1..n_a (stored at k - 1): divided by the
-  // sides' weights it is the modes' equation's, and the forward transform multiplies them back.
-  std::vector<double> f(std::size_t(row) * n_a), modes(f.size(), 0.0), out(std::size_t(row) * (n_a + 1), 0.0);
-  for (int k = 1; k <= n_a; ++k)
-    for (int i = 0; i <= n; ++i) {
-      const double* a = &across[std::size_t(k) * row];
-      const double along = (i > 0 ? a[i - 1] : 0.0) - (i < n ? a[i] : 0.0);
-      const double rise = up[std::size_t(k - 1) * row + i] - (k < n_a ? up[std::size_t(k) * row + i] : 0.0);
-      f[std::size_t(k - 1) * row + i] = row_weight(k) * along + side_weight(i) * rho * rise;
-    }
-  // Mode m of row k: sum_i side_weight(i) cos(pi m i / n) (f / side_weight) / norm(m), the weights
-  // already in f: a cosine transform of f / side_weight.
+  // The normal equations' right-hand side of node row k = 1..n_a divided by the sides' weights (the
+  // modes' equation's); mode m of it is its cosine transform over norm(m).
+  std::vector<double> modes(std::size_t(row) * n_a, 0.0), out(std::size_t(row) * (n_a + 1), 0.0);
   CosineTransform cosines(n);
   std::vector<double> scratch(static_cast<std::size_t>(row));
-  for (int k = 0; k < n_a; ++k) {
-    for (int i = 0; i <= n; ++i) scratch[std::size_t(i)] = f[std::size_t(k) * row + i] / side_weight(i);
-    double* to = &modes[std::size_t(k) * row];
+  for (int k = 1; k <= n_a; ++k) {
+    const double* a = &across[std::size_t(k) * row];
+    for (int i = 0; i <= n; ++i) {
+      const double along = (i > 0 ? a[i - 1] : 0.0) - (i < n ? a[i] : 0.0);
+      const double rise = up[std::size_t(k - 1) * row + i] - (k < n_a ? up[std::size_t(k) * row + i] : 0.0);
+      scratch[std::size_t(i)] = row_weight(k) * along / side_weight(i) + rho * rise;
+    }
+    double* to = &modes[std::size_t(k - 1) * row];
     cosines.apply(scratch.data(), to);
     for (int m = 0; m <= n; ++m) to[m] /= m == 0 || m == n ? n : 0.5 * n;
   }

@@ -4,8 +4,8 @@
 // imported once, outside the timing, and solved once as a warm-up (tables built, code paged in).
 // Results in docs/performance.md ("Issue 38").
 //
-//   taskset -c 1 build/bench/solve_bench --benchmark_filter='^SeedPlateDirectional$' \
-//     --benchmark_repetitions=3 --benchmark_min_time=0.2
+//   taskset -c 1 build/bench/solve_bench --benchmark_filter='^SeedPlateDirectional$'
+//     --benchmark_repetitions=3 --benchmark_min_time=0.2   (one command line)
 //
 // One case per process: which cases ran before moves glibc's thresholds for giving freed memory
 // back, and on this project's virtual machines a fresh page costs 14-80 us. Run also with

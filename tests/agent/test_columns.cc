@@ -133,7 +133,9 @@ TEST(Columns, OddInTheLoadAndLinear) {
     const auto push = solved(g, {down(g, 20, 2.0)});
     const auto pull = solved(g, {{g.index(20, 0, 0), kPlusY, 2.0}});
     for (std::size_t i = 0; i < push.face_forces().size(); ++i)
-      if (i % 4 < 2) ASSERT_EQ(push.face_forces()[i], -pull.face_forces()[i] + 0.0) << i;  // the faces across x
+      if (i % 4 < 2) {  // the faces across x
+        ASSERT_EQ(push.face_forces()[i], -pull.face_forces()[i] + 0.0) << i;
+      }
     for (auto [x, y] : {std::pair{&push.shear_stress(), &pull.shear_stress()}, std::pair{&push.displacement(), &pull.displacement()}})
       for (std::size_t i = 0; i < x->size(); ++i) ASSERT_EQ((*x)[i], -(*y)[i] + 0.0) << i;
     const auto a = solved(g, {down(g, 12, 1.0)}), b = solved(g, {down(g, 25, 3.0)});

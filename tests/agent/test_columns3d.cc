@@ -109,7 +109,9 @@ TEST(Columns3D, NavierAndJourawskiOverASection) {
         const std::size_t c = g.index(i, j, k);
         const double y = (j + 0.5) * kH - 0.01;
         EXPECT_NEAR(normal[c * 3], M * y / I, 1e-9 * M * 0.01 / I) << i << j << k;
-        if (i == 15) EXPECT_LT(std::abs(normal[c * 3 + 1]) + std::abs(normal[c * 3 + 2]), 1e-6 * std::abs(M * 0.01 / I));  // beyond the clamp's layer
+        if (i == 15) {  // beyond the clamp's layer
+          EXPECT_LT(std::abs(normal[c * 3 + 1]) + std::abs(normal[c * 3 + 2]), 1e-6 * std::abs(M * 0.01 / I));
+        }
         const double mean = 1.5 * P / A * (1 - 4 * (y * y + kH * kH / 12) / (0.02 * 0.02));
         // (the clamp's shears' tail: its layer decays as exp(-x / 2.7 mm), 1e-3 of it at x = 19 mm)
         EXPECT_NEAR(tau[c * 3 + 0], -mean, 1e-6 * P / A) << i << j << k;

@@ -171,9 +171,10 @@ TEST(ColumnsRoot, LoadLayerSpreadsThePushOverTheDepth) {
       for (int i = 10; i < 40; ++i) row += sigma[g.index(i, j, 0) * 2 + 1] * kH * kThick;  // beyond the clamp's layer
       const double e = 2 * ((8 - j - 0.5) * kH) / 0.04 - 1;  // the row's centre 0.5 - 7.5 agents below the top
       EXPECT_NEAR(row, -2.0 * (2 - 3 * e + e * e * e) / 4, 1e-4) << i0 << ", " << j;  // the clamp's layer's tail: 1e-5
-      if (i0 == 20)
+      if (i0 == 20) {
         for (int k = 1; k < 8; ++k)
           EXPECT_NEAR(sigma[g.index(20 - k, j, 0) * 2 + 1], sigma[g.index(20 + k, j, 0) * 2 + 1], 0.1) << k << ", " << j;
+      }
     }
   }
   // A plate 40 x 100 mm clamped at its base, 2 N along +x on a top agent: in the middle of the top

@@ -84,7 +84,9 @@ TEST(CoefficientTable, EveryRowReachesTheReaderTheCalibrationAndTheSummaries) {
   const auto study = agent_study::load_agent_study(file);
   EXPECT_TRUE(threshold.acts_in(study.coefficients));
   for (const auto& c : agent::kCoefficients)
-    if (named(c, &threshold)) EXPECT_EQ(c.get(study.coefficients), other_value(c)) << c.name << ": the case reader";
+    if (named(c, &threshold)) {
+      EXPECT_EQ(c.get(study.coefficients), other_value(c)) << c.name << ": the case reader";
+    }
 
   // The calibrated case file writes every real coefficient, and reads back the same.
   std::ifstream in(file_path);
@@ -94,7 +96,9 @@ TEST(CoefficientTable, EveryRowReachesTheReaderTheCalibrationAndTheSummaries) {
   workbench::CaseFile again(calibrated, "calibrated.toml");
   const auto reread = agent_study::load_agent_study(again);
   for (const auto& c : agent::kCoefficients)
-    if (named(c, &threshold)) EXPECT_EQ(c.get(reread.coefficients), other_value(c)) << c.name;
+    if (named(c, &threshold)) {
+      EXPECT_EQ(c.get(reread.coefficients), other_value(c)) << c.name;
+    }
 
   // The calibration's plan: every fitted row is a [calibrate.<name>] table with its start and bounds.
   std::ostringstream plan_text;

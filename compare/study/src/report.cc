@@ -186,7 +186,7 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     auto it = gate.find(m.name);
     if (it == gate.end() || !m.modelled) continue;  // a component the rule set does not model is not gated
     ++outcome.gated;
-    if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second});
+    if (!(m.value <= it->second)) outcome.failures.push_back({m.name, m.value, it->second, false, {}});
   }
   for (const auto& field : better_than_zero) {
     const auto m = std::find_if(outcome.metrics.begin(), outcome.metrics.end(),
@@ -194,15 +194,13 @@ void finish(const fs::path& dir, const fs::path& case_file, nlohmann::json json,
     if (m == outcome.metrics.end()) throw Error("compare: field " + field + " was not compared");
     if (!m->modelled) continue;
     ++outcome.gated;
-    if (worse_than_zero(*m)) outcome.failures.push_back({m->name, m->value, kZeroModelRelL2, true});
+    if (worse_than_zero(*m)) outcome.failures.push_back({m->name, m->value, kZeroModelRelL2, true, {}});
   }
   // A load the rule set cannot carry fails a gate with the carry check's line, not with its errors alone.
   if (!gate.empty() || !better_than_zero.empty())
     for (const auto& r : outcome.refused) {
       ++outcome.gated;
-      GateFailure f{"carry_check", 0.0, 0.0};
-      f.refused = r;
-      outcome.failures.push_back(f);
+      outcome.failures.push_back({"carry_check", 0.0, 0.0, false, r});
     }
   // A field the model predicts no better than zero is said so, in the body and the far field.
   // A field the reference does not resolve in a scope is not judged, and the summary says which.

@@ -171,7 +171,7 @@ namespace {
 
 /// Each column's section rows (Columns::first_row, last_row): its agents' extent along t; under a
 /// clamp narrowed, from the column farthest from it toward it, to the previous column's section
-/// widened by the column's width each way (45 degrees).
+/// widened by the column's width each way (45 degrees); and the stresses' core and reach.
 void section_rows(const Grid& g, Columns& c) {
   const int a = c.plan.axis, t = c.plan.across, n = g.cells[a];
   c.first_row.assign(std::size_t(n), g.cells[t]), c.last_row.assign(std::size_t(n), -1);
@@ -181,9 +181,22 @@ void section_rows(const Grid& g, Columns& c) {
       const std::size_t i = std::size_t(p[a]);
       c.first_row[i] = std::min(c.first_row[i], p[t]), c.last_row[i] = std::max(c.last_row[i], p[t]);
     }
+  c.core_first = c.first_row, c.core_last = c.last_row;
+  c.reach_low.assign(std::size_t(n), 0.0), c.reach_high.assign(std::size_t(n), 0.0);
   if (c.plan.holding != Holding::Clamp) return;
   const bool from_low = is_positive(c.plan.clamp_side);  // the clamp at the high end: spread from column 0
-  double lo = 0, hi = 0;                                  // the section's extent in rows, spreading
+  // The stresses' core and reach (Columns::weight): a column without agents beside the core (a beam
+  // that turns back on itself) is whole.
+  for (int k = 1; k < n; ++k) {
+    const std::size_t i = std::size_t(from_low ? k : n - 1 - k), prev = std::size_t(from_low ? k - 1 : n - k);
+    const double spread = (g.plane(a, int(i) + 1) - g.plane(a, int(i))) / g.size[t];
+    const int lo = std::max(c.first_row[i], c.core_first[prev]), hi = std::min(c.last_row[i], c.core_last[prev]);
+    if (lo > hi) continue;
+    c.core_first[i] = lo, c.core_last[i] = hi;
+    c.reach_low[i] = lo > c.first_row[i] ? c.reach_low[prev] + spread : 0.0;
+    c.reach_high[i] = hi < c.last_row[i] ? c.reach_high[prev] + spread : 0.0;
+  }
+  double lo = 0, hi = 0;  // the section's extent in rows, spreading
   for (int k = 0; k < n; ++k) {
     const std::size_t i = std::size_t(from_low ? k : n - 1 - k);
     const double spread = (g.plane(a, int(i) + 1) - g.plane(a, int(i))) / g.size[t];
@@ -377,6 +390,74 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
   return shear_strain;
 }
 
+/// Flamant's fan (2D and 3D, under a clamp): in each column whose agents extend beyond its core,
+/// sigma_a = share (n / A + m (t - c) / I) over every agent of the column, A, c and I weighted by the
+/// shares (Columns::weight; the resultants kept), in place of Navier over the 45-degree section; and
+/// where a column widens, or a neighbour does, the shear from the equilibrium of the part of each
+/// column beyond a cut with its neighbours' (d tau / dt = -d sigma_a / da), which is Jourawski on a
+/// prismatic beam and over a widening section a tapered beam's, whose edge carries part of the
+/// shear (the corner block's shear changes sign across its height): tau at a cut between two
+/// columns is the difference of their force of sigma_a beyond it over the distance of their
+/// centres, per the section's width; an agent holds its mean over its height (sigma_a linear in it)
+/// and over its one or two neighbours whose agents lie within the column's extent. It integrates
+/// to v where m is linear between the centres (n = 0: nothing beyond the lowest face). The plane sections' march keeps the 45-degree section.
+void flamant_fan(const Grid& g, const Columns& c, const ColumnAgents& ca, TransferResults& out) {
+  const int a = c.plan.axis, t = c.plan.across, n = g.cells[a], rows = g.cells[t];
+  std::vector<char> use(std::size_t(n), 0);
+  bool any = false;
+  for (int i = 0; i < n; ++i) {
+    const std::size_t k = std::size_t(i);
+    use[k] = c.widens(k) || (i > 0 && c.widens(k - 1)) || (i + 1 < n && c.widens(k + 1));
+    any = any || use[k];
+  }
+  if (!any) return;
+  const double h = g.size[t], w = agent_width(g, c.plan.width_axis()), face = g.face_area(a);
+  const std::size_t faces = 2 * std::size_t(g.dim), shears = std::size_t(shear_count(g.dim)), slot = std::size_t(shear_pair(a, t));
+  const std::size_t levels = std::size_t(rows) + 1;
+  // Per column and level: the force of sigma_a beyond the level's lower face, the level's width and
+  // its agents' mean force beyond a cut inside them less the faces' mean (b g h^2 / 12, g = share m / I).
+  std::vector<double> beyond(std::size_t(n) * levels, 0.0), width(beyond), inside(beyond);
+  std::vector<int> low(std::size_t(n), rows), high(std::size_t(n), -1);  // each column's agents' extent
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    double area = 0, first = 0, second = 0;  // the weighted section's sums (positions from the box's side)
+    for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) {
+      const double share = c.weight(i, ca.rows[k]), r = g.centre(ca.agents[k])[t] - g.origin[t];
+      area += share, first += share * r, second += share * r * r;
+    }
+    const double rc = first / area, A = area * h * w, I = w * h * std::max(0.0, second - area * rc * rc) + area * w * h * h * h / 12;
+    for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) {
+      const std::size_t cell = ca.agents[k], at = i * levels + std::size_t(ca.rows[k]);
+      low[i] = std::min(low[i], ca.rows[k]), high[i] = std::max(high[i], ca.rows[k]);
+      const double share = c.weight(i, ca.rows[k]), r = g.centre(cell)[t] - g.origin[t];
+      if (c.widens(i)) {
+        const double sigma = share * (c.n[i] / A + c.m[i] * (r - rc) / I);
+        out.faces[cell * faces + std::size_t(direction(a, false))] = out.faces[cell * faces + std::size_t(direction(a, true))] = -sigma * face;
+      }
+      beyond[at] += -out.faces[cell * faces + std::size_t(direction(a, false))] / face * h * w, width[at] += w;
+      inside[at] += share * c.m[i] / I * w * h * h / 12;
+    }
+    for (std::size_t r = std::size_t(rows); r-- > 0;) beyond[i * levels + r] += beyond[i * levels + r + 1];
+  }
+  // The change of an agent's mean force beyond a cut from column i to column j, per their distance.
+  auto slope = [&](std::size_t i, std::size_t j, std::size_t r) {
+    auto mean = [&](std::size_t col) { return 0.5 * (beyond[col * levels + r] + beyond[col * levels + r + 1]) + inside[col * levels + r]; };
+    return (mean(j) - mean(i)) / (c.centre[j] - c.centre[i]);
+  };
+  // A neighbour whose agents reach beyond the column's (the corner beside the foot's first column)
+  // holds force beyond every cut of the column: only neighbours within its extent balance its
+  // moment (Jourawski where none is).
+  auto within = [&](std::size_t j, std::size_t i) { return low[j] >= low[i] && high[j] <= high[i]; };
+  for (std::size_t i = 0; i < std::size_t(n); ++i) {
+    const bool before = use[i] && i > 0 && within(i - 1, i), after = use[i] && i + 1 < std::size_t(n) && within(i + 1, i);
+    if (!before && !after) continue;
+    for (std::size_t k = ca.start[i]; k < ca.start[i + 1]; ++k) {
+      const std::size_t r = std::size_t(ca.rows[k]);
+      const double sum = (before ? slope(i - 1, i, r) : 0.0) + (after ? slope(i, i + 1, r) : 0.0);
+      out.shear[ca.agents[k] * shears + slot] = sum / double(before + after) / width[i * levels + r];
+    }
+  }
+}
+
 /// The plane sections' march over the node lines (planes along a), held by the clamp or the
 /// supports: rotation theta, axial displacement U and deflection W at the reference level r0.
 struct Sections {
@@ -473,6 +554,7 @@ void column_fields(const Grid& g, const Material& material, const Columns& c, co
   auto& d = out.diagnostics;
   const ColumnAgents ca = column_agents(g, a, t, c.plan.width_axis());
   const std::vector<double> shear_strain = column_stresses(g, c, ca, G, out);
+  flamant_fan(g, c, ca, out);
   clamp_layer(g, material, c, ca, out);
   clamp_shears(g, c, ca, out);
   load_layer(g, c, ca, loads, out);

@@ -1,5 +1,5 @@
 // The column rule set at a clamp (agent/columns.h): the section spreads from the free end toward the
-// clamp at 45 degrees (an L-bracket's deeper root), the clamp's layer of sigma across the beam
+// clamp at 45 degrees for the plane sections, as Flamant's fan for the stresses (an L-bracket's deeper root), the clamp's layer of sigma across the beam
 // (Poisson's restraint by the bonded face, decaying as Papkovich-Fadle's end effect) and the loads'
 // layer (a push on a face spreading into the section).
 #include <agent/columns.h>
@@ -46,49 +46,67 @@ LoadTransfer solved(const Grid& g, const std::vector<EntryLoad>& loads) {
 
 }  // namespace
 
-// The foot's section is its 4 agents; toward the clamp it grows by one agent a column (45 degrees):
-// columns 3, 2, 1, 0 hold rows 0-4, 0-5, 0-6, 0-7; the arm's agents above carry nothing. Each
-// column's stresses still balance its resultants (sum sigma dA = 0, sum sigma (y - y_c) dA = m,
-// sum tau dA = v), the arm's nodes move as the section's top edge, and a uniform beam's section is
-// every agent.
-TEST(ColumnsRoot, SectionSpreadsFromTheFreeEndAt45Degrees) {
+// The foot's section is its 4 agents; toward the clamp the plane sections' section grows by one agent
+// a column (45 degrees): columns 3, 2, 1, 0 hold rows 0-4, 0-5, 0-6, 0-7, and the arm's nodes above
+// move as its top edge. The stresses' section is Flamant's fan: the foot's rows are its core, the
+// arm's agents join it by d^4 / (d^2 + eta^2)^2, d the 45-degree reach (column 3: 1 agent, column 0:
+// 4), eta the agent's height above the foot's top (column 0's top agent, 7.5 agents up: 1 / (1 +
+// 1.875^2)^2 = 0.049042). Each column's stresses balance its resultants (sum sigma dA = 0, sum sigma
+// (y - y_c) dA = m less the agents' own b h^3 / 12, about the weighted section's centroid; sum tau
+// dA = v), the corner's shear changes sign across its height, and a uniform beam is untouched.
+TEST(ColumnsRoot, SectionSpreadsFromTheFreeEndAsFlamantsFan) {
   const Grid g = l_bracket();
   const std::vector<EntryLoad> loads{down(g, 19, 3, 2.0)};
   Columns c = column_statics(g, loads);
   for (std::size_t i = 0; i < 20; ++i) {
     EXPECT_EQ(c.first_row[i], 0) << i;
     EXPECT_EQ(c.last_row[i], i < 4 ? 7 - int(i) : 3) << i;
+    EXPECT_TRUE(c.core_first[i] == 0 && c.core_last[i] == 3) << i;
+    EXPECT_NEAR(c.reach_high[i], i < 4 ? 4.0 - double(i) : 0.0, 1e-12) << i;
+    EXPECT_EQ(c.reach_low[i], 0.0) << i;
   }
-  EXPECT_NEAR(c.centroid[0], 0.020, 1e-15);  // rows 0-7
+  EXPECT_EQ(c.weight(0, 3), 1.0);
+  EXPECT_NEAR(c.weight(0, 11), 0.0490416, 1e-7);
+  EXPECT_NEAR(c.weight(0, 4), 0.9694675, 1e-7);  // eta = 0.5, d = 4: 1 / (1 + 0.125^2)^2
+  EXPECT_NEAR(c.weight(3, 4), 0.64, 1e-15);       // eta = 0.5, d = 1: 1 / 1.25^2
+  EXPECT_NEAR(c.centroid[0], 0.020, 1e-15);       // the plane sections' rows 0-7
   EXPECT_NEAR(c.inertia[0], kThick * std::pow(0.040, 3) / 12, 1e-20);
   EXPECT_NEAR(c.m[0], 2.0 * 0.095, 1e-15);  // the statics are the load's: P (x_l - x), x_l = 97.5 mm, x = 2.5 mm
   const auto m = solved(g, loads);
   const auto sigma = agent_stresses(g, m.face_forces());
   for (int i = 0; i < 20; ++i) {
-    double n = 0, moment = 0, v = 0, agents = 0;
+    double area = 0, first = 0, second = 0;  // the fan's section (weights), by hand
+    for (int j = 0; j < 12; ++j)
+      if (!g.is_air(g.index(i, j, 0))) {
+        const double share = c.weight(std::size_t(i), j), y = (j + 0.5) * kH;
+        area += share * kH * kThick, first += share * y * kH * kThick, second += share * y * y * kH * kThick;
+      }
+    const double yc = first / area, own = area * kH * kH / 12, I = second - area * yc * yc + own;
+    double n = 0, moment = 0, v = 0;
     for (int j = 0; j < 12; ++j) {
       const std::size_t cell = g.index(i, j, 0);
       if (g.is_air(cell)) continue;
       const double dA = kH * kThick, y = (j + 0.5) * kH;
-      if (j > c.last_row[std::size_t(i)]) {
-        EXPECT_EQ(sigma[cell * 2], 0.0) << i << ", " << j;
-        EXPECT_EQ(m.shear_stress()[cell], 0.0) << i << ", " << j;
-      }
-      agents += j <= c.last_row[std::size_t(i)];
-      n += sigma[cell * 2] * dA, moment += sigma[cell * 2] * (y - c.centroid[std::size_t(i)]) * dA, v += m.shear_stress()[cell] * dA;
+      n += sigma[cell * 2] * dA, moment += sigma[cell * 2] * (y - yc) * dA, v += m.shear_stress()[cell] * dA;
     }
     EXPECT_NEAR(n, 0.0, 1e-12) << i;
-    // Each agent holds its centre's sigma: the sum misses the agents' own b h^3 / 12 of I.
-    const double own = agents * kThick * kH * kH * kH / 12;
-    EXPECT_NEAR(moment, c.m[std::size_t(i)] * (1 - own / c.inertia[std::size_t(i)]), 1e-12) << i;
+    // Each agent holds its centre's sigma: the sum misses the agents' own share of I.
+    EXPECT_NEAR(moment, c.m[std::size_t(i)] * (1 - own / I), 1e-12) << i;
     EXPECT_NEAR(v, i == 19 ? -1.0 : -2.0, 1e-12) << i;  // the loaded column: half the load
   }
-  // Column 0's section ends at node row 8: the nodes above it move as that edge.
+  // Column 0's agents above its weighted centroid (18.9 mm), also beyond the 45-degree line, are in
+  // tension; the corner column 2's shear changes sign across its height (the foot's rows against
+  // the arm's: 0.16 MPa at row 1, -0.17 MPa at row 5).
+  EXPECT_GT(sigma[g.index(0, 11, 0) * 2], 0.0);
+  EXPECT_GT(sigma[g.index(0, 4, 0) * 2], 0.0);
+  EXPECT_LT(m.shear_stress()[g.index(2, 1, 0)] * m.shear_stress()[g.index(2, 5, 0)], 0.0);
+  // Column 0's plane section ends at node row 8: the nodes above it move as that edge.
   for (int k = 0; k < 2; ++k)
     for (int j = 9; j <= 12; ++j)
       EXPECT_EQ(m.displacement()[g.node_index(0, j, 0) * 2 + k], m.displacement()[g.node_index(0, 8, 0) * 2 + k]) << j;
   const Columns uniform = column_statics(cantilever(20, 6), {down(cantilever(20, 6), 19, 5, 1.0)});
-  for (std::size_t i = 0; i < 20; ++i) EXPECT_TRUE(uniform.first_row[i] == 0 && uniform.last_row[i] == 5) << i;
+  for (std::size_t i = 0; i < 20; ++i)
+    EXPECT_TRUE(uniform.first_row[i] == 0 && uniform.last_row[i] == 5 && !uniform.widens(i) && uniform.weight(i, 5) == 1.0) << i;
 }
 
 // At the clamp the bonded face holds eps_y = 0: sigma_y = nu sigma_x (plane stress), decaying as

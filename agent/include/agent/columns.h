@@ -71,6 +71,24 @@ struct Columns {
   /// the agents beyond it carry nothing. Supports: every agent of the column.
   std::vector<int> first_row, last_row;
   bool in_section(std::size_t column, int row) const { return row >= first_row[column] && row <= last_row[column]; }
+  /// Under a clamp, per column, the core of its stresses' section: the rows of the narrowest section
+  /// from the free end (the previous column's core clipped to the column's agents, an L-bracket's
+  /// foot), whole; and beyond each edge of it the reach of the 45-degree spread from the column where
+  /// the agents first extend past it, at this column's clamp-side face [rows] (0: none beyond).
+  std::vector<int> core_first, core_last;
+  std::vector<double> reach_low, reach_high;
+  /// An agent's share in its column's stresses (docs/agent-model.md, "Flamant's fan"): 1 in the
+  /// core; beyond it, eta rows past the core's edge with the reach d there, d^4 / (d^2 + eta^2)^2
+  /// (Flamant's half-plane under a force along its edge: sigma = -2 P d^3 / (pi b (d^2 + eta^2)^2) on
+  /// the section d ahead of it).
+  double weight(std::size_t column, int row) const {
+    if (row >= core_first[column] && row <= core_last[column]) return 1.0;
+    const bool high = row > core_last[column];
+    const double q = (high ? row - core_last[column] - 0.5 : core_first[column] - row - 0.5) / (high ? reach_high[column] : reach_low[column]);
+    return 1 / ((1 + q * q) * (1 + q * q));
+  }
+  /// Whether the column's agents extend beyond its core (its section widens there).
+  bool widens(std::size_t column) const { return reach_low[column] > 0 || reach_high[column] > 0; }
   std::vector<double> v, m, n;                  ///< per column [N], [N m], [N]
   /// Across the beam axis [N] (signed along +t): clamp: [0] the clamp's; supports: each support's.
   std::array<double, 2> reactions{};

@@ -9,8 +9,9 @@
 // axis the path's slope plus (3D) the Gaussian's widening. What leaves through a row's exit faces
 // (or lands on air) leaves the load; the rest goes on. 2D with near_side = image: both halves of
 // the fan map onto the wider side's width, a path that would cross the nearer side folds back as
-// its image, and the deposit's images at the run's ends carry the negated slope
-// (docs/agent-model.md, "Loads near a side").
+// its image, and the deposit's images at the run's ends carry the negated slope; near_side =
+// blend (the default): each row b(d) = exp(-2 d / W) of each direction on its side path, the rest
+// on its image path (docs/agent-model.md, "Loads near a side").
 #include "directional_march.h"
 
 #include <agent/exact_functions.h>
@@ -40,6 +41,11 @@ constexpr double kNegligibleCdf = 1e-18;
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 /// A turn whose target lies on the wrong side of the load: this many agents, i.e. straight on.
 constexpr double kStraightTurn = 1e-9;
+/// near_side = blend: a row at depth d puts exp(-kBlendDecay d / W) of each direction on its side
+/// path (W the loaded row's width): the near side's answer gives way to beam statics' over about
+/// half the width, as a self-equilibrated end load does in a strip (chosen among five decays on
+/// the seed plates, bench/research/near21 in commit 0a2b207; not fitted).
+constexpr double kBlendDecay = 2;
 
 /// One lateral axis: per direction its turn L_k and what it carries.
 struct AxisPaths {
@@ -47,6 +53,7 @@ struct AxisPaths {
   double size = 1, x0 = 0;
   double fold_lo = 0, fold_hi = 0;  // 2D: the entry run's ends, where a path's image folds back
   std::vector<double> turn, mass;   // 2D: each direction's force; 3D: its weight (x the load's rest)
+  std::vector<double> turn_image;   // 2D, near_side = blend: each direction's turn on the image's width
   std::vector<double> force, shear; // a row's: sum over directions of mass x share (x slope)
   int from = 0, to = -1;            // the agents they cover
 };
@@ -61,6 +68,7 @@ class TurningPaths {
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
     image_ = dim == 2 && k_.near_side == NearSide::Image;
+    blend_ = dim == 2 && k_.near_side == NearSide::Blend;
     row_force_.assign(f.layer_size, 0.0);  // the packets' force through each agent of a row
     const double body_depth = depth_of_body(f, f.entry[f.a]);
     std::array<AxisPaths, 2> axes;
@@ -142,18 +150,25 @@ class TurningPaths {
     // near_side = image: both halves of the fan map onto the wider side's width; a path that would
     // cross the nearer side is folded back into the body as its image (distribute). Far below, the
     // force then spreads over the whole width, and the row's balance makes it beam statics' line.
-    if (image_) width_low = width_high = std::max(width_low, width_high);
+    const double wider = std::max(width_low, width_high);
+    if (image_) width_low = width_high = wider;
     double below = 0;  // the fan's weight of the directions before k
     for (int dir = 0; dir < k_.directions; ++dir) {
       const double s = fan_.slope[dir], q = below + 0.5 * fan_.weight[dir];
       below += fan_.weight[dir];
-      double L = s < 0 ? -width_low * (1 - 2 * q) : width_high * (2 * q - 1);
-      if (!(s * L > 0)) L = std::copysign(kStraightTurn * p.size, s);
-      // No farther out than its straight ray reaches at the body's far face (reach 1: not fitted).
-      p.turn.push_back(std::copysign(std::min(std::abs(L), std::abs(s) * body_depth), s));
+      p.turn.push_back(turn(s, q, width_low, width_high, p.size, body_depth));
+      if (blend_) p.turn_image.push_back(turn(s, q, wider, wider, p.size, body_depth));
       p.mass.push_back(fan_.weight[dir] * (f.dim == 2 ? load.force : 1.0));
     }
     return p;
+  }
+  // The turn L of a direction of slope s and quantile q toward its target on the widths beside
+  // the entry, no farther out than its straight ray reaches at the body's far face (reach 1: not
+  // fitted).
+  static double turn(double s, double q, double width_low, double width_high, double size, double body_depth) {
+    double L = s < 0 ? -width_low * (1 - 2 * q) : width_high * (2 * q - 1);
+    if (!(s * L > 0)) L = std::copysign(kStraightTurn * size, s);
+    return std::copysign(std::min(std::abs(L), std::abs(s) * body_depth), s);
   }
 
   // Row `layer`'s distribution along one lateral axis. 2D: each direction over the run its path
@@ -163,7 +178,6 @@ class TurningPaths {
                   double depth_m) {
     const int dim = f.dim;
     const auto here = f.slots.layer(f.a, layer), past = f.past(layer, last_layer);
-    const double* pos = pos_.at[p.axis].data();
     const double spread = std::max(std::sqrt(k_.diffusion_length * depth_m), kMinSpreadAgents * p.size);
     const int n_w = which == 0 ? f.n0 : f.n1;
     int lo = 0, hi = -1;  // the run the paths lie in (2D: the last one found; most paths share it)
@@ -183,54 +197,72 @@ class TurningPaths {
     }
     p.from = n_w;
     p.to = -1;
+    // near_side = blend: this row's share on the side paths (the rest on the image's)
+    const double on_side = blend_ ? std::exp(-kBlendDecay * depth_m / (p.fold_hi - p.fold_lo)) : 1.0;
     for (int dir = 0; dir < k_.directions; ++dir) {
       if (p.mass[dir] == 0) continue;
-      const double s = fan_.slope[dir], L = p.turn[dir], t = std::tanh(s * depth_m / L);
-      double x = p.x0 + L * t;
-      double slope = s * (1 - t * t);
-      if (image_ && (x < p.fold_lo || x > p.fold_hi)) {  // the image's path, folded back
-        x = x < p.fold_lo ? 2 * p.fold_lo - x : 2 * p.fold_hi - x;
-        slope = -slope;
+      double exits = place(f, p, dir, p.turn[dir], on_side, image_, layer, spread, depth_m, lo, hi);
+      if (exits < 0) {  // the body ends under the path (2D: the row has no agent)
+        out_.d.passed_out += p.mass[dir];
+        p.mass[dir] = 0;
+        continue;
       }
-      if (dim == 2) {
-        int iu = pos_.slot_at(p.axis, x / p.size);
-        if (f.air(here(iu, 0))) iu = nearest_agent(f, layer, iu);
-        if (iu < 0) {  // the body ends under the path
-          out_.d.passed_out += p.mass[dir];
-          p.mass[dir] = 0;
-          continue;
-        }
-        if (iu < lo || iu > hi) run_of(f, layer, 0, iu, 0, lo, hi);
-      }
-      const double edge_lo = pos[lo] * p.size, edge_hi = (pos[hi] + 1) * p.size;
-      x = std::min(std::max(x, edge_lo), edge_hi);
-      const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
-      const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
-      const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
-      const double exits = deposit(p, p.mass[dir] / total, slope, from, to, dim == 2);
-      if (dim == 3 && spread > kMinSpreadAgents * p.size)  // (at the smallest spread it does not widen)
-        add_widening(p, p.mass[dir] / total, x, spread, edge_lo, edge_hi, from, to, depth_m, f.row);
+      if (blend_) exits += place(f, p, dir, p.turn_image[dir], 1 - on_side, true, layer, spread, depth_m, lo, hi);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
-      p.from = std::min(p.from, from);
-      p.to = std::max(p.to, to);
     }
     return true;
   }
 
+  // Deposits `weight` of direction dir's force in row `layer` about its path of turn L (`folded`:
+  // the image's path, folded back at the entry run's ends, its deposit's images carrying the
+  // negated slope) over the run it lies in (2D: lo..hi, updated; 3D: given); returns what leaves
+  // through the row's exit faces (2D), -1 if the row has no agent (2D).
+  double place(const MarchFrame<Slots>& f, AxisPaths& p, int dir, double L, double weight, bool folded, int layer,
+               double spread, double depth_m, int& lo, int& hi) {
+    const int dim = f.dim;
+    const double* pos = pos_.at[p.axis].data();
+    const double s = fan_.slope[dir], t = std::tanh(s * depth_m / L);
+    double x = p.x0 + L * t;
+    double slope = s * (1 - t * t);
+    if (folded && (x < p.fold_lo || x > p.fold_hi)) {  // the image's path, folded back
+      x = x < p.fold_lo ? 2 * p.fold_lo - x : 2 * p.fold_hi - x;
+      slope = -slope;
+    }
+    if (dim == 2) {
+      int iu = pos_.slot_at(p.axis, x / p.size);
+      if (f.air(f.slot_of(layer, iu, 0))) iu = nearest_agent(f, layer, iu);
+      if (iu < 0) return -1;
+      if (iu < lo || iu > hi) run_of(f, layer, 0, iu, 0, lo, hi);
+    }
+    const double edge_lo = pos[lo] * p.size, edge_hi = (pos[hi] + 1) * p.size;
+    x = std::min(std::max(x, edge_lo), edge_hi);
+    const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
+    const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
+    folded_ = folded;
+    const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
+    const double scale = weight * p.mass[dir] / total;
+    const double exits = deposit(p, scale, slope, from, to, dim == 2);
+    if (dim == 3 && spread > kMinSpreadAgents * p.size)  // (at the smallest spread it does not widen)
+      add_widening(p, scale, x, spread, edge_lo, edge_hi, from, to, depth_m, f.row);
+    p.from = std::min(p.from, from);
+    p.to = std::max(p.to, to);
+    return exits;
+  }
+
   // Adds a direction's force (`scale` x shares_) and shear (x `slope`) to agents from..to of the
   // row; with `exits`, returns what leaves through their exit faces (leaving_).
-  // near_side = image: the shares' part from the run ends' images carries the negated slope (the
-  // image's shear cancels the path's at a free side).
+  // An image path (folded_): the shares' part from the run ends' images carries the negated slope
+  // (the image's shear cancels the path's at a free side).
   double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits) {
     const double* share = shares_.data() - from;
-    const double* image = image_ ? images_.data() - from : nullptr;
+    const double* image = folded_ ? images_.data() - from : nullptr;
     double* force = p.force.data();
     double* shear = p.shear.data();
     double left = 0;
     for (int i = from; i <= to; ++i) {
       const double m = share[i] * scale;
       force[i] += m;
-      shear[i] += image_ ? (share[i] - 2 * image[i]) * scale * slope : m * slope;
+      shear[i] += folded_ ? (share[i] - 2 * image[i]) * scale * slope : m * slope;
     }
     if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
@@ -299,12 +331,12 @@ class TurningPaths {
     }
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
     // the agents from there on are skipped.
-    if (image_) images_.assign(std::size_t(count), 0.0);
+    if (folded_) images_.assign(std::size_t(count), 0.0);
     double below = cdf(z_low);
     for (int j = 1; j <= count && below < 1.0; ++j) {
       const double next = cdf(z_low + j * step);
       shares_[j - 1] += next - below;
-      if (image_) images_[j - 1] += next - below;
+      if (folded_) images_[j - 1] += next - below;
       below = next;
     }
     // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
@@ -314,12 +346,12 @@ class TurningPaths {
     for (; j >= 0 && above >= kNegligibleCdf; --j) {
       const double next = cdf(z_high + j * step);
       shares_[j] += above - next;
-      if (image_) images_[j] += above - next;
+      if (folded_) images_[j] += above - next;
       above = next;
     }
     if (j >= 0) {
       shares_[j] += above;
-      if (image_) images_[j] += above;
+      if (folded_) images_[j] += above;
     }
     double partial[4] = {0, 0, 0, 0};  // four sums, so that the adds do not wait on each other
     int i = 0;
@@ -329,7 +361,7 @@ class TurningPaths {
     double total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
-      if (image_) std::fill(images_.begin(), images_.end(), 0.0);
+      if (folded_) std::fill(images_.begin(), images_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
     }
     return total;
@@ -390,6 +422,8 @@ class TurningPaths {
   std::vector<double> edges_;   // 3D, per edge of a direction's window: its widening's density there
   std::vector<double> images_;  // 2D: the part of shares_ from the run ends' images
   bool image_ = false;          // near_side = image, in 2D (set by march)
+  bool blend_ = false;          // near_side = blend, in 2D (set by march)
+  bool folded_ = false;         // the path being deposited is an image's (set by place)
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

@@ -579,6 +579,7 @@ TEST(Turning, TheNearSidesImageLeavesACentredLoadsForceAndKeepsItsSymmetry) {
   const int nx = 21, ny = 16;
   const Grid g = steel_plate(nx, ny);
   Coefficients side, image;
+  side.directional.near_side = NearSide::Side;
   image.directional.near_side = NearSide::Image;
   const std::vector<EntryLoad> loads{{g.index(10, ny - 1, 0), direction(1, false), 2.0}};
   const auto a = solve(g, side, loads), b = solve(g, image, loads);
@@ -592,5 +593,59 @@ TEST(Turning, TheNearSidesImageLeavesACentredLoadsForceAndKeepsItsSymmetry) {
       EXPECT_NEAR(b.stress.shear[c], -b.stress.shear[m], 1e-9 * tau_max) << i << "," << j;
     }
   EXPECT_STREQ(find_coefficient("near_side")->choice_name(double(NearSide::Image)), "image");
-  EXPECT_EQ(Coefficients{}.directional.near_side, NearSide::Side);
+}
+
+TEST(Turning, TheBlendMixesTheSideAndImageRulesRowByRow) {
+  // near_side = blend (the default; docs/agent-model.md, "Loads near a side"): the row at depth d
+  // below the loaded face carries b = exp(-2 d / W) of each direction on its side path and the rest
+  // on its image path. Every step is linear in the deposits (the row balance too), so each
+  // agent's face forces and packets' shear are b x the side rule's + (1 - b) x the image's of its
+  // row, to round-off; every row passes the load on.
+  const int n = 24;
+  const Grid g = steel_plate(n, n);
+  const double load = 2.0;
+  const std::vector<EntryLoad> loads{{g.index(3, n - 1, 0), direction(1, false), load}};
+  Coefficients side, image, blend;
+  side.directional.near_side = NearSide::Side;
+  image.directional.near_side = NearSide::Image;
+  EXPECT_EQ(blend.directional.near_side, NearSide::Blend);
+  EXPECT_STREQ(find_coefficient("near_side")->choice_name(double(NearSide::Blend)), "blend");
+  const auto a = solve(g, side, loads), b = solve(g, image, loads), c = solve(g, blend, loads);
+  EXPECT_NEAR(c.model.diagnostics().rigid_reaction, load, 1e-13 * load);
+  const auto &fa = a.model.face_forces(), &fb = b.model.face_forces(), &fc = c.model.face_forces();
+  const auto &ta = a.model.shear_stress(), &tb = b.model.shear_stress(), &tc = c.model.shear_stress();
+  const double tau_max = largest_magnitude(tc, 1, 0);
+  const std::size_t faces = fa.size() / g.count();
+  for (int j = 0; j < n; ++j) {
+    const double on_side = std::exp(-2 * (n - 1 - j + 0.5) / n);  // depth and width in agents
+    double through = 0;
+    for (int i = 0; i < n; ++i) {
+      const std::size_t cell = g.index(i, j, 0);
+      for (std::size_t k = 0; k < faces; ++k) {
+        const std::size_t at = cell * faces + k;
+        EXPECT_NEAR(fc[at], on_side * fa[at] + (1 - on_side) * fb[at], 1e-12 * load) << i << "," << j << "," << k;
+      }
+      EXPECT_NEAR(tc[cell], on_side * ta[cell] + (1 - on_side) * tb[cell], 1e-12 * tau_max) << i << "," << j;
+      through += face(c.model, i, j, kPlusY);
+    }
+    EXPECT_NEAR(through, load, 1e-13 * load) << "row " << j;
+  }
+  EXPECT_NE(fc, fa);  // (and so the mix is neither rule)
+  EXPECT_NE(fc, fb);
+}
+
+TEST(Turning, TheBlendKeepsACentredLoadsSymmetry) {
+  // A load on the middle agent of an odd plate under the blend: sigma_x and sigma_y symmetric,
+  // tau_xy antisymmetric about the load's line.
+  const int nx = 21, ny = 16;
+  const Grid g = steel_plate(nx, ny);
+  const auto f = solve(g, Coefficients{}, {{g.index(10, ny - 1, 0), direction(1, false), 2.0}});
+  const double s_max = largest_magnitude(f.stress.sigma, 2, 1), tau_max = largest_magnitude(f.stress.shear, 1, 0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t c = g.index(i, j, 0), m = g.index(nx - 1 - i, j, 0);
+      EXPECT_NEAR(f.stress.sigma[2 * c], f.stress.sigma[2 * m], 1e-9 * s_max) << i << "," << j;
+      EXPECT_NEAR(f.stress.sigma[2 * c + 1], f.stress.sigma[2 * m + 1], 1e-9 * s_max) << i << "," << j;
+      EXPECT_NEAR(f.stress.shear[c], -f.stress.shear[m], 1e-9 * tau_max) << i << "," << j;
+    }
 }

@@ -56,9 +56,11 @@ inline constexpr const char* kClosedFormNames[] = {"added", "left_out"};
 /// 2D turning paths near a free side (docs/agent-model.md, "Loads near a side"): each half of the
 /// fan mapped onto the body's width on its own side, or both onto the wider side's width with the
 /// paths that would cross the nearer side folded back as their image (its shear negated: a free
-/// side holds none). Named in kNearSideNames, in this order.
-enum class NearSide { Side, Image };
-inline constexpr const char* kNearSideNames[] = {"side", "image"};
+/// side holds none), or a blend: each row b = exp(-2 d / W) of each direction on its side path,
+/// the rest on its image path (d the row's depth, W the loaded row's width). Named in
+/// kNearSideNames, in this order.
+enum class NearSide { Side, Image, Blend };
+inline constexpr const char* kNearSideNames[] = {"side", "image", "blend"};
 
 /// Coefficients of the directional rule set. The defaults are the calibrated ones
 /// (docs/calibration.md): a case that names only the rule set gets the documented accuracy.
@@ -80,7 +82,7 @@ struct DirectionalCoefficients {
   /// shear for the tie scan (docs/research/stress-components.md)
   double window_length = 5e-3;
   ClosedForms closed_forms = ClosedForms::Added;  ///< 2D turning paths: the closed-form layers added, or the agents alone
-  NearSide near_side = NearSide::Side;  ///< 2D turning paths: the near side's packets on its own width, or the fan's image
+  NearSide near_side = NearSide::Blend;  ///< 2D turning paths: the near side's packets on its own width, the fan's image, or a blend by depth
 };
 
 /// Which threshold a transfer drops loads by (docs/agent-model.md, "The threshold"): the seed's
@@ -277,8 +279,8 @@ inline constexpr std::array<CoefficientSpec, 17> kCoefficients{{
         .read_by(kDirectionalRules).named(kClosedFormNames, 2)
         .value([](const Coefficients& k) { return double(k.directional.closed_forms); },
                [](Coefficients& k, double v) { k.directional.closed_forms = ClosedForms(int(v)); }),
-    row("near_side", "2D turning paths: \"side\" (each half of the fan on its own side's width) or \"image\" (on the wider side's, folded back at the nearer side)")
-        .read_by(kDirectionalRules).named(kNearSideNames, 2)
+    row("near_side", "2D turning paths: \"side\" (each half of the fan on its own side's width), \"image\" (on the wider side's, folded back at the nearer side) or \"blend\" (each row exp(-2 depth / width) on the side paths, the rest on the image's)")
+        .read_by(kDirectionalRules).named(kNearSideNames, 3)
         .value([](const Coefficients& k) { return double(k.directional.near_side); },
                [](Coefficients& k, double v) { k.directional.near_side = NearSide(int(v)); }),
 }};

@@ -1,7 +1,8 @@
 // The column rule set at a clamp (agent/columns.h): the section spreads from the free end toward the
-// clamp at 45 degrees for the plane sections, as Flamant's fan for the stresses (an L-bracket's deeper root), the clamp's layer of sigma across the beam
-// (Poisson's restraint by the bonded face, decaying as Papkovich-Fadle's end effect) and the loads'
-// layer (a push on a face spreading into the section).
+// clamp (an L-bracket's deeper root) at 45 degrees for the plane sections and as Flamant's fan for
+// the stresses; the clamp's layer of sigma across the beam (Poisson's restraint by the bonded face,
+// decaying as Papkovich-Fadle's end effect) and the loads' layer (a push on a face spreading into
+// the section).
 #include <agent/columns.h>
 #include <agent/fields.h>
 #include <agent/load_transfer.h>

@@ -400,7 +400,8 @@ std::vector<double> column_stresses(const Grid& g, const Columns& c, const Colum
 /// columns is the difference of their force of sigma_a beyond it over the distance of their
 /// centres, per the section's width; an agent holds its mean over its height (sigma_a linear in it)
 /// and over its one or two neighbours whose agents lie within the column's extent. It integrates
-/// to v where m is linear between the centres (n = 0: nothing beyond the lowest face). The plane sections' march keeps the 45-degree section.
+/// to v where m is linear between the centres (n = 0: nothing beyond the lowest face). The plane
+/// sections' march keeps the 45-degree section.
 void flamant_fan(const Grid& g, const Columns& c, const ColumnAgents& ca, TransferResults& out) {
   const int a = c.plan.axis, t = c.plan.across, n = g.cells[a], rows = g.cells[t];
   std::vector<char> use(std::size_t(n), 0);

@@ -238,10 +238,9 @@ class TurningPaths {
     x = std::min(std::max(x, edge_lo), edge_hi);
     const int from = std::max(lo, pos_.slot_at(p.axis, (x - kSpreadReach * spread) / p.size));
     const int to = std::min(hi, pos_.slot_at(p.axis, (x + kSpreadReach * spread) / p.size));
-    folded_ = folded;
-    const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to);
+    const double total = shares_of(p, x, spread, edge_lo, edge_hi, from, to, folded);
     const double scale = weight * p.mass[dir] / total;
-    const double exits = deposit(p, scale, slope, from, to, dim == 2);
+    const double exits = deposit(p, scale, slope, from, to, dim == 2, folded);
     if (dim == 3 && spread > kMinSpreadAgents * p.size)  // (at the smallest spread it does not widen)
       add_widening(p, scale, x, spread, edge_lo, edge_hi, from, to, depth_m, f.row);
     p.from = std::min(p.from, from);
@@ -251,18 +250,18 @@ class TurningPaths {
 
   // Adds a direction's force (`scale` x shares_) and shear (x `slope`) to agents from..to of the
   // row; with `exits`, returns what leaves through their exit faces (leaving_).
-  // An image path (folded_): the shares' part from the run ends' images carries the negated slope
+  // An image path (`folded`): the shares' part from the run ends' images carries the negated slope
   // (the image's shear cancels the path's at a free side).
-  double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits) {
+  double deposit(AxisPaths& p, double scale, double slope, int from, int to, bool exits, bool folded) {
     const double* share = shares_.data() - from;
-    const double* image = folded_ ? images_.data() - from : nullptr;
+    const double* image = folded ? images_.data() - from : nullptr;
     double* force = p.force.data();
     double* shear = p.shear.data();
     double left = 0;
     for (int i = from; i <= to; ++i) {
       const double m = share[i] * scale;
       force[i] += m;
-      shear[i] += folded_ ? (share[i] - 2 * image[i]) * scale * slope : m * slope;
+      shear[i] += folded ? (share[i] - 2 * image[i]) * scale * slope : m * slope;
     }
     if (exits && any_leaving_)  // (else every term is 0)
       for (int i = from; i <= to; ++i) left += share[i] * scale * leaving_[i];
@@ -305,8 +304,9 @@ class TurningPaths {
   // returns their sum. Each agent's share: the Gaussian's mass over it plus its images' (mirrored at
   // the run's ends). A run is agents only, each one agent long (only air slots are wider), so agent
   // i's upper edge is agent i + 1's lower one, (pos[from] + i + 1) agents up: the cdf is taken once
-  // per edge and image.
-  double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to) {
+  // per edge and image. `folded` (an image path): images_ gets the images' part.
+  double shares_of(const AxisPaths& p, double x, double spread, double edge_lo, double edge_hi, int from, int to,
+                   bool folded) {
     const int count = to - from + 1;
     shares_.resize(std::size_t(count));
     // Edge j at z = z0 + j step, z0 the first edge's (in spreads from the Gaussian's centre)
@@ -331,12 +331,12 @@ class TurningPaths {
     }
     // The lower image lies below every edge: once its cdf rounds to 1 it stays 1 and adds 0, so
     // the agents from there on are skipped.
-    if (folded_) images_.assign(std::size_t(count), 0.0);
+    if (folded) images_.assign(std::size_t(count), 0.0);
     double below = cdf(z_low);
     for (int j = 1; j <= count && below < 1.0; ++j) {
       const double next = cdf(z_low + j * step);
       shares_[j - 1] += next - below;
-      if (folded_) images_[j - 1] += next - below;
+      if (folded) images_[j - 1] += next - below;
       below = next;
     }
     // The upper image lies above every edge: a negligible cdf is dropped (taken as 0), as the
@@ -346,12 +346,12 @@ class TurningPaths {
     for (; j >= 0 && above >= kNegligibleCdf; --j) {
       const double next = cdf(z_high + j * step);
       shares_[j] += above - next;
-      if (folded_) images_[j] += above - next;
+      if (folded) images_[j] += above - next;
       above = next;
     }
     if (j >= 0) {
       shares_[j] += above;
-      if (folded_) images_[j] += above;
+      if (folded) images_[j] += above;
     }
     double partial[4] = {0, 0, 0, 0};  // four sums, so that the adds do not wait on each other
     int i = 0;
@@ -361,7 +361,7 @@ class TurningPaths {
     double total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
     if (!(total > 0)) {  // no share at all (the path inside the run has one): its agent
       std::fill(shares_.begin(), shares_.end(), 0.0);
-      if (folded_) std::fill(images_.begin(), images_.end(), 0.0);
+      if (folded) std::fill(images_.begin(), images_.end(), 0.0);
       shares_[std::min(std::max(pos_.slot_at(p.axis, x / p.size), from), to) - from] = total = 1;
     }
     return total;
@@ -423,7 +423,6 @@ class TurningPaths {
   std::vector<double> images_;  // 2D: the part of shares_ from the run ends' images
   bool image_ = false;          // near_side = image, in 2D (set by march)
   bool blend_ = false;          // near_side = blend, in 2D (set by march)
-  bool folded_ = false;         // the path being deposited is an image's (set by place)
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function

@@ -4,6 +4,8 @@
 #include <agent/stress_components.h>
 #include <agent/slots.h>
 
+#include "layer_stresses.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -476,32 +478,25 @@ void add_balance_shear(const Lines& lines, const AxisPair& p, const double* slop
   for (std::size_t c = 0; c < n; ++c) out.shear[c * shears + p.component] -= derivative[c];
 }
 
-/// The turning paths' components along (a, l) after the balance's shear (stress_components.h):
-/// in 2D each hole's shear, then the tie (horizontal equilibrium scanned along each run of l) and
-/// the bonded rigid face's layer; in 2D with k.closed_forms left out the tie alone.
+/// 2D, the turning paths' components along (a, l) after the balance's shear (stress_components.h):
+/// each hole's shear, then the tie (horizontal equilibrium scanned along each run of l) and the
+/// bonded rigid face's layer; with k.closed_forms left out the tie alone.
 void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<double>& normal,
-                       const DirectionalCoefficients& k, double nu_layer, StressComponents& out, Scratch& scratch) {
+                       const DirectionalCoefficients& k, double poisson, StressComponents& out, Scratch& scratch) {
   const Grid& g = lines.g;
   const std::size_t n = g.count();
-  const int dim = g.dim, shears = shear_count(dim), a = p.a, l = p.l;
-  const LateralAxes lat = lateral_axes(a);
+  const int a = p.a, l = p.l;
   const double h_l = g.size[l];
   std::vector<double>& derivative = scratch.second;
-  // 2D: Kirsch's shear and the half-plane's layer are closed forms (k.closed_forms leaves them out)
-  const bool closed_forms = dim == 2 && k.closed_forms == ClosedForms::Added;
+  // Kirsch's shear and the half-plane's layer are closed forms (k.closed_forms leaves them out)
+  const bool closed_forms = k.closed_forms == ClosedForms::Added;
   if (closed_forms) {  // a hole's corners: the shear of the load going round it, before the tie reads it
     const std::vector<double> holes = hole_shear(g, a, normal);
     for (std::size_t c = 0; c < n; ++c) out.shear[c] += holes[c];
   }
   // The tie: d sigma_l / d(along l) = -d tau / d(along a), scanned from each run's lower end.
-  // (Loads along several axes: each tie reads every packet's shear of its pair of axes.)
-  derivative_along(lines, a, out.shear, shears, p.component, k.window_length / g.size[a], derivative);
-  if (dim == 3) {  // and -d tau_lo / d(along o), o the other lateral axis (the packets' tau_xz)
-    const int o = l == lat.l0 ? lat.l1 : lat.l0;
-    std::vector<double> across;
-    derivative_along(lines, o, out.shear, shears, shear_pair(l, o), k.window_length / g.size[o], across);
-    for (std::size_t c = 0; c < n; ++c) derivative[c] += across[c];
-  }
+  // (Loads along both axes: each tie reads every packet's shear.)
+  derivative_along(lines, a, out.shear, 1, 0, k.window_length / g.size[a], derivative);
   const std::vector<double>& dtau = derivative;
   std::vector<double> faces;
   lines.along(l, [&](const Run& run, std::size_t) {
@@ -510,24 +505,88 @@ void add_tie_and_layer(const Lines& lines, const AxisPair& p, const std::vector<
     for (std::size_t i = 0; i < count; ++i) faces[i + 1] = faces[i] - h_l * dtau[run[i]];
     const double rest = faces[count];  // the round-off of an unbalanced row: taken out linearly
     for (std::size_t i = 0; i <= count; ++i) faces[i] -= rest * double(i) / double(count);
-    for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * dim + l] += 0.5 * (faces[i] + faces[i + 1]);
+    for (std::size_t i = 0; i < count; ++i) out.sigma[run[i] * 2 + l] += 0.5 * (faces[i] + faces[i + 1]);
   });
-  if (dim == 2) {
-    if (!closed_forms) return;  // the agents alone: no layer
-    half_plane_layer(lines, a, l, p.exit_side, normal, nu_layer, scratch.second, scratch.first);
-  } else {
-    local_layer(lines, a, l, p.exit_side, normal, k.base_layer_3d, nu_layer, scratch.second, scratch.first);
-  }
-  add_layer(lines, a, l, p.exit_side, scratch.second, scratch.third, out.sigma, out.shear, shears, p.component);
+  if (!closed_forms) return;  // the agents alone: no layer
+  half_plane_layer(lines, a, l, p.exit_side, normal, poisson, scratch.second, scratch.first);
+  add_layer(lines, a, l, p.exit_side, scratch.second, scratch.third, out.sigma, out.shear, 1, 0);
 }
 
-/// What a path type adds along (a, l) after the balance's shear, per Paths value (kPathNames'
-/// order): the turning paths the tie and the layer; the mirror paths nothing.
-using PathStresses = void (*)(const Lines&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
-                              double, StressComponents&, Scratch&);
-void mirror_path_stresses(const Lines&, const AxisPair&, const std::vector<double>&, const DirectionalCoefficients&,
-                          double, StressComponents&, Scratch&) {}
-constexpr PathStresses kPathStresses[] = {add_tie_and_layer, mirror_path_stresses};
+/// A window of a quarter agent fits its quadratic through an entry and its two neighbours: the
+/// centred difference (one-sided at a run's ends).
+constexpr double kCentred = 0.25;
+
+/// 3D, march axis a: each layer of agents across a answers the march's sigma_a and the body force
+/// its shears leave (d tau_al / d(along a), centred) with the in-plane stresses of least
+/// complementary energy (LayerSolver). They add to sigma_l0 and sigma_l1 and replace the packets'
+/// shear in the layer's plane where no other march owns that pair (`replace_shear`).
+void layer_stresses(const Lines& lines, int a, const std::vector<double>& normal, double poisson, bool replace_shear,
+                    StressComponents& out, Scratch& scratch) {
+  const Grid& g = lines.g;
+  const LateralAxes lat = lateral_axes(a);
+  derivative_along(lines, a, out.shear, 3, shear_pair(a, lat.l0), kCentred, scratch.first);
+  derivative_along(lines, a, out.shear, 3, shear_pair(a, lat.l1), kCentred, scratch.second);
+  LayerBox box{g.cells[lat.l0], g.cells[lat.l1], g.size[lat.l0], g.size[lat.l1], {}};
+  const std::size_t m = std::size_t(box.n0) * std::size_t(box.n1);
+  LayerFields f{std::vector<double>(m), std::vector<double>(m), std::vector<double>(m),
+                std::vector<double>(m), std::vector<double>(m), std::vector<double>(m)};
+  std::vector<std::size_t> slot(m);
+  LayerSolver solver(poisson);
+  const int in_plane = shear_pair(lat.l0, lat.l1);
+  for (int j = 0; j < g.cells[a]; ++j) {
+    box.solid.assign(m, 0);
+    for (std::size_t cell = 0; cell < m; ++cell) {
+      std::array<int, 3> c{0, 0, 0};
+      c[a] = j;
+      c[lat.l0] = int(cell % std::size_t(box.n0));
+      c[lat.l1] = int(cell / std::size_t(box.n0));
+      slot[cell] = g.index(c[0], c[1], c[2]);
+      if (slot[cell] == Grid::npos || g.is_air(slot[cell])) continue;
+      box.solid[cell] = 1;
+      f.normal[cell] = normal[slot[cell] * 3 + a];
+      f.body0[cell] = scratch.first[slot[cell]];
+      f.body1[cell] = scratch.second[slot[cell]];
+    }
+    if (std::find(box.solid.begin(), box.solid.end(), 1) == box.solid.end()) continue;
+    solver.solve(box, f);
+    for (std::size_t cell = 0; cell < m; ++cell) {
+      if (!box.solid[cell]) continue;
+      const std::size_t s = slot[cell];
+      out.sigma[s * 3 + lat.l0] += f.sigma0[cell];
+      out.sigma[s * 3 + lat.l1] += f.sigma1[cell];
+      double& tau = out.shear[s * 3 + in_plane];
+      tau = (replace_shear ? 0.0 : tau) + f.tau01[cell];
+    }
+  }
+}
+
+/// The turning paths' components of the march along a after the balance's shear
+/// (stress_components.h): in 2D the tie and the layers (add_tie_and_layer); in 3D the layers'
+/// stresses (layer_stresses), then the bonded rigid face's local layer across each lateral axis.
+void turning_path_stresses(const Lines& lines, int a, int exit_side, const std::vector<double>& normal,
+                           const DirectionalCoefficients& k, double poisson, bool replace_shear, StressComponents& out,
+                           Scratch& scratch) {
+  const Grid& g = lines.g;
+  const LateralAxes lat = lateral_axes(a);
+  if (g.dim == 2) {
+    add_tie_and_layer(lines, AxisPair{a, lat.l0, 0, 0, exit_side}, normal, k, poisson, out, scratch);
+    return;
+  }
+  layer_stresses(lines, a, normal, poisson, replace_shear, out, scratch);
+  for (const int l : {lat.l0, lat.l1}) {
+    // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
+    local_layer(lines, a, l, exit_side, normal, k.base_layer_3d, poisson / (1 - poisson), scratch.second, scratch.first);
+    add_layer(lines, a, l, exit_side, scratch.second, scratch.third, out.sigma, out.shear, 3, shear_pair(a, l));
+  }
+}
+
+/// What a path type adds along a after the balance's shear, per Paths value (kPathNames' order):
+/// the turning paths the tie or the layers and the bonded face's layer; the mirror paths nothing.
+using PathStresses = void (*)(const Lines&, int, int, const std::vector<double>&, const DirectionalCoefficients&,
+                              double, bool, StressComponents&, Scratch&);
+void mirror_path_stresses(const Lines&, int, int, const std::vector<double>&, const DirectionalCoefficients&, double,
+                          bool, StressComponents&, Scratch&) {}
+constexpr PathStresses kPathStresses[] = {turning_path_stresses, mirror_path_stresses};
 static_assert(std::size(kPathStresses) == std::size(kPathNames), "a stress step per path type");
 
 }  // namespace
@@ -557,22 +616,25 @@ StressComponents directional_stress_components(const Grid& g, const std::vector<
   StressComponents out;
   out.sigma = normal;
   out.shear = shear;  // the packets'
-  // The bonded face holds every lateral strain: sigma_l = nu / (1 - nu) sigma_a in 3D.
-  const double nu_layer = dim == 3 ? poisson / (1 - poisson) : poisson;
   const PathStresses path_stresses = kPathStresses[int(k.paths)];
   Scratch scratch;
   const Lines lines(g);
+  const auto march_along = [&](int b) {
+    return std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == b; });
+  };
   for (int a = 0; a < dim; ++a) {
-    const auto load = std::find_if(loads.begin(), loads.end(), [&](const EntryLoad& e) { return axis_of(e.dir) == a; });
+    const auto load = march_along(a);
     if (load == loads.end()) continue;  // no load marches along a: nothing written for it
     const LateralAxes lat = lateral_axes(a);
     const double* slopes = balance.data() + 2 * balance_offset(g, a);
     for (int which = 0; which < dim - 1; ++which) {
       const int l = which == 0 ? lat.l0 : lat.l1;
-      const AxisPair pair{a, l, which, dim == 3 ? shear_pair(a, l) : 0, load->dir};
-      add_balance_shear(lines, pair, slopes, k.window_length / g.size[a], out, scratch);
-      path_stresses(lines, pair, normal, k, nu_layer, out, scratch);
+      add_balance_shear(lines, AxisPair{a, l, which, dim == 3 ? shear_pair(a, l) : 0, load->dir}, slopes,
+                        k.window_length / g.size[a], out, scratch);
     }
+    // 3D: the in-plane shear is the march's own unless a march along l0 or l1 shares it
+    const bool replace_shear = dim == 3 && march_along(lat.l0) == loads.end() && march_along(lat.l1) == loads.end();
+    path_stresses(lines, a, load->dir, normal, k, poisson, replace_shear, out, scratch);
   }
   fill_von_mises(g, out);
   return out;

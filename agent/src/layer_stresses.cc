@@ -1,5 +1,5 @@
 // The stresses in a layer of agents across a 3D march (layer_stresses.h).
-#include "layer_stresses.h"
+#include <agent/layer_stresses.h>
 
 #include <array>
 #include <cmath>
@@ -104,8 +104,7 @@ void LayerSolver::solve(const LayerBox& box, LayerFields& f) {
   f.sigma1.assign(box.solid.size(), 0.0);
   f.tau01.assign(box.solid.size(), 0.0);
   if (piece_.empty()) return;
-  Eigen::VectorXd load = nodal_load(box, f);
-  take_out_rigid_motions(box, load);
+  const Eigen::VectorXd load = nodal_load(box, f);
   const Eigen::VectorXd displacement = ldlt_.solve(load);
   // Each cell's stress: C (mean strain + nu sigma_normal (1, 1, 0)), the mean over its points.
   const double held = nu_ / (1 - nu_);  // C (1, 1, 0) per component, E = 1
@@ -122,6 +121,8 @@ void LayerSolver::solve(const LayerBox& box, LayerFields& f) {
 }
 
 Eigen::VectorXd LayerSolver::nodal_load(const LayerBox& box, const LayerFields& f) const {
+  std::vector<double> body0 = f.body0, body1 = f.body1;
+  take_out_rigid_motions(box, body0, body1);
   Eigen::VectorXd load = Eigen::VectorXd::Zero(2 * Eigen::Index(piece_.size()));
   const double quarter = 0.25 * box.h0 * box.h1;
   for (int i1 = 0; i1 < box.n1; ++i1)
@@ -131,47 +132,47 @@ Eigen::VectorXd LayerSolver::nodal_load(const LayerBox& box, const LayerFields& 
       for (int k = 0; k < 4; ++k) {
         const int u = node_[corner(box, i0, i1, k)];
         // the initial strain -nu sigma_normal (E = 1) and a quarter of the cell's body force
-        load[2 * u] += -nu_ * f.normal[cell] * f_poisson_[2 * k] + quarter * f.body0[cell];
-        load[2 * u + 1] += -nu_ * f.normal[cell] * f_poisson_[2 * k + 1] + quarter * f.body1[cell];
+        load[2 * u] += -nu_ * f.normal[cell] * f_poisson_[2 * k] + quarter * body0[cell];
+        load[2 * u + 1] += -nu_ * f.normal[cell] * f_poisson_[2 * k + 1] + quarter * body1[cell];
       }
     }
   return load;
 }
 
-void LayerSolver::take_out_rigid_motions(const LayerBox& box, Eigen::VectorXd& load) const {
-  // Per piece: net force and moment about its nodes' centroid, where the three rigid motions
-  // (two translations, a rotation) are orthogonal; each is taken out along its motion.
-  const std::size_t count = piece_.size();
+void LayerSolver::take_out_rigid_motions(const LayerBox& box, std::vector<double>& body0,
+                                         std::vector<double>& body1) const {
+  // Per piece: the net force and the moment about its centroid, where the body forces of the
+  // three rigid motions (two uniform, a rotation) are orthogonal; each taken out along its motion.
+  // (A cell's force shared equally by its corners keeps both, so the nodes' load is balanced too.)
   struct Piece {
-    double nodes = 0, x0 = 0, x1 = 0, f0 = 0, f1 = 0, moment = 0, inertia = 0;
+    double cells = 0, x0 = 0, x1 = 0, f0 = 0, f1 = 0, moment = 0, inertia = 0;
   };
   std::vector<Piece> sums(static_cast<std::size_t>(pieces_));
-  std::vector<double> x0(count), x1(count);
-  for (std::size_t n = 0; n < node_.size(); ++n) {
-    const int u = node_[n];
-    if (u < 0) continue;
-    x0[u] = double(n % std::size_t(box.n0 + 1)) * box.h0;
-    x1[u] = double(n / std::size_t(box.n0 + 1)) * box.h1;
-    Piece& p = sums[piece_[u]];
-    p.nodes += 1;
-    p.x0 += x0[u];
-    p.x1 += x1[u];
-  }
-  for (std::size_t u = 0; u < count; ++u) {
-    Piece& p = sums[piece_[u]];
-    const double r0 = x0[u] - p.x0 / p.nodes, r1 = x1[u] - p.x1 / p.nodes;
-    p.f0 += load[2 * u];
-    p.f1 += load[2 * u + 1];
-    p.moment += r0 * load[2 * u + 1] - r1 * load[2 * u];
+  const auto each_cell = [&](auto&& visit) {
+    for (std::size_t cell = 0; cell < box.solid.size(); ++cell) {
+      if (!box.solid[cell]) continue;
+      const int i0 = int(cell) % box.n0, i1 = int(cell) / box.n0;
+      visit(cell, sums[piece_[node_[corner(box, i0, i1, 0)]]], (i0 + 0.5) * box.h0, (i1 + 0.5) * box.h1);
+    }
+  };
+  each_cell([](std::size_t, Piece& p, double x0, double x1) {
+    p.cells += 1;
+    p.x0 += x0;
+    p.x1 += x1;
+  });
+  each_cell([&](std::size_t cell, Piece& p, double x0, double x1) {
+    const double r0 = x0 - p.x0 / p.cells, r1 = x1 - p.x1 / p.cells;
+    p.f0 += body0[cell];
+    p.f1 += body1[cell];
+    p.moment += r0 * body1[cell] - r1 * body0[cell];
     p.inertia += r0 * r0 + r1 * r1;
-  }
-  for (std::size_t u = 0; u < count; ++u) {
-    const Piece& p = sums[piece_[u]];
-    const double r0 = x0[u] - p.x0 / p.nodes, r1 = x1[u] - p.x1 / p.nodes;
+  });
+  each_cell([&](std::size_t cell, Piece& p, double x0, double x1) {
+    const double r0 = x0 - p.x0 / p.cells, r1 = x1 - p.x1 / p.cells;
     const double spin = p.inertia > 0 ? p.moment / p.inertia : 0.0;
-    load[2 * u] -= p.f0 / p.nodes - spin * r1;
-    load[2 * u + 1] -= p.f1 / p.nodes + spin * r0;
-  }
+    body0[cell] -= p.f0 / p.cells - spin * r1;
+    body1[cell] -= p.f1 / p.cells + spin * r0;
+  });
 }
 
 }  // namespace agent

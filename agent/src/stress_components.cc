@@ -4,7 +4,7 @@
 #include <agent/stress_components.h>
 #include <agent/slots.h>
 
-#include "layer_stresses.h"
+#include <agent/layer_stresses.h>
 
 #include <Eigen/Dense>
 

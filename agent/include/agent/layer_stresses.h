@@ -27,8 +27,9 @@ struct LayerFields {
 /// Solves layers in turn. The layer carries the body force and the Poisson strain
 /// -nu sigma_normal / E of each agent (the complementary energy's term in sigma_normal) as a
 /// plane-stress plate of Q1 cells with every edge free. Each piece of the layer (agents joined
-/// through a corner at least) is a free body: the part of its load a rigid motion would take
-/// (net force and moment: the shears' imbalance) is taken out first, uniformly over its nodes.
+/// through a corner at least) is a free body: the part of its body force a rigid motion would take
+/// (net force and moment: the shears' imbalance) is taken out first, as a uniform force and a
+/// rotation's over its cells.
 /// No coefficient; E drops out. A layer with the same cells as the previous one reuses its
 /// factorisation (a prism's layers are all one).
 class LayerSolver {
@@ -39,10 +40,10 @@ class LayerSolver {
 
  private:
   void factorise(const LayerBox& box);
-  /// The nodal forces of the cells' initial strain and body force.
+  /// The nodal forces of the cells' initial strain and of their body force less its imbalance.
   Eigen::VectorXd nodal_load(const LayerBox& box, const LayerFields& fields) const;
-  /// What of `load` a piece's rigid motions would take (net force, moment), taken out per piece.
-  void take_out_rigid_motions(const LayerBox& box, Eigen::VectorXd& load) const;
+  /// What of the body force a piece's rigid motions would take (net force, moment), taken out.
+  void take_out_rigid_motions(const LayerBox& box, std::vector<double>& body0, std::vector<double>& body1) const;
   double nu_;
   Eigen::Matrix<double, 8, 8> ke_;
   Eigen::Matrix<double, 3, 8> b_mean_;   ///< the strain's mean over the cell per nodal displacement

@@ -78,21 +78,24 @@ void LayerSolver::factorise(const LayerBox& box) {
     if (p < 0) p = pieces_++;
     piece_[node_[n]] = p;
   }
-  // K, plus a shift of 1e-10 of its largest diagonal: the loads are balanced per piece (solve),
-  // so the shift only fixes the rigid motions they no longer excite.
-  std::vector<Eigen::Triplet<double>> entries;
+  // K's lower triangle (what the LDL^T reads), plus a shift of 1e-10 of its largest diagonal: the
+  // loads are balanced per piece (solve), so the shift only fixes the rigid motions they no longer
+  // excite. A node meets at most 9 nodes: 18 entries a column.
+  Eigen::SparseMatrix<double> k(2 * count, 2 * count);
+  k.reserve(Eigen::VectorXi::Constant(2 * count, 18));
   for (int i1 = 0; i1 < box.n1; ++i1)
     for (int i0 = 0; i0 < box.n0; ++i0) {
       if (!box.solid[std::size_t(i0 + box.n0 * i1)]) continue;
-      for (int r = 0; r < 8; ++r)
-        for (int c = 0; c < 8; ++c)
-          entries.emplace_back(2 * node_[corner(box, i0, i1, r / 2)] + r % 2,
-                               2 * node_[corner(box, i0, i1, c / 2)] + c % 2, ke_(r, c));
+      for (int c = 0; c < 8; ++c)
+        for (int r = 0; r < 8; ++r) {
+          const int row = 2 * node_[corner(box, i0, i1, r / 2)] + r % 2;
+          const int col = 2 * node_[corner(box, i0, i1, c / 2)] + c % 2;
+          if (row >= col) k.coeffRef(row, col) += ke_(r, c);
+        }
     }
   const double shift = 1e-10 * ke_.diagonal().maxCoeff();
-  for (int i = 0; i < 2 * count; ++i) entries.emplace_back(i, i, shift);
-  Eigen::SparseMatrix<double> k(2 * count, 2 * count);
-  k.setFromTriplets(entries.begin(), entries.end());
+  for (int i = 0; i < 2 * count; ++i) k.coeffRef(i, i) += shift;
+  k.makeCompressed();
   ldlt_.compute(k);
   if (ldlt_.info() != Eigen::Success) throw std::runtime_error("a layer's stiffness could not be factorised");
 }

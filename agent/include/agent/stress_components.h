@@ -49,19 +49,25 @@ StressComponents stress_components_with_shear(const Grid& grid, const std::vecto
 
 /// The directional rule set's stress components of one solve. `normal` is agent_stresses' (dim per
 /// slot). `shear` and `balance` are the transfer's (TransferResults::shear, ::balance, sized by
-/// DirectionalTransfer::size_results). Per march axis a (in 2D):
-///   tau_xy = the packets' shear + the balance's shear (vertical equilibrium scanned along each row,
-///            its derivative along a from a local quadratic fit over k.window_length);
-/// and with k.paths == Paths::Turning
+/// DirectionalTransfer::size_results). Per march axis a:
+///   tau_(a, l) = the packets' shear + the balance's shear (vertical equilibrium scanned along each
+///            row, its derivative along a from a local quadratic fit over k.window_length);
+/// and with k.paths == Paths::Turning, in 2D
 ///   sigma across a += the tie: horizontal equilibrium scanned along each run of agents from its
 ///            lower end (0 there), what is left at the upper end taken out linearly;
 ///   the layer on a bonded rigid face the loads march onto (it holds sigma across a = nu sigma_a):
 ///            the elastic half-plane's answer to that restraint, per run of agents on the face with
 ///            free ends: nu sigma_a of the face's agents in sine modes of the run's width, mode k
-///            reaching height y as (1 - k y / 2) exp(-k y); in 3D a local layer, nu / (1 - nu)
-///            sigma_a max(0, 1 - y / ell) (1 - exp(-d_side / y)), ell = k.base_layer_3d x the
-///            width of the pressure on that face; either's shear by horizontal equilibrium;
-///   2D, before the tie: each hole's shear (hole_shear), the stress concentration at its corners.
+///            reaching height y as (1 - k y / 2) exp(-k y); its shear by horizontal equilibrium;
+///   before the tie, each hole's shear (hole_shear), the stress concentration at its corners;
+/// in 3D
+///   sigma_l0, sigma_l1 and tau_(l0, l1) of each layer of agents across a: the in-plane stresses
+///            of least complementary energy given sigma_a and the body force d tau_(a, l) / d(along
+///            a) (centred) of the shears above (LayerSolver, agent/layer_stresses.h); they replace
+///            the packets' tau_(l0, l1) unless a march along l0 or l1 shares that pair;
+///   the bonded rigid face's local layer, nu / (1 - nu) sigma_a max(0, 1 - y / ell)
+///            (1 - exp(-d_side / y)) across each lateral axis, ell = k.base_layer_3d x the width of
+///            the pressure on that face, its shear by horizontal equilibrium.
 /// `loads` give each march axis its direction (which end the rigid face of the layer is at).
 StressComponents directional_stress_components(const Grid& grid, const std::vector<double>& normal,
                                                const std::vector<double>& shear, const std::vector<double>& balance,

@@ -1,9 +1,7 @@
 // The stresses in a layer of agents across a 3D march (layer_stresses.h).
 #include <agent/layer_stresses.h>
 
-#include <array>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
 namespace agent {
@@ -29,7 +27,7 @@ LayerSolver::LayerSolver(double poisson) : nu_(poisson) {
   c_ /= 1 - nu_ * nu_;
 }
 
-void LayerSolver::factorise(const LayerBox& box) {
+void LayerSolver::cell_matrices(const LayerBox& box) {
   // The Q1 cell of h0 x h1, 2 x 2 Gauss points.
   const double g = 1 / std::sqrt(3.0), w = 0.25 * box.h0 * box.h1;
   static constexpr double s0[4] = {-1, 1, 1, -1}, s1[4] = {-1, -1, 1, 1};
@@ -52,8 +50,10 @@ void LayerSolver::factorise(const LayerBox& box) {
       f_poisson_ += w * b.transpose() * c_ * unit_strain;
       b_mean_ += 0.25 * b;
     }
+}
+
+int LayerSolver::number_nodes(const LayerBox& box) {
   // The unknowns: the nodes some agent touches; the pieces: nodes joined through cells.
-  box_ = box;
   const int nodes = (box.n0 + 1) * (box.n1 + 1);
   std::vector<int> parent(std::size_t(nodes), -1);
   for (int i1 = 0; i1 < box.n1; ++i1)
@@ -69,7 +69,6 @@ void LayerSolver::factorise(const LayerBox& box) {
   for (int n = 0; n < nodes; ++n)
     if (parent[n] >= 0) node_[n] = count++;
   piece_.assign(std::size_t(count), 0);
-  if (count == 0) return;  // no agent: nothing to factorise
   std::vector<int> piece_of_root(std::size_t(nodes), -1);
   pieces_ = 0;
   for (int n = 0; n < nodes; ++n) {
@@ -78,6 +77,14 @@ void LayerSolver::factorise(const LayerBox& box) {
     if (p < 0) p = pieces_++;
     piece_[node_[n]] = p;
   }
+  return count;
+}
+
+void LayerSolver::factorise(const LayerBox& box) {
+  box_ = box;
+  cell_matrices(box);
+  const int count = number_nodes(box);
+  if (count == 0) return;  // no agent: nothing to factorise
   // K's lower triangle (what the LDL^T reads), plus a shift of 1e-10 of its largest diagonal: the
   // loads are balanced per piece (solve), so the shift only fixes the rigid motions they no longer
   // excite. A node meets at most 9 nodes: 18 entries a column.

@@ -39,6 +39,11 @@ class LayerSolver {
   void solve(const LayerBox& box, LayerFields& fields);
 
  private:
+  /// The cell's stiffness, its mean strain and the nodal forces of a unit Poisson strain.
+  void cell_matrices(const LayerBox& box);
+  /// Numbers the nodes some agent touches and finds the pieces; returns the nodes' count.
+  int number_nodes(const LayerBox& box);
+  /// The box's stiffness, factorised (kept with the box, its nodes and its pieces).
   void factorise(const LayerBox& box);
   /// The nodal forces of the cells' initial strain and of their body force less its imbalance.
   Eigen::VectorXd nodal_load(const LayerBox& box, const LayerFields& fields) const;

@@ -1,10 +1,9 @@
 // Every stress component of the agents: the shear of the packets and of the row moment balance,
-// the tie scan and the bonded face's layer (agent/stress_components.h).
+// the tie scan (2D) or the layers (3D) and the bonded face's layer (agent/stress_components.h).
+#include <agent/layer_stresses.h>
 #include <agent/state.h>
 #include <agent/stress_components.h>
 #include <agent/slots.h>
-
-#include <agent/layer_stresses.h>
 
 #include <Eigen/Dense>
 
@@ -561,8 +560,9 @@ void layer_stresses(const Lines& lines, int a, const std::vector<double>& normal
 }
 
 /// The turning paths' components of the march along a after the balance's shear
-/// (stress_components.h): in 2D the tie and the layers (add_tie_and_layer); in 3D the layers'
-/// stresses (layer_stresses), then the bonded rigid face's local layer across each lateral axis.
+/// (stress_components.h): in 2D the tie and the half-plane's layer (add_tie_and_layer); in 3D the
+/// layers' stresses (layer_stresses), then the bonded rigid face's local layer across each lateral
+/// axis.
 void turning_path_stresses(const Lines& lines, int a, int exit_side, const std::vector<double>& normal,
                            const DirectionalCoefficients& k, double poisson, bool replace_shear, StressComponents& out,
                            Scratch& scratch) {

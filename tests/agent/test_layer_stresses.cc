@@ -94,6 +94,25 @@ TEST(LayerStresses, WhatARigidMotionWouldTakeIsTakenOutPerPiece) {
   EXPECT_LT(largest(f), 1e-9 * 5e6 * 2e-3 * 10);
 }
 
+// Agents joined only at corners are one piece with hinges: a chain of three turned about its
+// hinges is a motion without strain that no rigid motion of the piece takes out, and the body
+// force below (after the piece's net force and moment are taken out) only turns them. The shift
+// keeps the solve finite; each agent, free to turn and to take its Poisson strain, carries nothing
+// (to 1e-6 of the load's scale F h + |sigma_normal|, not 1 / shift).
+TEST(LayerStresses, AgentsJoinedAtCornersStayFiniteWhenTheLoadTurnsTheHinges) {
+  LayerBox box = square_box(3, 1e-3);
+  box.solid = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // cells (0, 0), (1, 1), (2, 2)
+  LayerFields f = empty_fields(box);
+  const double force = 1e6;
+  f.body0 = {force, 0, 0, 0, 0, 0, 0, 0, -force};
+  f.body1 = {-force, 0, 0, 0, 0, 0, 0, 0, force};
+  f.normal = {-1e3, 0, 0, 0, 2e3, 0, 0, 0, -1e3};
+  LayerSolver(kNu).solve(box, f);
+  for (std::size_t c = 0; c < 9; ++c)
+    EXPECT_TRUE(std::isfinite(f.sigma0[c]) && std::isfinite(f.sigma1[c]) && std::isfinite(f.tau01[c])) << c;
+  EXPECT_LT(largest(f), 1e-6 * (force * 1e-3 + 2e3));
+}
+
 // A layer with the same cells reuses the factorisation: the answer is a fresh solver's to the bit.
 TEST(LayerStresses, ALayerLikeThePreviousReusesItsFactorisation) {
   const LayerBox box = square_box(8, 1e-3);

@@ -67,8 +67,7 @@ class TurningPaths {
 
   void march(const MarchFrame<Slots>& f, const EntryLoad& load) {
     const int dim = f.dim;
-    image_ = dim == 2 && k_.near_side == NearSide::Image;
-    blend_ = dim == 2 && k_.near_side == NearSide::Blend;
+    near_side_ = dim == 2 ? k_.near_side : NearSide::Side;
     row_force_.assign(f.layer_size, 0.0);  // the packets' force through each agent of a row
     const double body_depth = depth_of_body(f, f.entry[f.a]);
     std::array<AxisPaths, 2> axes;
@@ -151,13 +150,13 @@ class TurningPaths {
     // cross the nearer side is folded back into the body as its image (distribute). Far below, the
     // force then spreads over the whole width, and the row's balance makes it beam statics' line.
     const double wider = std::max(width_low, width_high);
-    if (image_) width_low = width_high = wider;
+    if (near_side_ == NearSide::Image) width_low = width_high = wider;
     double below = 0;  // the fan's weight of the directions before k
     for (int dir = 0; dir < k_.directions; ++dir) {
       const double s = fan_.slope[dir], q = below + 0.5 * fan_.weight[dir];
       below += fan_.weight[dir];
       p.turn.push_back(turn(s, q, width_low, width_high, p.size, body_depth));
-      if (blend_) p.turn_image.push_back(turn(s, q, wider, wider, p.size, body_depth));
+      if (near_side_ == NearSide::Blend) p.turn_image.push_back(turn(s, q, wider, wider, p.size, body_depth));
       p.mass.push_back(fan_.weight[dir] * (f.dim == 2 ? load.force : 1.0));
     }
     return p;
@@ -198,16 +197,17 @@ class TurningPaths {
     p.from = n_w;
     p.to = -1;
     // near_side = blend: this row's share on the side paths (the rest on the image's)
-    const double on_side = blend_ ? std::exp(-kBlendDecay * depth_m / (p.fold_hi - p.fold_lo)) : 1.0;
+    const bool blend = near_side_ == NearSide::Blend;
+    const double on_side = blend ? std::exp(-kBlendDecay * depth_m / (p.fold_hi - p.fold_lo)) : 1.0;
     for (int dir = 0; dir < k_.directions; ++dir) {
       if (p.mass[dir] == 0) continue;
-      double exits = place(f, p, dir, p.turn[dir], on_side, image_, layer, spread, depth_m, lo, hi);
+      double exits = place(f, p, dir, p.turn[dir], on_side, near_side_ == NearSide::Image, layer, spread, depth_m, lo, hi);
       if (exits < 0) {  // the body ends under the path (2D: the row has no agent)
         out_.d.passed_out += p.mass[dir];
         p.mass[dir] = 0;
         continue;
       }
-      if (blend_) exits += place(f, p, dir, p.turn_image[dir], 1 - on_side, true, layer, spread, depth_m, lo, hi);
+      if (blend) exits += place(f, p, dir, p.turn_image[dir], 1 - on_side, true, layer, spread, depth_m, lo, hi);
       if (dim == 2) p.mass[dir] = last_layer ? 0.0 : p.mass[dir] - exits;
     }
     return true;
@@ -421,8 +421,7 @@ class TurningPaths {
   std::vector<double> shares_;  // per agent of a direction's window
   std::vector<double> edges_;   // 3D, per edge of a direction's window: its widening's density there
   std::vector<double> images_;  // 2D: the part of shares_ from the run ends' images
-  bool image_ = false;          // near_side = image, in 2D (set by march)
-  bool blend_ = false;          // near_side = blend, in 2D (set by march)
+  NearSide near_side_ = NearSide::Side;  // 2D: the coefficients' near_side; 3D: side (set by march)
   std::vector<double> leaving_;  // 2D, per agent of the row: 1 where its load leaves the body
   bool any_leaving_ = false;     // 2D: some agent of the row has a 1 in leaving_
   const Cdf& cdf;  // Phi, the deposit's Gaussian's distribution function
